@@ -1,0 +1,171 @@
+//! The global cell grid: cells of side >= cutoff + skin, an even count >= 4 per
+//! dimension, so that the 8-colour block ownership of ARCHITECTURE.md is well defined.
+//!
+//! A pair of particles in cells A and B (adjacent or equal, periodic) is owned by the
+//! cell C = componentwise min(A, B); C's pairs touch only the block C + {0,1}^3, and the
+//! colour of C is the parity of its index, so blocks of one colour are disjoint.
+
+use crate::{Domain, Vec3};
+use std::fmt;
+
+/// Smallest number of cells per dimension the colouring accepts.
+pub const MIN_CELLS: usize = 4;
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct CellGrid {
+    /// Cells per dimension (even, >= 4).
+    pub count: [usize; 3],
+    /// Cell side per dimension.
+    pub side: Vec3,
+    lo: Vec3,
+}
+
+/// The box cannot hold the colour grid.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GridError {
+    pub dim: usize,
+    pub length: f64,
+    pub cut: f64,
+}
+
+impl fmt::Display for GridError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let axis = ["x", "y", "z"][self.dim];
+        write!(
+            f,
+            "box length {:.6} along {axis} holds fewer than {MIN_CELLS} cells of side cutoff + skin = {:.6}; \
+             the smallest valid length is {:.6} (enlarge the box, or reduce the cutoff or the skin)",
+            self.length,
+            self.cut,
+            MIN_CELLS as f64 * self.cut
+        )
+    }
+}
+
+impl std::error::Error for GridError {}
+
+impl CellGrid {
+    /// The finest grid with an even number (>= 4) of cells of side >= `cut`.
+    pub fn new(domain: &Domain, cut: f64) -> Result<Self, GridError> {
+        let len = domain.len();
+        let mut count = [0; 3];
+        let mut side = [0.0; 3];
+        for d in 0..3 {
+            let fit = if cut > 0.0 { (len[d] / cut).floor() as usize } else { usize::MAX };
+            let n = fit.min(1 << 10) & !1;
+            if n < MIN_CELLS {
+                return Err(GridError { dim: d, length: len[d], cut });
+            }
+            count[d] = n;
+            side[d] = len[d] / n as f64;
+        }
+        Ok(Self { count, side, lo: domain.lo })
+    }
+
+    /// Cell coordinates of a position inside the box.
+    #[inline]
+    pub fn locate(&self, r: Vec3) -> [i32; 3] {
+        let mut c = [0; 3];
+        for d in 0..3 {
+            let k = ((r[d] - self.lo[d]) / self.side[d]).floor() as i64;
+            c[d] = k.clamp(0, self.count[d] as i64 - 1) as i32;
+        }
+        c
+    }
+
+    /// Total number of cells.
+    pub fn len(&self) -> usize {
+        self.count.iter().product()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Colour 0..8 of a cell: the parity of its coordinates.
+    #[inline]
+    pub fn colour(c: [i32; 3]) -> usize {
+        ((c[0] & 1) | ((c[1] & 1) << 1) | ((c[2] & 1) << 2)) as usize
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn grid_is_even_and_at_least_the_cut() {
+        let d = Domain::new([0.0; 3], [18.9, 20.0, 40.0]);
+        let g = CellGrid::new(&d, 4.4).unwrap();
+        assert_eq!(g.count, [4, 4, 8]);
+        assert!(g.side.iter().all(|&s| s >= 4.4));
+        assert_eq!(g.locate([18.89, 0.0, 39.99]), [3, 0, 7]);
+    }
+
+    #[test]
+    fn too_small_box_names_the_smallest_valid_length() {
+        let d = Domain::new([0.0; 3], [10.0, 20.0, 20.0]);
+        let e = CellGrid::new(&d, 4.4).unwrap_err();
+        assert_eq!(e.dim, 0);
+        assert!(e.to_string().contains("17.6"), "{e}");
+    }
+
+    #[test]
+    fn colours_alternate() {
+        assert_eq!(CellGrid::colour([0, 0, 0]), 0);
+        assert_eq!(CellGrid::colour([3, 2, 5]), 5);
+        assert_eq!(CellGrid::colour([-1, 4, 4]), 1);
+    }
+}
+
+/// Particles (owned and ghost) sorted by cell over the owned range plus one ghost
+/// cell on every side.
+#[derive(Clone, Debug, Default)]
+pub struct CellBins {
+    lo: [i32; 3],
+    dims: [usize; 3],
+    start: Vec<u32>,
+    items: Vec<u32>,
+}
+
+impl CellBins {
+    /// Bins particles by their `cell` for the owned range [lo, hi).
+    pub fn build(&mut self, cells: &[[i32; 3]], lo: [i32; 3], hi: [i32; 3]) {
+        self.lo = [lo[0] - 1, lo[1] - 1, lo[2] - 1];
+        self.dims = [0, 1, 2].map(|d| (hi[d] - lo[d] + 2) as usize);
+        let ncell = self.dims.iter().product::<usize>();
+        self.start.clear();
+        self.start.resize(ncell + 1, 0);
+        for c in cells {
+            let k = self.index(*c);
+            self.start[k + 1] += 1;
+        }
+        for k in 0..ncell {
+            self.start[k + 1] += self.start[k];
+        }
+        let mut fill: Vec<u32> = self.start[..ncell].to_vec();
+        self.items.clear();
+        self.items.resize(cells.len(), 0);
+        for (i, c) in cells.iter().enumerate() {
+            let k = self.index(*c);
+            self.items[fill[k] as usize] = i as u32;
+            fill[k] += 1;
+        }
+    }
+
+    #[inline]
+    fn index(&self, c: [i32; 3]) -> usize {
+        let x = (c[0] - self.lo[0]) as usize;
+        let y = (c[1] - self.lo[1]) as usize;
+        let z = (c[2] - self.lo[2]) as usize;
+        debug_assert!(x < self.dims[0] && y < self.dims[1] && z < self.dims[2], "cell {c:?} outside bins");
+        (z * self.dims[1] + y) * self.dims[0] + x
+    }
+
+    /// Particles in cell `c` (which must lie in the binned range).
+    #[inline]
+    pub fn cell(&self, c: [i32; 3]) -> &[u32] {
+        let k = self.index(c);
+        &self.items[self.start[k] as usize..self.start[k + 1] as usize]
+    }
+}

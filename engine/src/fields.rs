@@ -1,0 +1,30 @@
+//! Named per-particle fields, as a bit set for the communication layer.
+
+/// A set of per-particle fields to exchange between owners and ghosts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Fields(u32);
+
+impl Fields {
+    pub const POSITION: Self = Self(1);
+    pub const MOMENTUM: Self = Self(2);
+    pub const ENERGY: Self = Self(4);
+    pub const THETA: Self = Self(8);
+    pub const DENSITY: Self = Self(16);
+    pub const PRESSURE: Self = Self(32);
+    pub const INV_TAU: Self = Self(64);
+
+    pub const fn union(self, other: Self) -> Self {
+        Self(self.0 | other.0)
+    }
+
+    pub const fn contains(self, other: Self) -> bool {
+        self.0 & other.0 == other.0
+    }
+}
+
+impl std::ops::BitOr for Fields {
+    type Output = Self;
+    fn bitor(self, rhs: Self) -> Self {
+        self.union(rhs)
+    }
+}

@@ -1,0 +1,71 @@
+//! Full Verlet neighbour lists in tag order, rebuilt when a particle has moved more
+//! than half the skin.
+//!
+//! Every owned particle lists all its neighbours (owned or ghost) sorted by tag, so
+//! density and force sums run in an order no decomposition can change.
+
+use crate::cells::CellBins;
+use crate::{dot, sub, Particles, Vec3};
+
+#[derive(Clone, Debug, Default)]
+pub struct NeighborList {
+    /// List radius: interaction cutoff plus skin.
+    pub radius: f64,
+    /// Neighbours of owned particle i: `neighbors[offsets[i]..offsets[i + 1]]`.
+    pub offsets: Vec<u32>,
+    pub neighbors: Vec<u32>,
+    r_at_build: Vec<Vec3>,
+    /// Number of builds so far.
+    pub builds: u64,
+}
+
+impl NeighborList {
+    /// Builds the lists of all owned particles from the cell bins.
+    pub fn build(&mut self, store: &Particles, bins: &CellBins, radius: f64) {
+        self.radius = radius;
+        let r2max = radius * radius;
+        self.offsets.clear();
+        self.neighbors.clear();
+        self.offsets.push(0);
+        for i in 0..store.nlocal {
+            let start = self.neighbors.len();
+            let (ri, c) = (store.r[i], store.cell[i]);
+            for dz in -1..=1 {
+                for dy in -1..=1 {
+                    for dx in -1..=1 {
+                        for &j in bins.cell([c[0] + dx, c[1] + dy, c[2] + dz]) {
+                            let d = sub(ri, store.r[j as usize]);
+                            if j as usize != i && dot(d, d) < r2max {
+                                self.neighbors.push(j);
+                            }
+                        }
+                    }
+                }
+            }
+            self.neighbors[start..].sort_unstable_by_key(|&j| store.tag[j as usize]);
+            self.offsets.push(self.neighbors.len() as u32);
+        }
+        self.r_at_build.clear();
+        self.r_at_build.extend_from_slice(&store.r[..store.nlocal]);
+        self.builds += 1;
+    }
+
+    /// Neighbours of owned particle i.
+    #[inline]
+    pub fn of(&self, i: usize) -> &[u32] {
+        &self.neighbors[self.offsets[i] as usize..self.offsets[i + 1] as usize]
+    }
+
+    /// Largest displacement of an owned particle since the last build (local).
+    pub fn max_displacement(&self, store: &Particles) -> f64 {
+        if self.r_at_build.len() != store.nlocal {
+            return f64::INFINITY;
+        }
+        let mut m: f64 = 0.0;
+        for (r, r0) in store.r[..store.nlocal].iter().zip(&self.r_at_build) {
+            let d = sub(*r, *r0);
+            m = m.max(dot(d, d));
+        }
+        m.sqrt()
+    }
+}

@@ -1,0 +1,87 @@
+//! Particle equations of state: from the internal energy u and the local density n
+//! give the particle temperature theta (eq 6), the particle pressure pi (eq 7), the heat
+//! capacity C_V (eq 22) and the dressed temperature tau (eqs 19, 23).
+//!
+//! A new EOS is one file in this folder implementing [`Eos`], plus one registration in
+//! the app's style table (see docs/DESIGN.md).
+
+mod linear;
+
+pub use linear::LinearTheta;
+
+use std::fmt;
+
+/// Local density below which a particle counts as isolated (2019 paper, secs 4.3, 5.3.2):
+/// its density is raised to this value and its particle pressure set to zero, so its
+/// forces vanish but stay finite.
+pub const ISOLATED_DENSITY: f64 = 1e-6;
+
+/// Thermodynamic state of one particle, as the dynamics needs it.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct EosState {
+    /// Particle temperature theta = du/ds|_n (eq 6).
+    pub theta: f64,
+    /// pi/n^2 = du/dn|_s, the factor of the many-body force (eq 51).
+    pub pn2: f64,
+    /// Heat capacity C_V = du/dtheta|_n (eq 22).
+    pub cv: f64,
+}
+
+/// Why a state cannot be evaluated.
+#[derive(Clone, Debug, PartialEq)]
+pub enum EosError {
+    /// theta(u, n) <= 0 or not finite: u lies below the ground state at this density.
+    NonPositiveTheta { u: f64, n: f64, theta: f64 },
+}
+
+impl fmt::Display for EosError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::NonPositiveTheta { u, n, theta } => write!(
+                f,
+                "particle temperature theta = {theta:e} is not positive (u = {u:e}, n = {n:e})"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for EosError {}
+
+/// A particle equation of state u(s, n) with k_B = `kb()`.
+pub trait Eos: Send + Sync {
+    /// Boltzmann's constant in the units of the script.
+    fn kb(&self) -> f64;
+    /// Whether pi depends on n; a pairwise scene skips the density pass when false.
+    fn density_dependent(&self) -> bool;
+    /// theta(u, n); `guess` seeds iterative models (the last theta of the particle).
+    fn theta(&self, u: f64, n: f64, guess: f64) -> f64;
+    /// u(theta, n).
+    fn u(&self, theta: f64, n: f64) -> f64;
+    /// pi(theta, n) / n^2.
+    fn pn2(&self, theta: f64, n: f64) -> f64;
+    /// C_V(theta, n).
+    fn cv(&self, theta: f64, n: f64) -> f64;
+    /// Bare particle entropy s(u, n) (eq 45), where the model has a closed form.
+    fn entropy(&self, u: f64, n: f64) -> Option<f64>;
+    /// Largest local density the model accepts for an initial state (None: unbounded).
+    fn max_density(&self) -> Option<f64>;
+
+    /// theta, pi/n^2 and C_V at (u, n), with the isolated-particle rule applied.
+    #[inline]
+    fn state(&self, u: f64, n: f64, guess: f64) -> Result<EosState, EosError> {
+        let isolated = n < ISOLATED_DENSITY;
+        let n = if isolated { ISOLATED_DENSITY } else { n };
+        let theta = self.theta(u, n, guess);
+        if !(theta > 0.0 && theta.is_finite()) {
+            return Err(EosError::NonPositiveTheta { u, n, theta });
+        }
+        let pn2 = if isolated { 0.0 } else { self.pn2(theta, n) };
+        Ok(EosState { theta, pn2, cv: self.cv(theta, n) })
+    }
+
+    /// 1/tau = (1 - k_B/C_V)/theta, the inverse dressed temperature (eqs 19, 23).
+    #[inline]
+    fn inv_tau(&self, theta: f64, cv: f64) -> f64 {
+        (1.0 - self.kb() / cv) / theta
+    }
+}

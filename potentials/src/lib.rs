@@ -1,0 +1,10 @@
+//! Particle equations of state (EOS) and weight functions of GenDPDE.
+//!
+//! Equation numbers refer to Bonet Avalos et al., PCCP 21, 24891 (2019) unless a
+//! docstring names another paper. This crate depends on nothing project-internal.
+
+pub mod eos;
+pub mod weight;
+
+pub use eos::{Eos, EosError, EosState, LinearTheta, ISOLATED_DENSITY};
+pub use weight::{CubicSpline, Linear, Lucy, Quadratic, Weight, WeightKind};
