@@ -1,11 +1,11 @@
 //! Full Verlet neighbour lists in tag order, rebuilt when a particle has moved more
-//! than half the skin.
+//! than half the skin (the decision is the integrator's).
 //!
 //! Every owned particle lists all its neighbours (owned or ghost) sorted by tag, so
 //! density and force sums run in an order no decomposition can change.
 
 use crate::cells::CellBins;
-use crate::{dot, sub, Particles, Vec3};
+use crate::{dot, sub, Particles};
 
 #[derive(Clone, Debug, Default)]
 pub struct NeighborList {
@@ -14,7 +14,6 @@ pub struct NeighborList {
     /// Neighbours of owned particle i: `neighbors[offsets[i]..offsets[i + 1]]`.
     pub offsets: Vec<u32>,
     pub neighbors: Vec<u32>,
-    r_at_build: Vec<Vec3>,
     /// Number of builds so far.
     pub builds: u64,
 }
@@ -45,8 +44,6 @@ impl NeighborList {
             self.neighbors[start..].sort_unstable_by_key(|&j| store.tag[j as usize]);
             self.offsets.push(self.neighbors.len() as u32);
         }
-        self.r_at_build.clear();
-        self.r_at_build.extend_from_slice(&store.r[..store.nlocal]);
         self.builds += 1;
     }
 
@@ -54,18 +51,5 @@ impl NeighborList {
     #[inline]
     pub fn of(&self, i: usize) -> &[u32] {
         &self.neighbors[self.offsets[i] as usize..self.offsets[i + 1] as usize]
-    }
-
-    /// Largest displacement of an owned particle since the last build (local).
-    pub fn max_displacement(&self, store: &Particles) -> f64 {
-        if self.r_at_build.len() != store.nlocal {
-            return f64::INFINITY;
-        }
-        let mut m: f64 = 0.0;
-        for (r, r0) in store.r[..store.nlocal].iter().zip(&self.r_at_build) {
-            let d = sub(*r, *r0);
-            m = m.max(dot(d, d));
-        }
-        m.sqrt()
     }
 }

@@ -1,0 +1,36 @@
+//! A step that cannot continue, naming the particle and the state that failed.
+
+use gendpde_engine::Particles;
+use gendpde_potentials::EosError;
+use std::fmt;
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct StepError {
+    pub tag: u64,
+    pub step: u64,
+    pub u: f64,
+    pub n: f64,
+    pub theta: f64,
+    pub what: String,
+}
+
+impl StepError {
+    /// An EOS failure of particle `i`.
+    pub fn eos(s: &Particles, i: usize, step: u64, e: EosError) -> Self {
+        let EosError::NonPositiveTheta { u, n, theta } = e;
+        Self { tag: s.tag[i], step, u, n, theta, what: "particle temperature is not positive".into() }
+    }
+}
+
+impl fmt::Display for StepError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "particle {} at step {}: {} (u = {:e}, n = {:e}, theta = {:e}); \
+             a smaller timestep, a larger C_V or weaker noise may help",
+            self.tag, self.step, self.what, self.u, self.n, self.theta
+        )
+    }
+}
+
+impl std::error::Error for StepError {}

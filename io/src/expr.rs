@@ -1,0 +1,520 @@
+//! Evaluation of LAMMPS equal-style expressions.
+//!
+//! Precedence, lowest first: `||`; `&&`; `==` `!=`; `<` `<=` `>` `>=`;
+//! `+` `-`; `*` `/` `%`; unary `-` `!`; `^` (right-associative, so
+//! `-2^2 == -4` and `2^3^2 == 512`). Comparisons and logic yield 1 or 0.
+
+use crate::variables::Variables;
+
+/// Deepest chain of `v_name` references followed before giving up.
+const MAX_VARIABLE_DEPTH: usize = 64;
+
+/// Deepest nesting of parentheses, operators and functions accepted,
+/// counted across variable references.
+const MAX_NESTING: usize = 256;
+
+/// Evaluates an equal-style expression. `v_name` reads another variable;
+/// any other unknown identifier (`step`, `c_ID[2]`, ...) is looked up with
+/// `resolve`.
+pub fn evaluate(
+    text: &str,
+    vars: &Variables,
+    resolve: &dyn Fn(&str) -> Option<f64>,
+) -> Result<f64, String> {
+    evaluate_nested(text, vars, resolve, 0, 0)
+}
+
+/// [`evaluate`] for an expression reached through `depth` variable
+/// references from inside `nesting` levels of enclosing expressions.
+pub(crate) fn evaluate_nested(
+    text: &str,
+    vars: &Variables,
+    resolve: &dyn Fn(&str) -> Option<f64>,
+    depth: usize,
+    nesting: usize,
+) -> Result<f64, String> {
+    if depth > MAX_VARIABLE_DEPTH {
+        return Err(format!(
+            "variables nested deeper than {MAX_VARIABLE_DEPTH} (recursive definition?)"
+        ));
+    }
+    let mut parser = Parser {
+        tokens: tokenize(text)?,
+        pos: 0,
+        nesting,
+        vars,
+        resolve,
+        depth,
+    };
+    if parser.tokens.is_empty() {
+        return Err("empty expression".into());
+    }
+    let value = parser.expression()?;
+    if let Some(tok) = parser.tokens.get(parser.pos) {
+        return Err(format!("unexpected '{tok}' in expression '{text}'"));
+    }
+    if !value.is_finite() {
+        return Err(format!("expression '{text}' is not a finite number"));
+    }
+    Ok(value)
+}
+
+#[derive(Clone, Debug, PartialEq)]
+enum Token {
+    Num(f64),
+    Ident(String),
+    Op(&'static str),
+}
+
+impl std::fmt::Display for Token {
+    fn fmt(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        match self {
+            Token::Num(x) => write!(f, "{x}"),
+            Token::Ident(s) => f.write_str(s),
+            Token::Op(s) => f.write_str(s),
+        }
+    }
+}
+
+/// Operators and punctuation, two-character ones first.
+const OPERATORS: [&str; 18] = [
+    "<=", ">=", "==", "!=", "&&", "||", "<", ">", "+", "-", "*", "/", "%", "^", "!", "(", ")", ",",
+];
+
+fn tokenize(text: &str) -> Result<Vec<Token>, String> {
+    let mut tokens = Vec::new();
+    let mut rest = text.trim_start();
+    while let Some(c) = rest.chars().next() {
+        let len = if c.is_ascii_digit() || c == '.' {
+            let len = number_len(rest);
+            let word = &rest[..len];
+            let x = word
+                .parse()
+                .map_err(|_| format!("invalid number '{word}'"))?;
+            tokens.push(Token::Num(x));
+            len
+        } else if c.is_ascii_alphabetic() || c == '_' {
+            let len = identifier_len(rest)?;
+            tokens.push(Token::Ident(rest[..len].to_string()));
+            len
+        } else if let Some(op) = OPERATORS.iter().find(|op| rest.starts_with(**op)) {
+            tokens.push(Token::Op(op));
+            op.len()
+        } else {
+            return Err(format!("unexpected character '{c}' in expression"));
+        };
+        rest = rest[len..].trim_start();
+    }
+    Ok(tokens)
+}
+
+/// Byte length of the number at the start of `s`: digits and dots, then an
+/// optional exponent.
+fn number_len(s: &str) -> usize {
+    let b = s.as_bytes();
+    let mut i = b
+        .iter()
+        .take_while(|c| c.is_ascii_digit() || **c == b'.')
+        .count();
+    if matches!(b.get(i), Some(b'e' | b'E')) {
+        let sign = usize::from(matches!(b.get(i + 1), Some(b'+' | b'-')));
+        let digits = b[i + 1 + sign..]
+            .iter()
+            .take_while(|c| c.is_ascii_digit())
+            .count();
+        if digits > 0 {
+            i += 1 + sign + digits;
+        }
+    }
+    i
+}
+
+/// Byte length of the identifier at the start of `s`, including any
+/// `[...]` index suffixes as in `c_ID[2]`.
+fn identifier_len(s: &str) -> Result<usize, String> {
+    let b = s.as_bytes();
+    let mut i = b
+        .iter()
+        .take_while(|c| c.is_ascii_alphanumeric() || **c == b'_')
+        .count();
+    while b.get(i) == Some(&b'[') {
+        match b[i..].iter().position(|&c| c == b']') {
+            Some(close) => i += close + 1,
+            None => return Err(format!("missing ']' in '{s}'")),
+        }
+    }
+    Ok(i)
+}
+
+/// A recursive-descent parser that evaluates as it parses.
+struct Parser<'a> {
+    tokens: Vec<Token>,
+    pos: usize,
+    nesting: usize,
+    vars: &'a Variables,
+    resolve: &'a dyn Fn(&str) -> Option<f64>,
+    depth: usize,
+}
+
+/// Binary operator levels, lowest precedence first.
+const LEVELS: [&[&str]; 6] = [
+    &["||"],
+    &["&&"],
+    &["==", "!="],
+    &["<", "<=", ">", ">="],
+    &["+", "-"],
+    &["*", "/", "%"],
+];
+
+impl Parser<'_> {
+    fn expression(&mut self) -> Result<f64, String> {
+        self.binary(0)
+    }
+
+    /// Parses a left-associative chain of the operators at `level`.
+    fn binary(&mut self, level: usize) -> Result<f64, String> {
+        let Some(ops) = LEVELS.get(level) else {
+            return self.unary();
+        };
+        let mut lhs = self.binary(level + 1)?;
+        while let Some(op) = self.peek_op().filter(|op| ops.contains(op)) {
+            self.pos += 1;
+            let rhs = self.binary(level + 1)?;
+            lhs = apply(op, lhs, rhs)?;
+        }
+        Ok(lhs)
+    }
+
+    fn unary(&mut self) -> Result<f64, String> {
+        match self.peek_op() {
+            Some(op @ ("-" | "!")) => {
+                self.pos += 1;
+                let x = self.nested(Self::unary)?;
+                Ok(if op == "-" { -x } else { truth(x == 0.0) })
+            }
+            _ => self.power(),
+        }
+    }
+
+    fn power(&mut self) -> Result<f64, String> {
+        let base = self.primary()?;
+        if self.peek_op() != Some("^") {
+            return Ok(base);
+        }
+        self.pos += 1;
+        let exponent = self.nested(Self::unary)?;
+        apply("^", base, exponent)
+    }
+
+    fn primary(&mut self) -> Result<f64, String> {
+        let tok = self.tokens.get(self.pos).cloned();
+        self.pos += 1;
+        match tok {
+            Some(Token::Num(x)) => Ok(x),
+            Some(Token::Op("(")) => {
+                let x = self.nested(Self::expression)?;
+                self.expect(")")?;
+                Ok(x)
+            }
+            Some(Token::Ident(name)) if self.peek_op() == Some("(") => {
+                self.pos += 1;
+                let args = self.nested(Self::arguments)?;
+                call(&name, &args)
+            }
+            Some(Token::Ident(name)) => self.identifier(&name),
+            Some(tok) => Err(format!("unexpected '{tok}' in expression")),
+            None => Err("unexpected end of expression".into()),
+        }
+    }
+
+    /// Parses comma-separated arguments up to and including the closing `)`.
+    fn arguments(&mut self) -> Result<Vec<f64>, String> {
+        let mut args = vec![self.expression()?];
+        while self.peek_op() == Some(",") {
+            self.pos += 1;
+            args.push(self.expression()?);
+        }
+        self.expect(")")?;
+        Ok(args)
+    }
+
+    fn identifier(&self, name: &str) -> Result<f64, String> {
+        if name == "PI" {
+            return Ok(std::f64::consts::PI);
+        }
+        match name.strip_prefix("v_") {
+            Some(var) if !var.is_empty() && !var.contains('[') => {
+                self.vars
+                    .numeric(var, self.resolve, self.depth, self.nesting)
+            }
+            _ => (self.resolve)(name)
+                .ok_or_else(|| format!("unknown identifier '{name}' in expression")),
+        }
+    }
+
+    /// Runs `parse` one nesting level deeper, bounding recursion.
+    fn nested<T>(&mut self, parse: fn(&mut Self) -> Result<T, String>) -> Result<T, String> {
+        if self.nesting >= MAX_NESTING {
+            return Err(format!("expression nested deeper than {MAX_NESTING}"));
+        }
+        self.nesting += 1;
+        let result = parse(self);
+        self.nesting -= 1;
+        result
+    }
+
+    fn peek_op(&self) -> Option<&'static str> {
+        match self.tokens.get(self.pos) {
+            Some(Token::Op(op)) => Some(op),
+            _ => None,
+        }
+    }
+
+    fn expect(&mut self, op: &str) -> Result<(), String> {
+        match self.tokens.get(self.pos) {
+            Some(Token::Op(found)) if *found == op => {
+                self.pos += 1;
+                Ok(())
+            }
+            Some(tok) => Err(format!("expected '{op}' but found '{tok}'")),
+            None => Err(format!("expected '{op}' at end of expression")),
+        }
+    }
+}
+
+fn truth(b: bool) -> f64 {
+    if b {
+        1.0
+    } else {
+        0.0
+    }
+}
+
+/// Applies a binary operator.
+fn apply(op: &str, a: f64, b: f64) -> Result<f64, String> {
+    Ok(match op {
+        "+" => a + b,
+        "-" => a - b,
+        "*" => a * b,
+        "/" if b == 0.0 => return Err("division by zero".into()),
+        "/" => a / b,
+        "%" if b == 0.0 => return Err("modulo by zero".into()),
+        "%" => a % b,
+        "^" if a == 0.0 && b < 0.0 => return Err("zero raised to a negative power".into()),
+        "^" => a.powf(b),
+        "<" => truth(a < b),
+        "<=" => truth(a <= b),
+        ">" => truth(a > b),
+        ">=" => truth(a >= b),
+        "==" => truth(a == b),
+        "!=" => truth(a != b),
+        "&&" => truth(a != 0.0 && b != 0.0),
+        _ => truth(a != 0.0 || b != 0.0),
+    })
+}
+
+/// Calls a math function; domain errors are reported, never NaN or inf.
+fn call(name: &str, args: &[f64]) -> Result<f64, String> {
+    let value = match (name, args) {
+        ("sqrt", [x]) => x.sqrt(),
+        ("exp", [x]) => x.exp(),
+        ("ln", [x]) => x.ln(),
+        ("log", [x]) => x.log10(),
+        ("abs", [x]) => x.abs(),
+        ("sin", [x]) => x.sin(),
+        ("cos", [x]) => x.cos(),
+        ("tan", [x]) => x.tan(),
+        ("asin", [x]) => x.asin(),
+        ("acos", [x]) => x.acos(),
+        ("atan", [x]) => x.atan(),
+        ("floor", [x]) => x.floor(),
+        ("ceil", [x]) => x.ceil(),
+        ("round", [x]) => x.round(),
+        ("atan2", [y, x]) => y.atan2(*x),
+        ("min", [a, b]) => a.min(*b),
+        ("max", [a, b]) => a.max(*b),
+        (
+            "sqrt" | "exp" | "ln" | "log" | "abs" | "sin" | "cos" | "tan" | "asin" | "acos"
+            | "atan" | "floor" | "ceil" | "round",
+            _,
+        ) => return Err(format!("{name}() takes 1 argument, got {}", args.len())),
+        ("atan2" | "min" | "max", _) => {
+            return Err(format!("{name}() takes 2 arguments, got {}", args.len()))
+        }
+        _ => return Err(format!("unknown function '{name}()'")),
+    };
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        let shown: Vec<String> = args.iter().map(ToString::to_string).collect();
+        Err(format!("{name}({}) is undefined", shown.join(",")))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn eval(text: &str) -> Result<f64, String> {
+        let thermo = |k: &str| match k {
+            "step" => Some(100.0),
+            "c_thermo_press[2]" => Some(-3.5),
+            _ => None,
+        };
+        evaluate(text, &Variables::new(), &thermo)
+    }
+
+    fn ok(text: &str) -> f64 {
+        eval(text).unwrap_or_else(|e| panic!("{text}: {e}"))
+    }
+
+    #[test]
+    fn precedence_and_associativity() {
+        assert_eq!(ok("-2^2"), -4.0);
+        assert_eq!(ok("2^3^2"), 512.0);
+        assert_eq!(ok("2^-1"), 0.5);
+        assert_eq!(ok("7%3"), 1.0);
+        assert_eq!(ok("-7%3"), -1.0);
+        assert_eq!(ok("1+2*3"), 7.0);
+        assert_eq!(ok("(1+2)*3"), 9.0);
+        assert_eq!(ok("8/2/2"), 2.0);
+        assert_eq!(ok("10-2-3"), 5.0);
+        assert_eq!(ok("1 + 2 < 4"), 1.0);
+        assert_eq!(ok("1 < 2 == 1"), 1.0);
+        assert_eq!(ok("1 || 0 && 0"), 1.0);
+        assert_eq!(ok("!0 + !5"), 1.0);
+        assert_eq!(ok("--3"), 3.0);
+    }
+
+    #[test]
+    fn comparisons_and_logic() {
+        let cases = [
+            ("1<2", 1.0),
+            ("2<1", 0.0),
+            ("2<=2", 1.0),
+            ("3>2", 1.0),
+            ("2>=3", 0.0),
+            ("2==2", 1.0),
+            ("2!=2", 0.0),
+            ("1&&0", 0.0),
+            ("1&&2", 1.0),
+            ("0||0", 0.0),
+            ("0||3", 1.0),
+        ];
+        for (text, want) in cases {
+            assert_eq!(ok(text), want, "{text}");
+        }
+    }
+
+    #[test]
+    fn numbers() {
+        assert_eq!(ok("1e-3"), 0.001);
+        assert_eq!(ok(".5"), 0.5);
+        assert_eq!(ok("2.5E+2"), 250.0);
+        assert_eq!(ok("3."), 3.0);
+        assert!(eval("1.2.3").is_err());
+        assert!(eval("1e").is_err());
+    }
+
+    #[test]
+    fn functions_and_constants() {
+        let close = |text: &str, want: f64| {
+            let got = ok(text);
+            assert!((got - want).abs() < 1e-12, "{text} = {got}, want {want}");
+        };
+        close("sqrt(16)", 4.0);
+        close("exp(0)", 1.0);
+        close("ln(exp(2))", 2.0);
+        close("log(1000)", 3.0);
+        close("abs(-2.5)", 2.5);
+        close("sin(PI/2)", 1.0);
+        close("cos(PI)", -1.0);
+        close("tan(PI/4)", 1.0);
+        close("asin(1)", std::f64::consts::FRAC_PI_2);
+        close("acos(1)", 0.0);
+        close("atan(1)", std::f64::consts::FRAC_PI_4);
+        close("atan2(1,-1)", 3.0 * std::f64::consts::FRAC_PI_4);
+        close("floor(-1.5) + ceil(1.2)", 0.0);
+        close("round(2.5) + round(-2.5)", 0.0);
+        close("min(3,-1) * max(2, 5)", -5.0);
+        close("max(min(1,2), sqrt(2)^2)", 2.0);
+    }
+
+    #[test]
+    fn resolved_identifiers() {
+        assert_eq!(ok("step*2"), 200.0);
+        assert_eq!(ok("c_thermo_press[2]+1"), -2.5);
+        assert_eq!(
+            eval("temp").unwrap_err(),
+            "unknown identifier 'temp' in expression"
+        );
+        assert_eq!(eval("v_nope").unwrap_err(), "unknown variable 'nope'");
+    }
+
+    #[test]
+    fn arithmetic_errors() {
+        assert_eq!(eval("1/0").unwrap_err(), "division by zero");
+        assert_eq!(eval("1/(2-2)").unwrap_err(), "division by zero");
+        assert_eq!(eval("5%0").unwrap_err(), "modulo by zero");
+        assert!(eval("0^-1").is_err());
+        assert_eq!(eval("sqrt(-1)").unwrap_err(), "sqrt(-1) is undefined");
+        assert!(eval("ln(0)").is_err());
+        assert!(eval("asin(2)").is_err());
+        assert!(eval("exp(1000)").is_err());
+        assert!(eval("10^400").is_err());
+    }
+
+    #[test]
+    fn syntax_errors() {
+        for text in [
+            "",
+            "  ",
+            "1+",
+            "(1",
+            "1)",
+            "sqrt(1,2)",
+            "min(1)",
+            "foo(1)",
+            "2 3",
+            "1 # 2",
+            "c_x[1",
+            "()",
+        ] {
+            assert!(eval(text).is_err(), "{text:?} accepted");
+        }
+        assert_eq!(eval("foo(1)").unwrap_err(), "unknown function 'foo()'");
+    }
+
+    #[test]
+    fn deep_nesting_is_an_error_not_a_crash() {
+        let deep = format!("{}1{}", "(".repeat(100_000), ")".repeat(100_000));
+        assert!(eval(&deep).is_err());
+        assert!(eval(&"-".repeat(100_000)).is_err());
+        assert_eq!(ok(&format!("{}1{}", "(".repeat(100), ")".repeat(100))), 1.0);
+    }
+
+    #[test]
+    fn variable_recursion_is_detected() {
+        use crate::script::{Command, Location};
+        let mut vars = Variables::new();
+        let define = |vars: &mut Variables, name: &str, text: &str| {
+            let cmd = Command {
+                name: "variable".into(),
+                args: vec![name.into(), "equal".into(), text.into()],
+                loc: Location {
+                    file: "t".into(),
+                    line: 1,
+                },
+            };
+            vars.define(&cmd).unwrap();
+        };
+        define(&mut vars, "a", "v_b+1");
+        define(&mut vars, "b", "v_a+1");
+        define(&mut vars, "c", "2*v_d");
+        define(&mut vars, "d", "21");
+        let none = |_: &str| None;
+        let err = evaluate("v_a", &vars, &none).unwrap_err();
+        assert!(err.contains("nested deeper than 64"), "{err}");
+        assert_eq!(evaluate("v_c", &vars, &none), Ok(42.0));
+    }
+}
