@@ -1,1 +1,90 @@
-fn main() {}
+//! gendpde: Generalised energy-conserving Dissipative Particle Dynamics.
+
+use clap::{Parser, Subcommand};
+use gendpde::{Interpreter, Mode, Output};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(name = "gendpde", version, about = "GenDPDE particle simulation with LAMMPS-style input scripts")]
+struct Cli {
+    #[command(subcommand)]
+    command: Cmd,
+}
+
+#[derive(clap::Args)]
+struct ScriptArgs {
+    /// Input script (LAMMPS syntax; see docs/commands/).
+    input: PathBuf,
+    /// Define an index variable: -var NAME VALUE (repeatable).
+    #[arg(long = "var", num_args = 2, value_names = ["NAME", "VALUE"], action = clap::ArgAction::Append)]
+    var: Vec<String>,
+}
+
+#[derive(Subcommand)]
+enum Cmd {
+    /// Run an input script.
+    Run {
+        #[command(flatten)]
+        script: ScriptArgs,
+        /// Log file (default log.gendpde; `none` for no log).
+        #[arg(long = "log", default_value = "log.gendpde")]
+        log: String,
+    },
+    /// Parse and validate an input script without running any step.
+    Check {
+        #[command(flatten)]
+        script: ScriptArgs,
+    },
+}
+
+/// LAMMPS spells long options with one dash (`-var`, `-log`, `-in`).
+fn lammps_style_args() -> Vec<String> {
+    std::env::args()
+        .map(|a| match a.as_str() {
+            "-var" | "-v" => "--var".into(),
+            "-log" | "-l" => "--log".into(),
+            "-in" | "-i" => String::new(),
+            _ => a,
+        })
+        .filter(|a| !a.is_empty())
+        .collect()
+}
+
+fn main() -> ExitCode {
+    env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn")).init();
+    std::panic::set_hook(Box::new(|info| {
+        eprintln!("ERROR: internal error in gendpde (please report it): {info}");
+    }));
+    let cli = Cli::parse_from(lammps_style_args());
+    let (script, mode, log) = match cli.command {
+        Cmd::Run { script, log } => (script, Mode::Run, Some(log)),
+        Cmd::Check { script } => (script, Mode::Check, None),
+    };
+    let mut out = Output::new(true);
+    if let Some(log) = log.filter(|l| l != "none") {
+        if let Err(e) = out.open_log(std::path::Path::new(&log), false) {
+            eprintln!("ERROR: cannot open log file '{log}': {e}");
+            return ExitCode::FAILURE;
+        }
+    }
+    let mut it = Interpreter::new(mode, out);
+    for v in script.var.chunks(2) {
+        it.vars.set_command_line(&v[0], v[1..].to_vec());
+    }
+    match it.execute_file(&script.input) {
+        Ok(()) => {
+            if mode == Mode::Check {
+                it.out.line(&format!("{}: OK", script.input.display()));
+            }
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            let msg = format!("ERROR: {e}");
+            it.out.log_line(&msg);
+            it.out.flush();
+            eprintln!("{msg}");
+            ExitCode::FAILURE
+        }
+    }
+}

@@ -14,8 +14,6 @@ pub struct NeighborList {
     /// Neighbours of owned particle i: `neighbors[offsets[i]..offsets[i + 1]]`.
     pub offsets: Vec<u32>,
     pub neighbors: Vec<u32>,
-    /// Number of builds so far.
-    pub builds: u64,
 }
 
 impl NeighborList {
@@ -44,7 +42,6 @@ impl NeighborList {
             self.neighbors[start..].sort_unstable_by_key(|&j| store.tag[j as usize]);
             self.offsets.push(self.neighbors.len() as u32);
         }
-        self.builds += 1;
     }
 
     /// Neighbours of owned particle i.

@@ -22,6 +22,8 @@ pub struct System {
     pub time: f64,
     /// Step of the last list build.
     pub last_build: u64,
+    /// Number of list builds so far.
+    pub builds: u64,
     /// Owned positions at the last list build.
     r_at_build: Vec<Vec3>,
 }
@@ -41,6 +43,7 @@ impl System {
             step: 0,
             time: 0.0,
             last_build: 0,
+            builds: 0,
             r_at_build: Vec::new(),
         }
     }
@@ -66,6 +69,7 @@ impl System {
             self.sweep.build(&self.store, &self.bins, lo, hi, radius);
         }
         self.last_build = at_step;
+        self.builds += 1;
         self.r_at_build.clear();
         self.r_at_build.extend_from_slice(&self.store.r[..self.store.nlocal]);
     }

@@ -1,0 +1,94 @@
+//! Typed reading of command arguments, with errors that say what was expected.
+
+use gendpde_io::{Command, ScriptError};
+
+/// Cursor over the arguments of one command.
+pub struct Args<'a> {
+    cmd: &'a Command,
+    pos: usize,
+}
+
+impl<'a> Args<'a> {
+    pub fn new(cmd: &'a Command) -> Self {
+        Self { cmd, pos: 0 }
+    }
+
+    pub fn err(&self, msg: impl Into<String>) -> ScriptError {
+        ScriptError::at(self.cmd, msg)
+    }
+
+    pub fn remaining(&self) -> usize {
+        self.cmd.args.len() - self.pos
+    }
+
+    pub fn peek(&self) -> Option<&'a str> {
+        self.cmd.args.get(self.pos).map(String::as_str)
+    }
+
+    /// The next word, named `what` in the error if it is missing.
+    pub fn word(&mut self, what: &str) -> Result<&'a str, ScriptError> {
+        let w = self.cmd.args.get(self.pos).ok_or_else(|| self.err(format!("missing argument: expected {what}")))?;
+        self.pos += 1;
+        Ok(w)
+    }
+
+    pub fn f64(&mut self, what: &str) -> Result<f64, ScriptError> {
+        let w = self.word(what)?;
+        match w.parse::<f64>() {
+            Ok(x) if x.is_finite() => Ok(x),
+            _ => Err(self.err(format!("expected {what} (a number), got '{w}'"))),
+        }
+    }
+
+    /// A number that must be > 0.
+    pub fn positive(&mut self, what: &str) -> Result<f64, ScriptError> {
+        let x = self.f64(what)?;
+        if x > 0.0 { Ok(x) } else { Err(self.err(format!("{what} must be positive, got {x}"))) }
+    }
+
+    /// A number that must be >= 0.
+    pub fn non_negative(&mut self, what: &str) -> Result<f64, ScriptError> {
+        let x = self.f64(what)?;
+        if x >= 0.0 { Ok(x) } else { Err(self.err(format!("{what} must not be negative, got {x}"))) }
+    }
+
+    pub fn u64(&mut self, what: &str) -> Result<u64, ScriptError> {
+        let w = self.word(what)?;
+        w.parse::<u64>().map_err(|_| self.err(format!("expected {what} (a non-negative integer), got '{w}'")))
+    }
+
+    /// `yes` or `no`.
+    pub fn yes_no(&mut self, what: &str) -> Result<bool, ScriptError> {
+        match self.word(what)? {
+            "yes" => Ok(true),
+            "no" => Ok(false),
+            w => Err(self.err(format!("expected yes or no for {what}, got '{w}'"))),
+        }
+    }
+
+    /// Fails if any argument is left over.
+    pub fn done(&self) -> Result<(), ScriptError> {
+        match self.cmd.args.get(self.pos) {
+            None => Ok(()),
+            Some(w) => Err(self.err(format!("unexpected argument '{w}'"))),
+        }
+    }
+
+    /// A LAMMPS type range (`*`, `n`, `n*`, `*n`, `m*n`) over 1..=ntypes.
+    pub fn types(&mut self, ntypes: usize) -> Result<std::ops::RangeInclusive<usize>, ScriptError> {
+        let w = self.word("a particle type or type range")?;
+        let bad = || self.err(format!("expected a type or range within 1..{ntypes}, got '{w}'"));
+        let num = |s: &str, default: usize| if s.is_empty() { Ok(default) } else { s.parse::<usize>().map_err(|_| bad()) };
+        let (lo, hi) = match w.split_once('*') {
+            Some((a, b)) => (num(a, 1)?, num(b, ntypes)?),
+            None => {
+                let t = num(w, 0)?;
+                (t, t)
+            }
+        };
+        if lo < 1 || hi > ntypes || lo > hi {
+            return Err(bad());
+        }
+        Ok(lo..=hi)
+    }
+}

@@ -1,0 +1,490 @@
+//! The script interpreter: reads commands one at a time and applies them to the model.
+
+use crate::args::Args;
+use crate::lattice::{Block, Lattice};
+use crate::output::Output;
+use crate::sim::Sim;
+use crate::styles::{self, FixStyle};
+use crate::thermo::{Observables, ThermoContext};
+use crate::{run, velocity};
+use gendpde_engine::{Domain, SerialComm};
+use gendpde_integrators::{StepError, System};
+use gendpde_io::{Command, ScriptError, ScriptReader, Variables};
+use std::fmt;
+use std::path::Path;
+
+/// Whether `run` advances time or only validates.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Mode {
+    Run,
+    Check,
+}
+
+/// A failure that stops the script.
+#[derive(Debug)]
+pub enum AppError {
+    Script(ScriptError),
+    Step { cmd: Command, err: StepError },
+}
+
+impl fmt::Display for AppError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Script(e) => e.fmt(f),
+            Self::Step { cmd, err } => write!(f, "{}: run stopped: {err}", cmd.loc),
+        }
+    }
+}
+
+impl From<ScriptError> for AppError {
+    fn from(e: ScriptError) -> Self {
+        Self::Script(e)
+    }
+}
+
+pub struct Interpreter {
+    pub sim: Sim,
+    pub vars: Variables,
+    pub out: Output,
+    pub mode: Mode,
+}
+
+impl Interpreter {
+    pub fn new(mode: Mode, out: Output) -> Self {
+        Self { sim: Sim::default(), vars: Variables::new(), out, mode }
+    }
+
+    /// Executes a script file to its end.
+    pub fn execute_file(&mut self, path: &Path) -> Result<(), AppError> {
+        self.execute_reader(ScriptReader::open(path)?)
+    }
+
+    /// Executes a script held in memory; `name` stands for its file name in errors.
+    pub fn execute_str(&mut self, name: &str, text: &str) -> Result<(), AppError> {
+        self.execute_reader(ScriptReader::from_string(name, text))
+    }
+
+    fn execute_reader(&mut self, mut reader: ScriptReader) -> Result<(), AppError> {
+        loop {
+            let next = {
+                let (sim, vars) = (&self.sim, &self.vars);
+                reader.next_command(vars, &|name| resolve(sim, name))?
+            };
+            let Some(cmd) = next else { return Ok(()) };
+            self.out.log_line(&echo(&cmd));
+            self.execute(&cmd)?;
+        }
+    }
+
+    fn execute(&mut self, cmd: &Command) -> Result<(), AppError> {
+        let mut a = Args::new(cmd);
+        let sim = &mut self.sim;
+        match cmd.name.as_str() {
+            "units" => match a.word("a unit style")? {
+                "lj" => a.done()?,
+                u => return Err(a.err(format!("units {u}: only lj is supported")).into()),
+            },
+            "dimension" => match a.word("the dimension")? {
+                "3" => a.done()?,
+                d => return Err(a.err(format!("dimension {d}: only 3 is supported")).into()),
+            },
+            "boundary" => {
+                for axis in ["x", "y", "z"] {
+                    match a.word(&format!("the boundary along {axis}"))? {
+                        "p" => {}
+                        b => return Err(a.err(format!("boundary '{b}' along {axis}: only periodic (p) is supported")).into()),
+                    }
+                }
+                a.done()?;
+            }
+            "atom_style" => match a.word("an atom style")? {
+                "atomic" | "dpd" | "gendpde" => a.done()?,
+                s => return Err(a.err(format!("unknown atom style '{s}'; known: atomic, dpd, gendpde")).into()),
+            },
+            "echo" => match a.word("none, screen, log or both")? {
+                "none" | "screen" | "log" | "both" => a.done()?,
+                s => return Err(a.err(format!("expected none, screen, log or both, got '{s}'")).into()),
+            },
+            "lattice" => {
+                let style = a.word("a lattice style (sc, bcc, fcc)")?;
+                let rho = a.positive("the reduced density")?;
+                a.done()?;
+                sim.lattice = Some(Lattice::new(style, rho).ok_or_else(|| a.err(format!("unknown lattice '{style}'; known: sc, bcc, fcc")))?);
+            }
+            "region" => region(sim, &mut a)?,
+            "create_box" => create_box(sim, &mut a)?,
+            "create_atoms" => create_atoms(sim, &mut a)?,
+            "mass" => mass(sim, &mut a)?,
+            "velocity" => velocity::velocity(sim, &mut a)?,
+            "set" => set(sim, &mut a)?,
+            "pair_style" => {
+                if sim.system.is_none() {
+                    return Err(a.err("pair_style comes after create_box").into());
+                }
+                sim.pair = Some(styles::parse_pair_style(cmd)?);
+            }
+            "pair_coeff" => {
+                let pair = sim.pair.as_mut().ok_or_else(|| a.err("pair_coeff before pair_style"))?;
+                pair.coeff = Some(styles::parse_pair_coeff(cmd, pair, sim.ntypes)?);
+            }
+            "fix" => {
+                let fix = styles::parse_fix(cmd)?;
+                sim.fixes.retain(|f| f.id != fix.id);
+                sim.fixes.push(fix);
+                check_density_cap(sim, &a)?;
+            }
+            "unfix" => {
+                let id = a.word("a fix ID")?;
+                a.done()?;
+                let before = sim.fixes.len();
+                sim.fixes.retain(|f| f.id != id);
+                if sim.fixes.len() == before {
+                    return Err(a.err(format!("no fix with ID '{id}'")).into());
+                }
+            }
+            "timestep" => {
+                sim.dt = a.positive("the timestep")?;
+                a.done()?;
+            }
+            "neighbor" => {
+                sim.skin = a.non_negative("the skin distance")?;
+                match a.word("the neighbour style (bin)")? {
+                    "bin" | "nsq" => a.done()?,
+                    s => return Err(a.err(format!("unknown neighbour style '{s}'; known: bin")).into()),
+                }
+            }
+            "neigh_modify" => neigh_modify(sim, &mut a)?,
+            "thermo" => {
+                sim.thermo.every = a.u64("the thermo interval")?;
+                a.done()?;
+            }
+            "thermo_style" => thermo_style(sim, &self.vars, &mut a)?,
+            "thermo_modify" => thermo_modify(sim, &mut a)?,
+            "variable" => self.vars.define(cmd)?,
+            "print" => {
+                let text = a.word("the text to print")?.to_string();
+                let mut screen = true;
+                while a.remaining() > 0 {
+                    match a.word("keyword")? {
+                        "screen" => screen = a.yes_no("screen")?,
+                        k => return Err(a.err(format!("unknown keyword '{k}'; known: screen")).into()),
+                    }
+                }
+                if screen { self.out.line(&text) } else { self.out.log_line(&text) }
+            }
+            "log" => {
+                let file = a.word("a log file name")?.to_string();
+                let append = match a.peek() {
+                    Some("append") => {
+                        a.word("append")?;
+                        true
+                    }
+                    _ => false,
+                };
+                a.done()?;
+                if file == "none" {
+                    self.out.close_log();
+                } else if self.mode == Mode::Run {
+                    self.out.open_log(Path::new(&file), append).map_err(|e| a.err(format!("cannot open log file '{file}': {e}")))?;
+                }
+            }
+            "run" => {
+                let n = a.u64("the number of steps")?;
+                a.done()?;
+                run::run(self, cmd, n)?;
+            }
+            other => return Err(a.err(format!("unknown command '{other}' (see docs/commands/ for the commands gendpde knows)")).into()),
+        }
+        Ok(())
+    }
+}
+
+/// The command as LAMMPS echoes it to the log.
+fn echo(cmd: &Command) -> String {
+    std::iter::once(cmd.name.as_str()).chain(cmd.args.iter().map(String::as_str)).collect::<Vec<_>>().join(" ")
+}
+
+/// Values of thermo keywords inside variables and `$(...)`.
+fn resolve(sim: &Sim, name: &str) -> Option<f64> {
+    let sys = sim.system.as_ref()?;
+    let ctx = ThermoContext {
+        sys,
+        obs: Observables::measure(sys),
+        norm: sim.thermo.norm,
+        dt: sim.dt,
+        energy0: sim.energy0,
+        elapsed: 0,
+        cpu: 0.0,
+    };
+    ctx.keyword(name)
+}
+
+fn region(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
+    let id = a.word("a region ID")?.to_string();
+    match a.word("a region style (block)")? {
+        "block" => {}
+        s => return Err(a.err(format!("unknown region style '{s}'; known: block"))),
+    }
+    let mut b = [0.0; 6];
+    for (k, what) in ["xlo", "xhi", "ylo", "yhi", "zlo", "zhi"].iter().enumerate() {
+        b[k] = a.f64(what)?;
+    }
+    let mut scale = None;
+    while a.remaining() > 0 {
+        match a.word("keyword")? {
+            "units" => match a.word("box or lattice")? {
+                "box" => scale = Some(1.0),
+                "lattice" => scale = None,
+                u => return Err(a.err(format!("expected units box or lattice, got '{u}'"))),
+            },
+            k => return Err(a.err(format!("unknown keyword '{k}'; known: units"))),
+        }
+    }
+    let scale = match scale {
+        Some(s) => s,
+        None => sim.lattice.as_ref().map(|l| l.constant).ok_or_else(|| a.err("region in lattice units needs a lattice command first (or use 'units box')"))?,
+    };
+    let block = Block { lo: [b[0] * scale, b[2] * scale, b[4] * scale], hi: [b[1] * scale, b[3] * scale, b[5] * scale] };
+    if (0..3).any(|d| block.hi[d] <= block.lo[d]) {
+        return Err(a.err("each upper bound must exceed its lower bound"));
+    }
+    sim.regions.insert(id, block);
+    Ok(())
+}
+
+fn create_box(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
+    if sim.system.is_some() {
+        return Err(a.err("the box exists already"));
+    }
+    let n = a.u64("the number of particle types")? as usize;
+    if n == 0 {
+        return Err(a.err("the number of particle types must be at least 1"));
+    }
+    let id = a.word("a region ID")?;
+    a.done()?;
+    let block = sim.regions.get(id).ok_or_else(|| a.err(format!("no region with ID '{id}'")))?;
+    sim.ntypes = n;
+    sim.masses = vec![None; n];
+    sim.system = Some(System::new(Domain::new(block.lo, block.hi), Box::new(SerialComm::new())));
+    Ok(())
+}
+
+fn create_atoms(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
+    let kind = a.u64("a particle type")? as usize;
+    if kind < 1 || kind > sim.ntypes {
+        return Err(a.err(format!("type {kind} is outside 1..{}", sim.ntypes)));
+    }
+    let sys = sim.system.as_mut().ok_or_else(|| a.err("create_atoms before create_box"))?;
+    let (lo, hi) = match a.word("box or region")? {
+        "box" => (sys.domain.lo, sys.domain.hi),
+        "region" => {
+            let id = a.word("a region ID")?;
+            let b = sim.regions.get(id).ok_or_else(|| a.err(format!("no region with ID '{id}'")))?;
+            let (d, mut lo, mut hi) = (&sys.domain, b.lo, b.hi);
+            for k in 0..3 {
+                lo[k] = lo[k].max(d.lo[k]);
+                hi[k] = hi[k].min(d.hi[k]);
+            }
+            (lo, hi)
+        }
+        s => return Err(a.err(format!("expected box or region, got '{s}'"))),
+    };
+    a.done()?;
+    let lattice = sim.lattice.as_ref().ok_or_else(|| a.err("create_atoms needs a lattice command first"))?;
+    let mass = sim.masses[kind - 1].unwrap_or(f64::NAN);
+    for r in lattice.points(lo, hi) {
+        sim.max_tag += 1;
+        sys.store.push(sim.max_tag, kind as u32, mass, r);
+    }
+    check_density_cap(sim, a)
+}
+
+/// A mean density at or above an EOS's cap (vdW: 1/b) cannot start a run.
+fn check_density_cap(sim: &Sim, a: &Args) -> Result<(), ScriptError> {
+    let Some(sys) = &sim.system else { return Ok(()) };
+    let n = sys.store.nlocal as f64 / sys.domain.volume();
+    for f in &sim.fixes {
+        if let FixStyle::Eos(e) = &f.style {
+            if let Some(max) = e.max_density() {
+                if n >= max {
+                    return Err(a.err(format!(
+                        "mean number density N/V = {n:.6} lies beyond the EOS density cap {max:.6} (1/b, fix {})",
+                        f.id
+                    )));
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+fn mass(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
+    if sim.ntypes == 0 {
+        return Err(a.err("mass before create_box"));
+    }
+    let types = a.types(sim.ntypes)?;
+    let m = a.positive("the mass")?;
+    a.done()?;
+    for t in types.clone() {
+        sim.masses[t - 1] = Some(m);
+    }
+    if let Some(sys) = &mut sim.system {
+        let s = &mut sys.store;
+        for i in 0..s.nlocal {
+            if types.contains(&(s.kind[i] as usize)) {
+                s.mass[i] = m;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// `set atom|type|group ID KEYWORD VALUE ...` with keywords theta (dpd/theta) and u.
+fn set(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
+    let style = a.word("atom, type or group")?;
+    let id = a.word("an ID")?;
+    let sys = sim.system.as_mut().ok_or_else(|| a.err("set before create_box"))?;
+    let s = &mut sys.store;
+    let selected: Vec<usize> = match style {
+        "group" if id == "all" => (0..s.nlocal).collect(),
+        "group" => return Err(a.err(format!("group '{id}': only group all is defined"))),
+        "type" | "atom" => {
+            let range = if style == "type" { a_types(a, id, sim.ntypes)? } else { a_tags(a, id, sim.max_tag)? };
+            let field = |i: usize| if style == "type" { s.kind[i] as u64 } else { s.tag[i] };
+            (0..s.nlocal).filter(|&i| range.contains(&field(i))).collect()
+        }
+        _ => return Err(a.err(format!("expected atom, type or group, got '{style}'"))),
+    };
+    if a.remaining() == 0 {
+        return Err(a.err("missing argument: expected a keyword (theta or u) and its value"));
+    }
+    while a.remaining() > 0 {
+        let key = a.word("a keyword")?;
+        match key {
+            "theta" | "dpd/theta" => {
+                let t = a.positive("the particle temperature theta")?;
+                for &i in &selected {
+                    s.theta[i] = t;
+                    s.theta_given[i] = true;
+                }
+            }
+            "u" => {
+                let u = a.f64("the internal energy u")?;
+                for &i in &selected {
+                    s.u[i] = u;
+                    s.theta_given[i] = false;
+                }
+            }
+            k => return Err(a.err(format!("unknown set keyword '{k}'; known: theta, dpd/theta, u"))),
+        }
+    }
+    Ok(())
+}
+
+/// A LAMMPS range `n`, `*`, `n*`, `*n`, `m*n` of integers in 1..=max.
+fn range(a: &Args, w: &str, max: u64, what: &str) -> Result<std::ops::RangeInclusive<u64>, ScriptError> {
+    let bad = || a.err(format!("expected {what} or range within 1..{max}, got '{w}'"));
+    let num = |s: &str, d: u64| if s.is_empty() { Ok(d) } else { s.parse::<u64>().map_err(|_| bad()) };
+    let (lo, hi) = match w.split_once('*') {
+        Some((x, y)) => (num(x, 1)?, num(y, max)?),
+        None => (num(w, 0)?, num(w, 0)?),
+    };
+    if lo < 1 || hi > max || lo > hi {
+        return Err(bad());
+    }
+    Ok(lo..=hi)
+}
+
+fn a_types(a: &Args, w: &str, ntypes: usize) -> Result<std::ops::RangeInclusive<u64>, ScriptError> {
+    range(a, w, ntypes as u64, "a type")
+}
+
+fn a_tags(a: &Args, w: &str, max_tag: u64) -> Result<std::ops::RangeInclusive<u64>, ScriptError> {
+    range(a, w, max_tag, "a particle ID")
+}
+
+fn neigh_modify(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
+    if a.remaining() == 0 {
+        return Err(a.err("missing argument: expected every, delay, check or once"));
+    }
+    while a.remaining() > 0 {
+        match a.word("a keyword")? {
+            "every" => sim.rebuild.every = a.u64("the rebuild interval")?.max(1),
+            "delay" => sim.rebuild.delay = a.u64("the rebuild delay")?,
+            "check" => sim.rebuild.check = a.yes_no("check")?,
+            "once" => {
+                if a.yes_no("once")? {
+                    return Err(a.err("once yes is not supported: lists must follow the particles"));
+                }
+            }
+            k => return Err(a.err(format!("unknown keyword '{k}'; known: every, delay, check, once"))),
+        }
+    }
+    Ok(())
+}
+
+fn thermo_style(sim: &mut Sim, vars: &Variables, a: &mut Args) -> Result<(), ScriptError> {
+    match a.word("a thermo style (custom)")? {
+        "custom" => {}
+        s => return Err(a.err(format!("unknown thermo style '{s}'; known: custom"))),
+    }
+    let mut keys = Vec::new();
+    while a.remaining() > 0 {
+        let k = a.word("a keyword")?;
+        let known = crate::thermo::heading(k) != k || k.starts_with("v_");
+        if !known {
+            return Err(a.err(format!(
+                "unknown thermo keyword '{k}'; known: step elapsed time dt cpu atoms temp tint press pe ke etotal edrift vol density lx ly lz v_NAME"
+            )));
+        }
+        if let Some(name) = k.strip_prefix("v_") {
+            if !vars.contains(name) {
+                return Err(a.err(format!("thermo keyword {k}: no variable named '{name}'")));
+            }
+        }
+        keys.push(k.to_string());
+    }
+    if keys.is_empty() {
+        return Err(a.err("missing argument: expected thermo keywords"));
+    }
+    sim.thermo.keywords = keys;
+    Ok(())
+}
+
+fn thermo_modify(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
+    if a.remaining() == 0 {
+        return Err(a.err("missing argument: expected norm, format or flush"));
+    }
+    while a.remaining() > 0 {
+        match a.word("a keyword")? {
+            "norm" => sim.thermo.norm = a.yes_no("norm")?,
+            "flush" => {
+                a.yes_no("flush")?;
+            }
+            "format" => match a.word("float or line")? {
+                "float" => {
+                    let f = a.word("a printf format such as %15.10f")?;
+                    gendpde_io::format_printf(f, 1.0).map_err(|e| a.err(format!("bad format '{f}': {e}")))?;
+                    sim.thermo.float_format = Some(f.to_string());
+                }
+                k => return Err(a.err(format!("thermo_modify format {k}: only 'format float' is supported"))),
+            },
+            k => return Err(a.err(format!("unknown keyword '{k}'; known: norm, format, flush"))),
+        }
+    }
+    Ok(())
+}
+
+impl Interpreter {
+    /// The dynamics of the styles defined so far, set up on the current system, for
+    /// programs that step it themselves (tests, benchmarks).
+    pub fn dynamics(&mut self) -> Result<Box<dyn gendpde_integrators::Physics>, AppError> {
+        let cmd = Command { name: "run".into(), args: vec![], loc: gendpde_io::Location { file: "<api>".into(), line: 0 } };
+        run::prepare(self, &cmd)
+    }
+
+    /// The system built by the script.
+    pub fn system(&mut self) -> Option<&mut System> {
+        self.sim.system.as_mut()
+    }
+}

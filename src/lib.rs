@@ -1,0 +1,16 @@
+//! gendpde: Generalised energy-conserving Dissipative Particle Dynamics driven by
+//! LAMMPS-style input scripts. The binary is a thin CLI over [`Interpreter`].
+
+mod args;
+pub mod commands;
+pub mod lattice;
+pub mod output;
+pub mod run;
+pub mod sim;
+pub mod styles;
+pub mod thermo;
+mod velocity;
+
+pub use commands::{AppError, Interpreter, Mode};
+pub use output::Output;
+pub use thermo::Observables;

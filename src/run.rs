@@ -1,0 +1,98 @@
+//! The `run` command: set up the dynamics, step, and print thermo as LAMMPS does.
+
+use crate::commands::{AppError, Interpreter, Mode};
+use crate::styles;
+use crate::thermo::{header_line, value_line, Observables, ThermoContext};
+use gendpde_integrators::{Physics, SetupError};
+use gendpde_io::{Command, ScriptError};
+use std::time::Instant;
+
+/// Builds the dynamics of the current styles and sets the system up for it (lists,
+/// densities, forces); errors name `cmd`.
+pub fn prepare(it: &mut Interpreter, cmd: &Command) -> Result<Box<dyn Physics>, AppError> {
+    let err = |m: String| AppError::Script(ScriptError::at(cmd, m));
+    let sim = &mut it.sim;
+    let physics = styles::build_physics(cmd, sim.pair.as_ref(), &sim.fixes, sim.dt, sim.skin, sim.rebuild.clone())?;
+    let sys = sim.system.as_mut().ok_or_else(|| err("run before create_box".into()))?;
+    if sys.store.nlocal == 0 {
+        return Err(err("the box holds no particles (create_atoms)".into()));
+    }
+    if let Some(i) = (0..sys.store.nlocal).find(|&i| !sys.store.mass[i].is_finite()) {
+        return Err(err(format!("the mass of type {} is not set", sys.store.kind[i])));
+    }
+    physics.setup(sys).map_err(|e| match e {
+        SetupError::Grid(g) => err(g.to_string()),
+        SetupError::State(s) => AppError::Step { cmd: cmd.clone(), err: s },
+    })?;
+    Ok(physics)
+}
+
+pub fn run(it: &mut Interpreter, cmd: &Command, nsteps: u64) -> Result<(), AppError> {
+    let err = |m: String| AppError::Script(ScriptError::at(cmd, m));
+    let physics = prepare(it, cmd)?;
+    if it.mode == Mode::Check {
+        return Ok(());
+    }
+    let sim = &mut it.sim;
+    let sys = sim.system.as_mut().expect("prepared system");
+    let energy0 = *sim.energy0.get_or_insert_with(|| Observables::measure(sys).energy());
+    let keys = sim.thermo.keywords.clone();
+    let start_step = sys.step;
+    let clock = Instant::now();
+    it.out.line(&format!("Setting up GenDPDE run: {} particles, timestep {} ...", sys.store.nlocal, sim.dt));
+    it.out.line(&header_line(&keys));
+    let thermo = |it: &mut Interpreter| -> Result<(), AppError> {
+        let sim = &it.sim;
+        let sys = sim.system.as_ref().expect("system exists during a run");
+        let ctx = ThermoContext {
+            sys,
+            obs: Observables::measure(sys),
+            norm: sim.thermo.norm,
+            dt: sim.dt,
+            energy0: Some(energy0),
+            elapsed: sys.step - start_step,
+            cpu: clock.elapsed().as_secs_f64(),
+        };
+        let resolve = |name: &str| ctx.keyword(name);
+        let mut values = Vec::with_capacity(keys.len());
+        for k in &keys {
+            let v = match ctx.keyword(k) {
+                Some(v) => v,
+                None => gendpde_io::evaluate(k, &it.vars, &resolve).map_err(|e| err(format!("thermo keyword {k}: {e}")))?,
+            };
+            values.push(v);
+        }
+        let line = value_line(&keys, &values, sim.thermo.float_format.as_deref());
+        it.out.line(&line);
+        Ok(())
+    };
+    thermo(it)?;
+    let every = it.sim.thermo.every;
+    for k in 1..=nsteps {
+        let sys = it.sim.system.as_mut().expect("system exists during a run");
+        if let Err(e) = physics.step(sys) {
+            it.out.flush();
+            return Err(AppError::Step { cmd: cmd.clone(), err: e });
+        }
+        if k == nsteps || (every > 0 && sys.step % every == 0) {
+            thermo(it)?;
+        }
+    }
+    let secs = clock.elapsed().as_secs_f64();
+    let sys = it.sim.system.as_ref().expect("system exists during a run");
+    let n = sys.store.nlocal;
+    it.out.line(&format!("Loop time of {secs:.6} on {} procs for {nsteps} steps with {n} atoms", sys.comm.size()));
+    it.out.line("");
+    if secs > 0.0 && nsteps > 0 {
+        let rate = nsteps as f64 / secs;
+        it.out.line(&format!(
+            "Performance: {:.3} tau/day, {:.3} timesteps/s, {:.3} katom-step/s",
+            rate * it.sim.dt * 86400.0,
+            rate,
+            rate * n as f64 / 1e3
+        ));
+    }
+    it.out.line(&format!("Neighbor list builds = {}", sys.builds));
+    it.out.flush();
+    Ok(())
+}

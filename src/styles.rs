@@ -1,0 +1,245 @@
+//! Pair and fix styles: their script syntax, and the assembly of a scene's dynamics.
+//!
+//! A new EOS is one file in `potentials/src/eos/`, one arm in [`parse_eos`] and, if it
+//! is a new Rust type, one arm in [`build_physics`] (see docs/DESIGN.md).
+
+use crate::args::Args;
+use gendpde_integrators::{Dissipation, GenDpde, HeatModel, Physics, RebuildPolicy, Reservoir, Settings};
+use gendpde_io::{Command, ScriptError};
+use gendpde_potentials::{CubicSpline, Eos, LinearTheta, Linear, Lucy, Quadratic, WeightKind};
+
+/// `pair_style gendpde CUTOFF SEED [weight W]` with `pair_coeff * * GAMMA KAPPA [RC_D [RC_H]]`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PairGendpde {
+    pub cutoff: f64,
+    pub seed: u64,
+    pub weight: WeightKind,
+    pub coeff: Option<PairCoeff>,
+}
+
+/// Dissipation parameters of `pair_coeff`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PairCoeff {
+    pub gamma: f64,
+    pub kappa: f64,
+    pub rc_friction: f64,
+    pub rc_heat: f64,
+}
+
+/// A particle EOS chosen by a `fix eos/...`.
+#[derive(Clone, Debug, PartialEq)]
+pub enum EosModel {
+    Linear(LinearTheta),
+}
+
+impl EosModel {
+    /// Largest mean number density the model admits, if bounded.
+    pub fn max_density(&self) -> Option<f64> {
+        match self {
+            Self::Linear(e) => e.max_density(),
+        }
+    }
+}
+
+/// The fix styles.
+#[derive(Clone, Debug, PartialEq)]
+pub enum FixStyle {
+    Eos(EosModel),
+    /// `fix nve/gendpde`: the reversible velocity-Verlet step with the work split.
+    Verlet,
+    /// `fix shardlow [heat original|fourier]`.
+    Shardlow { heat: HeatModel },
+    /// `fix heat/reservoir T KAPPA SEED [heat original|fourier]`.
+    Reservoir { temperature: f64, kappa: f64, seed: u64, heat: Option<HeatModel> },
+}
+
+#[derive(Clone, Debug)]
+pub struct Fix {
+    pub id: String,
+    pub style: FixStyle,
+}
+
+pub const FIX_STYLES: &str = "eos/vdw, eos/ideal, eos/cv, eos/density, eos/linear, nve/gendpde, shardlow, heat/reservoir";
+
+pub fn parse_pair_style(cmd: &Command) -> Result<PairGendpde, ScriptError> {
+    let mut a = Args::new(cmd);
+    match a.word("a pair style (gendpde)")? {
+        "gendpde" => {}
+        other => return Err(a.err(format!("unknown pair style '{other}'; known: gendpde"))),
+    }
+    let cutoff = a.positive("the density cutoff")?;
+    let seed = a.u64("the random seed")?;
+    if seed == 0 {
+        return Err(a.err("the random seed must be positive"));
+    }
+    let mut weight = WeightKind::Quadratic;
+    while let Some(key) = a.peek() {
+        a.word("keyword")?;
+        match key {
+            "weight" => {
+                let w = a.word("a weight function")?;
+                weight = WeightKind::parse(w).ok_or_else(|| a.err(format!("unknown weight '{w}'; known: quadratic, linear, lucy, spline")))?;
+            }
+            _ => return Err(a.err(format!("unknown keyword '{key}'; known: weight"))),
+        }
+    }
+    Ok(PairGendpde { cutoff, seed, weight, coeff: None })
+}
+
+pub fn parse_pair_coeff(cmd: &Command, pair: &PairGendpde, ntypes: usize) -> Result<PairCoeff, ScriptError> {
+    let mut a = Args::new(cmd);
+    let ti = a.types(ntypes)?;
+    let tj = a.types(ntypes)?;
+    if *ti.start() != 1 || *ti.end() != ntypes || *tj.start() != 1 || *tj.end() != ntypes {
+        return Err(a.err("pair gendpde takes one coefficient set for all type pairs: use 'pair_coeff * *'"));
+    }
+    let gamma = a.non_negative("the friction gamma")?;
+    let kappa = a.non_negative("the conductivity kappa")?;
+    let rc_friction = if a.remaining() > 0 { a.positive("the friction cutoff")? } else { pair.cutoff };
+    let rc_heat = if a.remaining() > 0 { a.positive("the heat cutoff")? } else { rc_friction };
+    a.done()?;
+    Ok(PairCoeff { gamma, kappa, rc_friction, rc_heat })
+}
+
+/// `fix ID GROUP STYLE args...`.
+pub fn parse_fix(cmd: &Command) -> Result<Fix, ScriptError> {
+    let mut a = Args::new(cmd);
+    let id = a.word("a fix ID")?.to_string();
+    let group = a.word("a group")?;
+    if group != "all" {
+        return Err(a.err(format!("group '{group}': fixes act on group all")));
+    }
+    let style_name = a.word("a fix style")?;
+    let style = match style_name {
+        s if s.starts_with("eos/") => FixStyle::Eos(parse_eos(s, &mut a)?),
+        "nve/gendpde" => FixStyle::Verlet,
+        "shardlow" => FixStyle::Shardlow { heat: heat_keyword(&mut a)?.unwrap_or(HeatModel::Original) },
+        "heat/reservoir" => {
+            let temperature = a.positive("the reservoir temperature")?;
+            let kappa = a.positive("the reservoir coupling kappa")?;
+            let seed = a.u64("the random seed")?;
+            FixStyle::Reservoir { temperature, kappa, seed, heat: heat_keyword(&mut a)? }
+        }
+        other => return Err(a.err(format!("unknown fix style '{other}'; known: {FIX_STYLES}"))),
+    };
+    a.done()?;
+    Ok(Fix { id, style })
+}
+
+fn heat_keyword(a: &mut Args) -> Result<Option<HeatModel>, ScriptError> {
+    match a.peek() {
+        None => Ok(None),
+        Some("heat") => {
+            a.word("heat")?;
+            let w = a.word("a heat model (original or fourier)")?;
+            HeatModel::parse(w).map(Some).ok_or_else(|| a.err(format!("unknown heat model '{w}'; known: original, fourier")))
+        }
+        Some(other) => Err(a.err(format!("unknown keyword '{other}'; known: heat"))),
+    }
+}
+
+/// The EOS fixes: `eos/vdw CV A B [excess|full] [cap F]`, `eos/ideal CV`, `eos/cv CV`,
+/// `eos/density CV c1 [c2 ...]`, `eos/linear CV Q R B [c1 ...]`.
+pub fn parse_eos(style: &str, a: &mut Args) -> Result<EosModel, ScriptError> {
+    let cv = a.positive("the heat capacity C_V")?;
+    if cv <= 1.0 {
+        return Err(a.err(format!("C_V = {cv} must exceed k_B = 1 (the dressed temperature of eq 23 diverges at C_V = k_B)")));
+    }
+    let mut eos = match style {
+        "eos/vdw" => {
+            let (va, b) = (a.non_negative("the vdW attraction a")?, a.positive("the vdW excluded volume b")?);
+            let mut e = LinearTheta::vdw_excess(cv, va, b);
+            while let Some(k) = a.peek() {
+                a.word("keyword")?;
+                match k {
+                    "excess" => e = LinearTheta { cap: e.cap, ..LinearTheta::vdw_excess(cv, va, b) },
+                    "full" => e = LinearTheta { cap: e.cap, ..LinearTheta::vdw_full(cv, va, b) },
+                    "cap" => {
+                        let f = a.positive("the cap fraction of 1/b")?;
+                        if f >= 1.0 {
+                            return Err(a.err(format!("cap {f} must lie below 1 (a fraction of 1/b)")));
+                        }
+                        e.cap = f;
+                    }
+                    _ => return Err(a.err(format!("unknown keyword '{k}'; known: excess, full, cap"))),
+                }
+            }
+            e
+        }
+        "eos/ideal" => LinearTheta::ideal(cv),
+        "eos/cv" => LinearTheta::cv_only(cv),
+        "eos/density" => LinearTheta::density_only(cv, coefficients(a)?),
+        "eos/linear" => {
+            let q = a.f64("the exponent q of n in psi")?;
+            let r = a.f64("the exponent r of 1/(1 - b n) in psi")?;
+            let b = a.non_negative("the excluded volume b")?;
+            LinearTheta { q, r, b, v_coeffs: coefficients(a)?, ..LinearTheta::cv_only(cv) }
+        }
+        other => return Err(a.err(format!("unknown EOS fix '{other}'; known: {FIX_STYLES}"))),
+    };
+    eos.cv = cv;
+    Ok(EosModel::Linear(eos))
+}
+
+fn coefficients(a: &mut Args) -> Result<Vec<f64>, ScriptError> {
+    let mut c = Vec::new();
+    while a.remaining() > 0 {
+        c.push(a.f64("a coefficient c_k of V(n) = sum_k c_k n^k")?);
+    }
+    Ok(c)
+}
+
+/// Assembles the dynamics of a `run` from the pair style and the fixes.
+pub fn build_physics(
+    cmd: &Command,
+    pair: Option<&PairGendpde>,
+    fixes: &[Fix],
+    dt: f64,
+    skin: f64,
+    rebuild: RebuildPolicy,
+) -> Result<Box<dyn Physics>, ScriptError> {
+    let err = |m: String| ScriptError::at(cmd, m);
+    let pair = pair.ok_or_else(|| err("no pair style is defined (pair_style gendpde)".into()))?;
+    let eos: Vec<&EosModel> = fixes.iter().filter_map(|f| if let FixStyle::Eos(e) = &f.style { Some(e) } else { None }).collect();
+    let eos = match eos.as_slice() {
+        [e] => (*e).clone(),
+        [] => return Err(err("no EOS fix is defined (fix ID all eos/...)".into())),
+        _ => return Err(err("more than one EOS fix is defined".into())),
+    };
+    let find = |pred: fn(&FixStyle) -> bool| fixes.iter().find(|f| pred(&f.style));
+    let verlet = find(|s| matches!(s, FixStyle::Verlet)).is_some();
+    let dissipation = match find(|s| matches!(s, FixStyle::Shardlow { .. })) {
+        Some(Fix { style: FixStyle::Shardlow { heat }, .. }) => {
+            let c = pair.coeff.as_ref().ok_or_else(|| err("fix shardlow needs the pair coefficients (pair_coeff * * GAMMA KAPPA)".into()))?;
+            Some(Dissipation { gamma: c.gamma, rc_friction: c.rc_friction, kappa: c.kappa, rc_heat: c.rc_heat, heat: *heat, seed: pair.seed })
+        }
+        _ => None,
+    };
+    let reservoir = match find(|s| matches!(s, FixStyle::Reservoir { .. })) {
+        Some(Fix { style: FixStyle::Reservoir { temperature, kappa, seed, heat }, .. }) => Some(Reservoir {
+            temperature: *temperature,
+            kappa: *kappa,
+            seed: *seed,
+            heat: heat.or(dissipation.as_ref().map(|d| d.heat)).unwrap_or(HeatModel::Original),
+        }),
+        _ => None,
+    };
+    if let (Some(d), Some(r)) = (&dissipation, &reservoir) {
+        if d.heat != r.heat {
+            return Err(err("fix heat/reservoir and fix shardlow must use the same heat model".into()));
+        }
+    }
+    let settings = Settings { dt, skin, rebuild, verlet, dissipation, reservoir };
+    let EosModel::Linear(e) = eos;
+    Ok(with_weight(e, pair.weight, pair.cutoff, settings))
+}
+
+/// Monomorphises the dynamics over the weight function.
+fn with_weight<E: Eos + 'static>(eos: E, kind: WeightKind, rc: f64, settings: Settings) -> Box<dyn Physics> {
+    match kind {
+        WeightKind::Quadratic => Box::new(GenDpde { eos, weight: Quadratic::new(rc), settings }),
+        WeightKind::Linear => Box::new(GenDpde { eos, weight: Linear::new(rc), settings }),
+        WeightKind::Lucy => Box::new(GenDpde { eos, weight: Lucy::new(rc), settings }),
+        WeightKind::CubicSpline => Box::new(GenDpde { eos, weight: CubicSpline::new(rc), settings }),
+    }
+}

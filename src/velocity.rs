@@ -1,0 +1,89 @@
+//! `velocity all create T SEED [dist uniform|gaussian] [mom yes|no] [loop all|local|geom]`.
+//!
+//! Each particle's draw is keyed by (seed, tag), so the velocities do not depend on
+//! the rank count (LAMMPS's `loop geom` has the same aim). As in LAMMPS, each
+//! component is scaled by 1/sqrt(m), the centre-of-mass momentum is removed (mom yes),
+//! and the result is scaled to the exact temperature with 3N - 3 degrees of freedom.
+
+use crate::args::Args;
+use crate::sim::Sim;
+use gendpde_integrators::rng::{normal_pair, stream, uniform4};
+use gendpde_io::ScriptError;
+
+pub fn velocity(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
+    let group = a.word("a group")?;
+    if group != "all" {
+        return Err(a.err(format!("group '{group}': only group all is defined")));
+    }
+    match a.word("a velocity style (create)")? {
+        "create" => {}
+        s => return Err(a.err(format!("unknown velocity style '{s}'; known: create"))),
+    }
+    let t = a.non_negative("the temperature")?;
+    let seed = a.u64("the random seed")?;
+    if seed == 0 {
+        return Err(a.err("the random seed must be positive"));
+    }
+    let (mut gaussian, mut mom) = (false, true);
+    while a.remaining() > 0 {
+        match a.word("a keyword")? {
+            "dist" => match a.word("uniform or gaussian")? {
+                "uniform" => gaussian = false,
+                "gaussian" => gaussian = true,
+                d => return Err(a.err(format!("expected dist uniform or gaussian, got '{d}'"))),
+            },
+            "mom" => mom = a.yes_no("mom")?,
+            "rot" => {
+                if a.yes_no("rot")? {
+                    return Err(a.err("rot yes is not supported"));
+                }
+            }
+            "loop" => match a.word("all, local or geom")? {
+                "all" | "local" | "geom" => {}
+                l => return Err(a.err(format!("expected loop all, local or geom, got '{l}'"))),
+            },
+            k => return Err(a.err(format!("unknown keyword '{k}'; known: dist, mom, rot, loop"))),
+        }
+    }
+    let sys = sim.system.as_mut().ok_or_else(|| a.err("velocity before create_box"))?;
+    let s = &mut sys.store;
+    if let Some(i) = (0..s.nlocal).find(|&i| !s.mass[i].is_finite()) {
+        return Err(a.err(format!("the mass of type {} is not set", s.kind[i])));
+    }
+    let n = s.nlocal;
+    let mut v = vec![[0.0; 3]; n];
+    for (i, vi) in v.iter_mut().enumerate() {
+        let tag = s.tag[i];
+        let x = if gaussian {
+            let (a, b) = normal_pair(seed, 0, tag, 0, stream::VELOCITY);
+            [a, b, normal_pair(seed, 1, tag, 0, stream::VELOCITY).0]
+        } else {
+            let [a, b] = uniform4(seed, 0, tag, 0, stream::VELOCITY);
+            [a - 0.5, b - 0.5, uniform4(seed, 1, tag, 0, stream::VELOCITY)[0] - 0.5]
+        };
+        let f = 1.0 / s.mass[i].sqrt();
+        *vi = [x[0] * f, x[1] * f, x[2] * f];
+    }
+    if mom {
+        let mut pm = [0.0; 3];
+        let mut mass = 0.0;
+        for i in 0..n {
+            for k in 0..3 {
+                pm[k] += s.mass[i] * v[i][k];
+            }
+            mass += s.mass[i];
+        }
+        for vi in v.iter_mut() {
+            for k in 0..3 {
+                vi[k] -= pm[k] / mass;
+            }
+        }
+    }
+    let mv2: f64 = (0..n).map(|i| s.mass[i] * (v[i][0] * v[i][0] + v[i][1] * v[i][1] + v[i][2] * v[i][2])).sum();
+    let dof = 3.0 * n as f64 - 3.0;
+    let scale = if mv2 > 0.0 && dof > 0.0 { (t * dof / mv2).sqrt() } else { 0.0 };
+    for i in 0..n {
+        s.p[i] = [0, 1, 2].map(|k| s.mass[i] * v[i][k] * scale);
+    }
+    Ok(())
+}

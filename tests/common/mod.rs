@@ -1,0 +1,33 @@
+//! Helpers shared by the integration tests: running example scripts with variables
+//! overridden, and the statistics the physics tests need.
+#![allow(dead_code)]
+
+pub mod stats;
+
+use gendpde::{Interpreter, Mode, Output};
+use std::path::PathBuf;
+
+pub fn example(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("examples").join(name).join(format!("in.{name}"))
+}
+
+/// An interpreter that has executed `examples/NAME/in.NAME` with the given `-var`s.
+pub fn run_example(name: &str, vars: &[(&str, &str)]) -> Interpreter {
+    let mut it = Interpreter::new(Mode::Run, Output::new(false));
+    for (k, v) in vars {
+        it.vars.set_command_line(k, vec![v.to_string()]);
+    }
+    if let Err(e) = it.execute_file(&example(name)) {
+        panic!("example {name} failed: {e}");
+    }
+    it
+}
+
+/// An interpreter that has executed `text`.
+pub fn run_script(text: &str) -> Interpreter {
+    let mut it = Interpreter::new(Mode::Run, Output::new(false));
+    if let Err(e) = it.execute_str("test.in", text) {
+        panic!("script failed: {e}");
+    }
+    it
+}
