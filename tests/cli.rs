@@ -1,0 +1,101 @@
+//! The command line: reproducible output, and `gendpde check` naming the bad line.
+
+mod common;
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn gendpde(args: &[&str], dir: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_gendpde")).args(args).current_dir(dir).output().expect("gendpde runs")
+}
+
+/// Thermo output without the wall-clock lines.
+fn thermo(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stdout)
+        .lines()
+        .filter(|l| !l.starts_with("Loop time") && !l.starts_with("Performance"))
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+#[test]
+fn same_seed_same_input_gives_identical_thermo() {
+    let dir = tempdir("repro");
+    let ex = common::example("vdw-equilibrium");
+    let ex = ex.to_str().unwrap();
+    let args = ["run", ex, "-var", "n", "11", "-var", "rc", "3.0", "-var", "steps", "100", "-log", "none"];
+    let (a, b) = (gendpde(&args, &dir), gendpde(&args, &dir));
+    assert!(a.status.success(), "{}", String::from_utf8_lossy(&a.stderr));
+    assert_eq!(thermo(&a), thermo(&b));
+    assert!(thermo(&a).lines().count() >= 3);
+    // a different seed changes the trajectory
+    let mut other = args.to_vec();
+    other.extend(["-var", "seed", "17"]);
+    assert_ne!(thermo(&a), thermo(&gendpde(&other, &dir)));
+}
+
+#[test]
+fn run_writes_a_log_with_the_thermo_lines() {
+    let dir = tempdir("log");
+    let ex = common::example("heat-only");
+    let out = gendpde(&["run", ex.to_str().unwrap(), "-var", "steps", "20", "-log", "my.log"], &dir);
+    assert!(out.status.success());
+    let log = std::fs::read_to_string(dir.join("my.log")).unwrap();
+    let screen = thermo(&out);
+    let last = screen.lines().filter(|l| l.trim_start().starts_with("20 ")).last().unwrap();
+    assert!(log.contains(last), "log lacks the last thermo line {last}");
+    assert!(log.contains("fix ssa all shardlow heat fourier"), "commands are echoed to the log");
+}
+
+const GOOD: &str = "units lj
+lattice sc 0.5
+region box block 0 12 0 12 0 12
+create_box 1 box
+create_atoms 1 box
+mass 1 1.0
+pair_style gendpde 3.0 123
+pair_coeff * * 4.5 1.0
+fix eos all eos/vdw 60.0 2.4682 1.4142
+fix ssa all shardlow
+run 10
+";
+
+fn check(script: &str) -> (bool, String) {
+    let dir = tempdir("check");
+    std::fs::write(dir.join("in.test"), script).unwrap();
+    let out = gendpde(&["check", "in.test"], &dir);
+    (out.status.success(), String::from_utf8_lossy(&out.stderr).into_owned())
+}
+
+#[test]
+fn check_accepts_a_valid_script() {
+    let (ok, err) = check(GOOD);
+    assert!(ok, "{err}");
+}
+
+#[test]
+fn check_names_the_line_of_each_error() {
+    let cases = [
+        ("unknown command", GOOD.replace("mass 1 1.0", "mass 1 1.0\nfrobnicate 3"), "in.test:7: frobnicate: unknown command"),
+        ("missing argument", GOOD.replace("pair_coeff * * 4.5 1.0", "pair_coeff * * 4.5"), "in.test:8: pair_coeff: missing argument"),
+        ("negative mass", GOOD.replace("mass 1 1.0", "mass 1 -1.0"), "in.test:6: mass: the mass must be positive"),
+        ("density cap", GOOD.replace("lattice sc 0.5", "lattice sc 0.8"), "in.test:9: fix: mean number density"),
+        ("small box", GOOD.replace("0 12 0 12 0 12", "0 12 0 12 0 6"), "in.test:11: run: box length"),
+        ("non-number", GOOD.replace("timestep", "x").replace("run 10", "timestep abc\nrun 10"), "in.test:11: timestep: expected the timestep (a number), got 'abc'"),
+    ];
+    for (what, script, expect) in cases {
+        let (ok, err) = check(&script);
+        assert!(!ok, "{what}: check accepted the script");
+        assert!(err.contains(expect), "{what}: expected '{expect}' in:\n{err}");
+        assert!(!err.contains("internal error"), "{what}: a panic reached the user:\n{err}");
+    }
+}
+
+/// A fresh directory for each call (tests run in parallel).
+fn tempdir(name: &str) -> std::path::PathBuf {
+    static COUNT: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let k = COUNT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let dir = std::env::temp_dir().join(format!("gendpde-cli-{name}-{}-{k}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
