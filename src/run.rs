@@ -24,6 +24,16 @@ pub fn prepare(it: &mut Interpreter, cmd: &Command) -> Result<Box<dyn Physics>, 
         SetupError::Grid(g) => err(g.to_string()),
         SetupError::State(s) => AppError::Step { cmd: cmd.clone(), err: s },
     })?;
+    if let Some(grid) = &sys.grid {
+        log::info!(
+            "cell grid {:?} of side {:?}; {} ghosts; {} neighbour entries; {} sweep pairs",
+            grid.count,
+            grid.side,
+            sys.store.nghost(),
+            sys.nlist.neighbors.len(),
+            sys.sweep.pairs.len()
+        );
+    }
     Ok(physics)
 }
 

@@ -99,3 +99,29 @@ fn tempdir(name: &str) -> std::path::PathBuf {
     std::fs::create_dir_all(&dir).unwrap();
     dir
 }
+
+#[test]
+fn a_non_positive_temperature_stops_the_run_naming_the_particle() {
+    let dir = tempdir("theta");
+    let script = GOOD.replace("run 10", "set atom 7 u -200.0\nrun 10");
+    std::fs::write(dir.join("in.test"), script).unwrap();
+    let out = gendpde(&["run", "in.test", "-log", "none"], &dir);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success());
+    assert!(err.contains("in.test:12: run stopped: particle 7 after step 0"), "{err}");
+    assert!(err.contains("u = -2.000000000e2") && err.contains("theta = -"), "{err}");
+}
+
+#[test]
+fn a_blow_up_during_the_run_names_step_and_particle() {
+    let dir = tempdir("blowup");
+    // C_V close to k_B and a huge timestep drive some internal energy negative
+    let script = GOOD.replace("60.0 2.4682", "1.05 2.4682").replace("pair_coeff * * 4.5 1.0", "pair_coeff * * 4.5 50.0")
+        .replace("run 10", "set group all theta 1.5\ntimestep 0.5\nrun 50");
+    std::fs::write(dir.join("in.test"), script).unwrap();
+    let out = gendpde(&["run", "in.test", "-log", "none"], &dir);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success(), "the run should stop");
+    assert!(err.contains("run stopped: particle ") && err.contains(" after step "), "{err}");
+    assert!(!err.contains("internal error"), "{err}");
+}

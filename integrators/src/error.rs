@@ -1,4 +1,5 @@
-//! A step that cannot continue, naming the particle and the state that failed.
+//! A step that cannot continue, naming the particle and the state that failed. `step`
+//! is the last completed step: the failure happened while advancing from it.
 
 use gendpde_engine::Particles;
 use gendpde_potentials::EosError;
@@ -26,7 +27,7 @@ impl fmt::Display for StepError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(
             f,
-            "particle {} at step {}: {} (u = {:e}, n = {:e}, theta = {:e}); \
+            "particle {} after step {}: {} (u = {:.9e}, n = {:.9e}, theta = {:.9e}); \
              a smaller timestep, a larger C_V or weaker noise may help",
             self.tag, self.step, self.what, self.u, self.n, self.theta
         )
