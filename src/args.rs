@@ -74,21 +74,25 @@ impl<'a> Args<'a> {
         }
     }
 
-    /// A LAMMPS type range (`*`, `n`, `n*`, `*n`, `m*n`) over 1..=ntypes.
-    pub fn types(&mut self, ntypes: usize) -> Result<std::ops::RangeInclusive<usize>, ScriptError> {
-        let w = self.word("a particle type or type range")?;
-        let bad = || self.err(format!("expected a type or range within 1..{ntypes}, got '{w}'"));
-        let num = |s: &str, default: usize| if s.is_empty() { Ok(default) } else { s.parse::<usize>().map_err(|_| bad()) };
+    /// A LAMMPS range (`*`, `n`, `n*`, `*n`, `m*n`) of integers in 1..=max; `what`
+    /// names one element ("a particle type").
+    pub fn range(&mut self, what: &str, max: u64) -> Result<std::ops::RangeInclusive<u64>, ScriptError> {
+        let w = self.word(&format!("{what} or a range of them"))?;
+        let bad = || self.err(format!("expected {what} or range within 1..{max}, got '{w}'"));
+        let num = |s: &str, default: u64| if s.is_empty() { Ok(default) } else { s.parse::<u64>().map_err(|_| bad()) };
         let (lo, hi) = match w.split_once('*') {
-            Some((a, b)) => (num(a, 1)?, num(b, ntypes)?),
-            None => {
-                let t = num(w, 0)?;
-                (t, t)
-            }
+            Some((a, b)) => (num(a, 1)?, num(b, max)?),
+            None => (num(w, 0)?, num(w, 0)?),
         };
-        if lo < 1 || hi > ntypes || lo > hi {
+        if lo < 1 || hi > max || lo > hi {
             return Err(bad());
         }
         Ok(lo..=hi)
+    }
+
+    /// A range of particle types 1..=ntypes.
+    pub fn types(&mut self, ntypes: usize) -> Result<std::ops::RangeInclusive<usize>, ScriptError> {
+        let r = self.range("a particle type", ntypes as u64)?;
+        Ok(*r.start() as usize..=*r.end() as usize)
     }
 }

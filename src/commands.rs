@@ -342,16 +342,20 @@ fn mass(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
 /// `set atom|type|group ID KEYWORD VALUE ...` with keywords theta (dpd/theta) and u.
 fn set(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     let style = a.word("atom, type or group")?;
-    let id = a.word("an ID")?;
     let sys = sim.system.as_mut().ok_or_else(|| a.err("set before create_box"))?;
     let s = &mut sys.store;
     let selected: Vec<usize> = match style {
-        "group" if id == "all" => (0..s.nlocal).collect(),
-        "group" => return Err(a.err(format!("group '{id}': only group all is defined"))),
-        "type" | "atom" => {
-            let range = if style == "type" { a_types(a, id, sim.ntypes)? } else { a_tags(a, id, sim.max_tag)? };
-            let field = |i: usize| if style == "type" { s.kind[i] as u64 } else { s.tag[i] };
-            (0..s.nlocal).filter(|&i| range.contains(&field(i))).collect()
+        "group" => match a.word("a group ID")? {
+            "all" => (0..s.nlocal).collect(),
+            g => return Err(a.err(format!("group '{g}': only group all is defined"))),
+        },
+        "type" => {
+            let range = a.range("a particle type", sim.ntypes as u64)?;
+            (0..s.nlocal).filter(|&i| range.contains(&(s.kind[i] as u64))).collect()
+        }
+        "atom" => {
+            let range = a.range("a particle ID", sim.max_tag)?;
+            (0..s.nlocal).filter(|&i| range.contains(&s.tag[i])).collect()
         }
         _ => return Err(a.err(format!("expected atom, type or group, got '{style}'"))),
     };
@@ -379,28 +383,6 @@ fn set(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
         }
     }
     Ok(())
-}
-
-/// A LAMMPS range `n`, `*`, `n*`, `*n`, `m*n` of integers in 1..=max.
-fn range(a: &Args, w: &str, max: u64, what: &str) -> Result<std::ops::RangeInclusive<u64>, ScriptError> {
-    let bad = || a.err(format!("expected {what} or range within 1..{max}, got '{w}'"));
-    let num = |s: &str, d: u64| if s.is_empty() { Ok(d) } else { s.parse::<u64>().map_err(|_| bad()) };
-    let (lo, hi) = match w.split_once('*') {
-        Some((x, y)) => (num(x, 1)?, num(y, max)?),
-        None => (num(w, 0)?, num(w, 0)?),
-    };
-    if lo < 1 || hi > max || lo > hi {
-        return Err(bad());
-    }
-    Ok(lo..=hi)
-}
-
-fn a_types(a: &Args, w: &str, ntypes: usize) -> Result<std::ops::RangeInclusive<u64>, ScriptError> {
-    range(a, w, ntypes as u64, "a type")
-}
-
-fn a_tags(a: &Args, w: &str, max_tag: u64) -> Result<std::ops::RangeInclusive<u64>, ScriptError> {
-    range(a, w, max_tag, "a particle ID")
 }
 
 fn neigh_modify(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {

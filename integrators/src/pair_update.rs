@@ -141,12 +141,14 @@ mod tests {
     #[test]
     fn pair_update_conserves_momentum_and_energy_original() {
         let (p, e) = check_conservation::<Original>();
+        eprintln!("original: worst relative momentum error {p:.2e}, energy error {e:.2e}");
         assert!(p < 1e-15 && e < 1e-13, "momentum {p:e}, energy {e:e}");
     }
 
     #[test]
     fn pair_update_conserves_momentum_and_energy_fourier() {
         let (p, e) = check_conservation::<Fourier>();
+        eprintln!("fourier: worst relative momentum error {p:.2e}, energy error {e:.2e}");
         assert!(p < 1e-15 && e < 1e-13, "momentum {p:e}, energy {e:e}");
     }
 

@@ -1,8 +1,9 @@
 //! Evaluation of LAMMPS equal-style expressions.
 //!
 //! Precedence, lowest first: `||`; `&&`; `==` `!=`; `<` `<=` `>` `>=`;
-//! `+` `-`; `*` `/` `%`; unary `-` `!`; `^` (right-associative, so
-//! `-2^2 == -4` and `2^3^2 == 512`). Comparisons and logic yield 1 or 0.
+//! `+` `-`; `*` `/` `%`; `^`; unary `-` `!`. As in LAMMPS, unary minus binds tighter
+//! than `^` and `^` is left-associative: `-2^2 == 4`, `2^3^2 == 64`. Comparisons and
+//! logic yield 1 or 0.
 
 use crate::variables::Variables;
 
@@ -157,13 +158,14 @@ struct Parser<'a> {
 }
 
 /// Binary operator levels, lowest precedence first.
-const LEVELS: [&[&str]; 6] = [
+const LEVELS: [&[&str]; 7] = [
     &["||"],
     &["&&"],
     &["==", "!="],
     &["<", "<=", ">", ">="],
     &["+", "-"],
     &["*", "/", "%"],
+    &["^"],
 ];
 
 impl Parser<'_> {
@@ -192,18 +194,8 @@ impl Parser<'_> {
                 let x = self.nested(Self::unary)?;
                 Ok(if op == "-" { -x } else { truth(x == 0.0) })
             }
-            _ => self.power(),
+            _ => self.primary(),
         }
-    }
-
-    fn power(&mut self) -> Result<f64, String> {
-        let base = self.primary()?;
-        if self.peek_op() != Some("^") {
-            return Ok(base);
-        }
-        self.pos += 1;
-        let exponent = self.nested(Self::unary)?;
-        apply("^", base, exponent)
     }
 
     fn primary(&mut self) -> Result<f64, String> {
@@ -370,8 +362,9 @@ mod tests {
 
     #[test]
     fn precedence_and_associativity() {
-        assert_eq!(ok("-2^2"), -4.0);
-        assert_eq!(ok("2^3^2"), 512.0);
+        // LAMMPS 22 Jul 2025 prints 4 and 64
+        assert_eq!(ok("-2^2"), 4.0);
+        assert_eq!(ok("2^3^2"), 64.0);
         assert_eq!(ok("2^-1"), 0.5);
         assert_eq!(ok("7%3"), 1.0);
         assert_eq!(ok("-7%3"), -1.0);

@@ -362,12 +362,13 @@ mod tests {
         let text = "variable x index 2.5\n\
                     variable name string hello\n\
                     variable a equal 3\n\
-                    print $x ${name} $(1/4) $(PI:%.3f) $(2*$x) $(v_a*2) $(${a}*2) $(step+1:%05.1f)\n\
+                    print $x ${name} $(1/4) $(PI:%.3f) $(2*$x) $(v_a*2) $(${a}*2) $(step+1:%05.1f) $(0.1)\n\
                     print \"$x ${name}\" '$x ${name}' \"\"\"$x\"\"\" x$x$x";
         let cmds = commands(text);
+        // $(0.1) as LAMMPS prints it (%.20g)
         assert_eq!(
             cmds[0].args,
-            ["2.5", "hello", "0.25", "3.142", "5", "6", "6", "051.0"]
+            ["2.5", "hello", "0.25", "3.142", "5", "6", "6", "051.0", "0.10000000000000000555"]
         );
         assert_eq!(cmds[1].args, ["2.5 hello", "$x ${name}", "$x", "x2.52.5"]);
     }

@@ -123,7 +123,8 @@ fn expand(
             let x = evaluate(expr, vars, resolve).map_err(|e| format!("in $({inner}): {e}"))?;
             let value = match fmt {
                 Some(fmt) => format_printf(fmt, x)?,
-                None => format_g(x, 15),
+                // LAMMPS's default for $(...)
+                None => format_g(x, 20),
             };
             Ok((value, close + 1))
         }
