@@ -7,7 +7,7 @@ use crate::sim::Sim;
 use crate::styles::{self, FixStyle};
 use crate::thermo::{Observables, ThermoContext};
 use crate::{run, velocity};
-use gendpde_engine::{Domain, SerialComm};
+use gendpde_engine::{exact_sums, Comm, Domain, Local, ProcGrid, Transport};
 use gendpde_integrators::{StepError, System};
 use gendpde_io::{Command, ScriptError, ScriptReader, Variables};
 use std::fmt;
@@ -47,11 +47,19 @@ pub struct Interpreter {
     pub vars: Variables,
     pub out: Output,
     pub mode: Mode,
+    /// The ranks' transport, handed to the box's communicator by `create_box`.
+    transport: Option<Box<dyn Transport>>,
 }
 
 impl Interpreter {
+    /// A single-rank interpreter.
     pub fn new(mode: Mode, out: Output) -> Self {
-        Self { sim: Sim::default(), vars: Variables::new(), out, mode }
+        Self::with_transport(mode, out, Box::new(Local))
+    }
+
+    /// An interpreter whose box is split over the ranks of `transport`.
+    pub fn with_transport(mode: Mode, out: Output, transport: Box<dyn Transport>) -> Self {
+        Self { sim: Sim::default(), vars: Variables::new(), out, mode, transport: Some(transport) }
     }
 
     /// Executes a script file to its end.
@@ -112,7 +120,11 @@ impl Interpreter {
                 sim.lattice = Some(Lattice::new(style, rho).ok_or_else(|| a.err(format!("unknown lattice '{style}'; known: sc, bcc, fcc")))?);
             }
             "region" => region(sim, &mut a)?,
-            "create_box" => create_box(sim, &mut a)?,
+            "processors" => processors(sim, &mut a)?,
+            "create_box" => {
+                let t = self.transport.take().ok_or_else(|| a.err("the box exists already"))?;
+                create_box(sim, &mut a, t)?
+            }
             "create_atoms" => create_atoms(sim, &mut a)?,
             "mass" => mass(sim, &mut a)?,
             "velocity" => velocity::velocity(sim, &mut a)?,
@@ -129,8 +141,13 @@ impl Interpreter {
             }
             "fix" => {
                 let fix = styles::parse_fix(cmd)?;
-                sim.fixes.retain(|f| f.id != fix.id);
-                sim.fixes.push(fix);
+                match sim.fixes.iter_mut().find(|f| f.id == fix.id) {
+                    Some(old) if std::mem::discriminant(&old.style) != std::mem::discriminant(&fix.style) => {
+                        return Err(a.err(format!("fix ID '{}' is in use by another style (unfix it first)", fix.id)).into());
+                    }
+                    Some(old) => *old = fix,
+                    None => sim.fixes.push(fix),
+                }
                 check_density_cap(sim, &a)?;
             }
             "unfix" => {
@@ -248,14 +265,31 @@ fn region(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     if (0..3).any(|d| block.hi[d] <= block.lo[d]) {
         return Err(a.err("each upper bound must exceed its lower bound"));
     }
+    if sim.regions.contains_key(&id) {
+        return Err(a.err(format!("region ID '{id}' is in use")));
+    }
     sim.regions.insert(id, block);
     Ok(())
 }
 
-fn create_box(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
+/// `processors Px Py Pz` (each a count or `*`): the shape of the grid of ranks.
+fn processors(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     if sim.system.is_some() {
-        return Err(a.err("the box exists already"));
+        return Err(a.err("processors must come before create_box"));
     }
+    for d in 0..3 {
+        sim.procs[d] = match a.word("a rank count or *")? {
+            "*" => None,
+            w => match w.parse::<usize>() {
+                Ok(p) if p > 0 => Some(p),
+                _ => return Err(a.err(format!("expected a positive rank count or *, got '{w}'"))),
+            },
+        };
+    }
+    a.done()
+}
+
+fn create_box(sim: &mut Sim, a: &mut Args, transport: Box<dyn Transport>) -> Result<(), ScriptError> {
     let n = a.u64("the number of particle types")? as usize;
     if n == 0 {
         return Err(a.err("the number of particle types must be at least 1"));
@@ -263,9 +297,11 @@ fn create_box(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     let id = a.word("a region ID")?;
     a.done()?;
     let block = sim.regions.get(id).ok_or_else(|| a.err(format!("no region with ID '{id}'")))?;
+    let domain = Domain::new(block.lo, block.hi);
+    let procs = ProcGrid::choose(transport.size(), domain.len(), sim.procs).map_err(|e| a.err(e))?;
     sim.ntypes = n;
     sim.masses = vec![None; n];
-    sim.system = Some(System::new(Domain::new(block.lo, block.hi), Box::new(SerialComm::new())));
+    sim.system = Some(System::new(domain, Comm::new(transport, procs)));
     Ok(())
 }
 
@@ -292,9 +328,16 @@ fn create_atoms(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     a.done()?;
     let lattice = sim.lattice.as_ref().ok_or_else(|| a.err("create_atoms needs a lattice command first"))?;
     let mass = sim.masses[kind - 1].unwrap_or(f64::NAN);
-    for r in lattice.points(lo, hi) {
+    let points = lattice.points(lo, hi);
+    if sim.max_tag + points.len() as u64 > u32::MAX as u64 {
+        return Err(a.err(format!("more than {} particles: particle IDs must fit in 32 bits", u32::MAX)));
+    }
+    sys.store.truncate_ghosts();
+    for r in points {
         sim.max_tag += 1;
-        sys.store.push(sim.max_tag, kind as u32, mass, r);
+        if sys.comm.keeps(&sys.domain, r) {
+            sys.store.push(sim.max_tag, kind as u32, mass, r);
+        }
     }
     check_density_cap(sim, a)
 }
@@ -302,13 +345,14 @@ fn create_atoms(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
 /// A mean density at or above an EOS's cap (vdW: 1/b) cannot start a run.
 fn check_density_cap(sim: &Sim, a: &Args) -> Result<(), ScriptError> {
     let Some(sys) = &sim.system else { return Ok(()) };
-    let n = sys.store.nlocal as f64 / sys.domain.volume();
+    let [count] = exact_sums(sys.comm.transport(), (0..sys.store.nlocal).map(|_| [1.0]));
+    let n = count / sys.domain.volume();
     for f in &sim.fixes {
         if let FixStyle::Eos(e) = &f.style {
             if let Some(max) = e.max_density() {
                 if n >= max {
                     return Err(a.err(format!(
-                        "mean number density N/V = {n:.6} lies beyond the EOS density cap {max:.6} (1/b, fix {})",
+                        "mean number density N/V = {n:.6} lies beyond the density limit {max:.6} of the EOS of fix {} (van der Waals: 1/b)",
                         f.id
                     )));
                 }

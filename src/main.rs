@@ -1,7 +1,8 @@
 //! gendpde: Generalised energy-conserving Dissipative Particle Dynamics.
 
 use clap::{Parser, Subcommand};
-use gendpde::{Interpreter, Mode, Output};
+use gendpde::{AppError, Interpreter, Mode, Output};
+use gendpde_engine::Transport;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -51,6 +52,20 @@ fn lammps_style_args() -> Vec<String> {
         .collect()
 }
 
+/// MPI_COMM_WORLD with the `mpi` feature, else a single rank.
+#[cfg(feature = "mpi")]
+fn transport() -> Box<dyn Transport> {
+    match gendpde_engine::comm::MpiTransport::init() {
+        Some(t) => Box::new(t),
+        None => Box::new(gendpde_engine::Local),
+    }
+}
+
+#[cfg(not(feature = "mpi"))]
+fn transport() -> Box<dyn Transport> {
+    Box::new(gendpde_engine::Local)
+}
+
 fn main() -> ExitCode {
     env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn")).init();
     std::panic::set_hook(Box::new(|info| {
@@ -61,14 +76,16 @@ fn main() -> ExitCode {
         Cmd::Run { script, log } => (script, Mode::Run, Some(log)),
         Cmd::Check { script } => (script, Mode::Check, None),
     };
-    let mut out = Output::new(true);
-    if let Some(log) = log.filter(|l| l != "none") {
+    let transport = transport();
+    let rank = transport.rank();
+    let mut out = Output::new(rank == 0);
+    if let Some(log) = log.filter(|l| l != "none" && rank == 0) {
         if let Err(e) = out.open_log(std::path::Path::new(&log), false) {
             eprintln!("ERROR: cannot open log file '{log}': {e}");
             return ExitCode::FAILURE;
         }
     }
-    let mut it = Interpreter::new(mode, out);
+    let mut it = Interpreter::with_transport(mode, out, transport);
     for v in script.var.chunks(2) {
         it.vars.set_command_line(&v[0], v[1..].to_vec());
     }
@@ -80,10 +97,18 @@ fn main() -> ExitCode {
             ExitCode::SUCCESS
         }
         Err(e) => {
+            // Script errors are the same on every rank; a failed step is told by the rank
+            // that saw it (and by rank 0 that the run stopped).
+            let local = match &e {
+                AppError::Step { err, .. } => !err.elsewhere,
+                AppError::Script(_) => rank == 0,
+            };
             let msg = format!("ERROR: {e}");
-            it.out.log_line(&msg);
+            if local || rank == 0 {
+                it.out.log_line(&msg);
+                eprintln!("{msg}");
+            }
             it.out.flush();
-            eprintln!("{msg}");
             ExitCode::FAILURE
         }
     }

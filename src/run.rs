@@ -21,7 +21,7 @@ pub fn prepare(it: &mut Interpreter, cmd: &Command) -> Result<Box<dyn Physics>, 
         return Err(err(format!("the mass of type {} is not set", sys.store.kind[i])));
     }
     physics.setup(sys).map_err(|e| match e {
-        SetupError::Grid(g) => err(g.to_string()),
+        SetupError::Grid(g) => err(g),
         SetupError::State(s) => AppError::Step { cmd: cmd.clone(), err: s },
     })?;
     if let Some(grid) = &sys.grid {

@@ -24,6 +24,8 @@ pub struct Sim {
     pub energy0: Option<f64>,
     /// Largest tag handed out.
     pub max_tag: u64,
+    /// Ranks per dimension fixed by `processors` (None: chosen to minimise surface).
+    pub procs: [Option<usize>; 3],
 }
 
 impl Default for Sim {
@@ -43,6 +45,7 @@ impl Default for Sim {
             thermo: ThermoConfig::default(),
             energy0: None,
             max_tag: 0,
+            procs: [None; 3],
         }
     }
 }

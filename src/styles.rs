@@ -207,6 +207,15 @@ pub fn build_physics(
         _ => return Err(err("more than one EOS fix is defined".into())),
     };
     let find = |pred: fn(&FixStyle) -> bool| fixes.iter().find(|f| pred(&f.style));
+    for (name, pred) in [
+        ("nve/gendpde", (|s: &FixStyle| matches!(s, FixStyle::Verlet)) as fn(&FixStyle) -> bool),
+        ("shardlow", |s| matches!(s, FixStyle::Shardlow { .. })),
+        ("heat/reservoir", |s| matches!(s, FixStyle::Reservoir { .. })),
+    ] {
+        if fixes.iter().filter(|f| pred(&f.style)).count() > 1 {
+            return Err(err(format!("more than one fix {name} is defined")));
+        }
+    }
     let verlet = find(|s| matches!(s, FixStyle::Verlet)).is_some();
     let dissipation = match find(|s| matches!(s, FixStyle::Shardlow { .. })) {
         Some(Fix { style: FixStyle::Shardlow { heat }, .. }) => {

@@ -6,6 +6,7 @@
 //! ke = sum p^2/2m; etotal = pe + ke; edrift = (E - E0)/|E0| since the first setup.
 //! With `thermo_modify norm yes` (the lj default) pe, ke and etotal are per particle.
 
+use gendpde_engine::exact_sums;
 use gendpde_integrators::System;
 use gendpde_io::format_printf;
 
@@ -39,20 +40,15 @@ pub struct Observables {
 }
 
 impl Observables {
+    /// Sums over all particles of all ranks, independent of the decomposition.
     pub fn measure(sys: &System) -> Self {
         let s = &sys.store;
-        let mut sums = [0.0; 6];
-        for i in 0..s.nlocal {
+        let rows = (0..s.nlocal).map(|i| {
             let p = s.p[i];
-            let p2 = p[0] * p[0] + p[1] * p[1] + p[2] * p[2];
-            sums[0] += 1.0;
-            sums[1] += p2 / s.mass[i];
-            sums[2] += s.u[i];
-            sums[3] += s.theta[i];
-            sums[4] += s.mass[i];
-        }
-        sums[5] = sys.virial;
-        sys.comm.sum(&mut sums);
+            let virial = if s.virial.is_empty() { 0.0 } else { s.virial[i] };
+            [1.0, (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]) / s.mass[i], s.u[i], s.theta[i], s.mass[i], virial]
+        });
+        let sums = exact_sums(sys.comm.transport(), rows);
         Self {
             atoms: sums[0],
             ke: 0.5 * sums[1],

@@ -7,6 +7,7 @@
 
 use crate::args::Args;
 use crate::sim::Sim;
+use gendpde_engine::exact_sums;
 use gendpde_integrators::rng::{normal_pair, stream, uniform4};
 use gendpde_io::ScriptError;
 
@@ -64,23 +65,20 @@ pub fn velocity(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
         let f = 1.0 / s.mass[i].sqrt();
         *vi = [x[0] * f, x[1] * f, x[2] * f];
     }
+    let t_ = sys.comm.transport();
     if mom {
-        let mut pm = [0.0; 3];
-        let mut mass = 0.0;
-        for i in 0..n {
-            for k in 0..3 {
-                pm[k] += s.mass[i] * v[i][k];
-            }
-            mass += s.mass[i];
-        }
+        let [px, py, pz, mass] = exact_sums(t_, (0..n).map(|i| {
+            let m = s.mass[i];
+            [m * v[i][0], m * v[i][1], m * v[i][2], m]
+        }));
         for vi in v.iter_mut() {
-            for k in 0..3 {
-                vi[k] -= pm[k] / mass;
+            for (k, pk) in [px, py, pz].iter().enumerate() {
+                vi[k] -= pk / mass;
             }
         }
     }
-    let mv2: f64 = (0..n).map(|i| s.mass[i] * (v[i][0] * v[i][0] + v[i][1] * v[i][1] + v[i][2] * v[i][2])).sum();
-    let dof = 3.0 * n as f64 - 3.0;
+    let [mv2, count] = exact_sums(t_, (0..n).map(|i| [s.mass[i] * (v[i][0] * v[i][0] + v[i][1] * v[i][1] + v[i][2] * v[i][2]), 1.0]));
+    let dof = 3.0 * count - 3.0;
     let scale = if mv2 > 0.0 && dof > 0.0 { (t * dof / mv2).sqrt() } else { 0.0 };
     for i in 0..n {
         s.p[i] = [0, 1, 2].map(|k| s.mass[i] * v[i][k] * scale);

@@ -17,6 +17,11 @@ impl Fields {
         Self(self.0 | other.0)
     }
 
+    /// The fields of `self` that are not in `other`.
+    pub const fn without(self, other: Self) -> Self {
+        Self(self.0 & !other.0)
+    }
+
     pub const fn contains(self, other: Self) -> bool {
         self.0 & other.0 == other.0
     }

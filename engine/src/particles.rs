@@ -33,6 +33,8 @@ pub struct Particles {
     pub pn2: Vec<f64>,
     /// 1/tau (eq 19); only for the original heat-flow model.
     pub inv_tau: Vec<f64>,
+    /// Per-particle virial sum_j F_ij r_ij^2 / 2 of owned particles (many-body scenes).
+    pub virial: Vec<f64>,
     enabled: Option<Fields>,
 }
 
@@ -82,28 +84,6 @@ impl Particles {
         self.resize(self.nlocal);
     }
 
-    /// Appends a ghost copy of particle `src` shifted by `shift`, in cell `cell`.
-    pub fn push_ghost(&mut self, src: usize, shift: Vec3, cell: [i32; 3]) {
-        let r = self.r[src];
-        self.tag.push(self.tag[src]);
-        self.kind.push(self.kind[src]);
-        self.mass.push(self.mass[src]);
-        self.r.push([r[0] + shift[0], r[1] + shift[1], r[2] + shift[2]]);
-        self.p.push(self.p[src]);
-        self.u.push(self.u[src]);
-        self.theta.push(self.theta[src]);
-        self.theta_given.push(false);
-        self.image.push([0; 3]);
-        self.cell.push(cell);
-        let len = self.len();
-        self.resize_derived(len);
-        for v in [&mut self.n, &mut self.pn2, &mut self.inv_tau] {
-            if !v.is_empty() {
-                v[len - 1] = v[src];
-            }
-        }
-    }
-
     fn resize(&mut self, len: usize) {
         self.tag.truncate(len);
         self.kind.truncate(len);
@@ -124,11 +104,99 @@ impl Particles {
         let (dens, pres, tau) = (on(Fields::DENSITY), on(Fields::PRESSURE), on(Fields::INV_TAU));
         self.n.resize(if dens { len } else { 0 }, 0.0);
         self.pn2.resize(if pres { len } else { 0 }, 0.0);
+        self.virial.resize(if pres { len } else { 0 }, 0.0);
         self.inv_tau.resize(if tau { len } else { 0 }, 0.0);
     }
+}
 
-    /// Kinetic energy sum p^2/2m over owned particles.
-    pub fn kinetic_energy(&self) -> f64 {
-        (0..self.nlocal).map(|i| crate::dot(self.p[i], self.p[i]) / (2.0 * self.mass[i])).sum()
+/// Packing of particles into f64 buffers for the communication layer. Integers travel
+/// as f64, exact below 2^53.
+impl Particles {
+    /// Appends owned particle `i` (primary fields) for migration.
+    pub fn pack_owned(&self, i: usize, buf: &mut Vec<f64>) {
+        buf.extend_from_slice(&[self.tag[i] as f64, self.kind[i] as f64, self.mass[i]]);
+        buf.extend_from_slice(&self.r[i]);
+        buf.extend_from_slice(&self.p[i]);
+        buf.extend_from_slice(&[self.u[i], self.theta[i], self.theta_given[i] as u8 as f64]);
+        buf.extend(self.image[i].iter().map(|&x| x as f64));
+    }
+
+    /// Length of one `pack_owned` record.
+    pub const OWNED_RECORD: usize = 15;
+
+    /// Appends an owned particle from a `pack_owned` record (no ghosts may exist).
+    pub fn unpack_owned(&mut self, rec: &[f64]) {
+        self.push(rec[0] as u64, rec[1] as u32, rec[2], [rec[3], rec[4], rec[5]]);
+        let i = self.nlocal - 1;
+        self.p[i] = [rec[6], rec[7], rec[8]];
+        self.u[i] = rec[9];
+        self.theta[i] = rec[10];
+        self.theta_given[i] = rec[11] != 0.0;
+        self.image[i] = [rec[12] as i32, rec[13] as i32, rec[14] as i32];
+    }
+
+    /// Removes owned particle `i` (the last owned particle takes its index; no ghosts
+    /// may exist).
+    pub fn remove_owned(&mut self, i: usize) {
+        debug_assert_eq!(self.nlocal, self.len(), "remove before ghosts are dropped");
+        self.tag.swap_remove(i);
+        self.kind.swap_remove(i);
+        self.mass.swap_remove(i);
+        self.r.swap_remove(i);
+        self.p.swap_remove(i);
+        self.u.swap_remove(i);
+        self.theta.swap_remove(i);
+        self.theta_given.swap_remove(i);
+        self.image.swap_remove(i);
+        self.cell.swap_remove(i);
+        self.nlocal -= 1;
+        self.resize_derived(self.nlocal);
+    }
+
+    /// Length of one `pack_ghost` record.
+    pub fn ghost_record(&self) -> usize {
+        14 + [&self.n, &self.pn2, &self.inv_tau].iter().filter(|v| !v.is_empty()).count()
+    }
+
+    /// Appends particle `i` as a ghost record, its position shifted by `shift` along `dim`
+    /// and its cell by `cell_shift`.
+    pub fn pack_ghost(&self, i: usize, dim: usize, shift: f64, cell_shift: i32, buf: &mut Vec<f64>) {
+        let mut r = self.r[i];
+        r[dim] += shift;
+        let mut c = self.cell[i];
+        c[dim] += cell_shift;
+        buf.extend_from_slice(&[self.tag[i] as f64, self.kind[i] as f64, self.mass[i]]);
+        buf.extend_from_slice(&r);
+        buf.extend_from_slice(&self.p[i]);
+        buf.extend_from_slice(&[self.u[i], self.theta[i]]);
+        buf.extend(c.iter().map(|&x| x as f64));
+        for v in [&self.n, &self.pn2, &self.inv_tau] {
+            if !v.is_empty() {
+                buf.push(v[i]);
+            }
+        }
+    }
+
+    /// Appends a ghost from a `pack_ghost` record.
+    pub fn unpack_ghost(&mut self, rec: &[f64]) {
+        self.tag.push(rec[0] as u64);
+        self.kind.push(rec[1] as u32);
+        self.mass.push(rec[2]);
+        self.r.push([rec[3], rec[4], rec[5]]);
+        self.p.push([rec[6], rec[7], rec[8]]);
+        self.u.push(rec[9]);
+        self.theta.push(rec[10]);
+        self.theta_given.push(false);
+        self.image.push([0; 3]);
+        self.cell.push([rec[11] as i32, rec[12] as i32, rec[13] as i32]);
+        let len = self.len();
+        self.resize_derived(len);
+        let mut k = 14;
+        for v in [&mut self.n, &mut self.pn2, &mut self.inv_tau] {
+            if !v.is_empty() {
+                v[len - 1] = rec[k];
+                k += 1;
+            }
+        }
     }
 }

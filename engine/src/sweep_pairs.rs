@@ -93,7 +93,7 @@ impl SweepPairs {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{Comm, Domain, SerialComm};
+    use crate::{Comm, Domain};
     use std::collections::{HashMap, HashSet};
 
     /// A random gas in a 4x4x6 cell box, with its ghosts and bins.
@@ -110,7 +110,7 @@ mod tests {
             let r = [9.0 * next(), 9.5 * next(), 13.0 * next()];
             s.push(tag * 7 % 701, 1, 1.0, r);
         }
-        let mut comm = SerialComm::new();
+        let mut comm = Comm::serial();
         comm.exchange(&mut s, &domain, &grid);
         let mut bins = CellBins::default();
         let (lo, hi) = comm.owned_cells(&grid);

@@ -13,18 +13,28 @@ pub struct StepError {
     pub n: f64,
     pub theta: f64,
     pub what: String,
+    /// The failure happened on another rank (which reports it).
+    pub elsewhere: bool,
 }
 
 impl StepError {
     /// An EOS failure of particle `i`.
     pub fn eos(s: &Particles, i: usize, step: u64, e: EosError) -> Self {
         let EosError::NonPositiveTheta { u, n, theta } = e;
-        Self { tag: s.tag[i], step, u, n, theta, what: "particle temperature is not positive".into() }
+        Self { tag: s.tag[i], step, u, n, theta, what: "particle temperature is not positive".into(), elsewhere: false }
+    }
+
+    /// This rank stops because another one failed.
+    pub fn elsewhere(step: u64) -> Self {
+        Self { tag: 0, step, u: f64::NAN, n: f64::NAN, theta: f64::NAN, what: "another rank failed".into(), elsewhere: true }
     }
 }
 
 impl fmt::Display for StepError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.elsewhere {
+            return write!(f, "stopped after step {}: another rank failed (its message names the particle)", self.step);
+        }
         write!(
             f,
             "particle {} after step {}: {} (u = {:.9e}, n = {:.9e}, theta = {:.9e}); \

@@ -6,7 +6,7 @@ use crate::heat::{Fourier, HeatFlow, HeatModel, NoHeat, Original};
 use crate::settings::Settings;
 use crate::system::System;
 use crate::{many_body, sweep, verlet};
-use gendpde_engine::{Fields, GridError};
+use gendpde_engine::Fields;
 use gendpde_potentials::{Eos, Weight};
 
 /// A scene's dynamics, monomorphised over its EOS and weight function.
@@ -14,14 +14,15 @@ pub trait Physics {
     fn settings(&self) -> &Settings;
     /// Lays the grid, builds lists, derives u from given theta and computes the forces.
     fn setup(&self, sys: &mut System) -> Result<(), SetupError>;
-    /// Advances one time step.
+    /// Advances one time step. Every rank returns an error when any rank failed.
     fn step(&self, sys: &mut System) -> Result<(), StepError>;
 }
 
 /// Why a run cannot start.
 #[derive(Debug)]
 pub enum SetupError {
-    Grid(GridError),
+    /// The box cannot hold the cell grid or be split over the ranks.
+    Grid(String),
     State(StepError),
 }
 
@@ -69,14 +70,13 @@ impl<E: Eos, W: Weight> GenDpde<E, W> {
     fn conservative(&self, sys: &mut System) -> Result<(), StepError> {
         if self.many_body() {
             many_body::density(&self.weight, sys);
-            many_body::refresh_state(&self.eos, sys, true)?;
-            sys.comm.forward(&mut sys.store, Fields::DENSITY | Fields::PRESSURE | sweep::SWEPT);
-            many_body::forces(&self.weight, sys);
-        } else {
-            many_body::refresh_state(&self.eos, sys, false)?;
-            sys.comm.forward(&mut sys.store, sweep::SWEPT);
         }
-        Ok(())
+        let state = many_body::refresh_state(&self.eos, sys);
+        sys.comm.forward(&mut sys.store, Fields::DENSITY | Fields::PRESSURE | sweep::SWEPT);
+        if self.many_body() {
+            many_body::forces(&self.weight, sys);
+        }
+        state
     }
 
     /// LAMMPS's rule: at most every `every` steps, not within `delay` steps of the last
@@ -89,15 +89,46 @@ impl<E: Eos, W: Weight> GenDpde<E, W> {
         !p.check || 2.0 * sys.comm.max(sys.displacement_since_build()) > self.settings.skin
     }
 
+    /// Velocity-Verlet part (eq 84). The sweep of the previous step changed theta and
+    /// so pi: the first half kick uses forces refreshed for the current state.
+    fn reversible(&self, sys: &mut System) -> Result<(), StepError> {
+        let dt = self.settings.dt;
+        let many_body = self.many_body();
+        let mut before = Ok(());
+        if many_body {
+            before = many_body::refresh_state(&self.eos, sys);
+            sys.comm.forward(&mut sys.store, Fields::PRESSURE);
+            many_body::refresh_forces_and_work(sys, 0.25 * dt);
+        }
+        verlet::kick(sys, 0.5 * dt);
+        verlet::drift(sys, dt);
+        let next = sys.step + 1;
+        if self.needs_rebuild(sys, next) {
+            self.rebuild(sys, next);
+        } else {
+            sys.comm.forward(&mut sys.store, Fields::POSITION);
+        }
+        let state = self.conservative(sys);
+        verlet::kick(sys, 0.5 * dt);
+        sys.comm.forward(&mut sys.store, Fields::MOMENTUM);
+        if many_body {
+            many_body::work(sys, 0.25 * dt);
+        }
+        let refreshed = many_body::refresh_state(&self.eos, sys);
+        sys.comm.forward(&mut sys.store, sweep::SWEPT);
+        before.and(state).and(refreshed)
+    }
+
     fn irreversible<H: HeatFlow>(&self, sys: &mut System) -> Result<(), StepError> {
         let dt = self.settings.dt;
+        let mut outcome = Ok(());
         if let Some(d) = &self.settings.dissipation {
-            sweep::sweep::<E, H>(&self.eos, d, sys, dt)?;
+            outcome = sweep::sweep::<E, H>(&self.eos, d, sys, dt);
         }
         if let Some(r) = &self.settings.reservoir {
-            sweep::reservoir::<E, H>(&self.eos, r, sys, dt)?;
+            outcome = outcome.and(sweep::reservoir::<E, H>(&self.eos, r, sys, dt));
         }
-        Ok(())
+        outcome
     }
 }
 
@@ -123,47 +154,30 @@ impl<E: Eos, W: Weight> Physics for GenDpde<E, W> {
             many_body::density(&self.weight, sys);
         }
         many_body::resolve_theta(&self.eos, sys);
-        self.conservative(sys).map_err(SetupError::State)
+        let state = self.conservative(sys);
+        sys.settle(state).map_err(SetupError::State)
     }
 
     fn step(&self, sys: &mut System) -> Result<(), StepError> {
-        let dt = self.settings.dt;
         if self.settings.verlet {
-            let many_body = self.many_body();
-            if many_body {
-                many_body::work(sys, 0.25 * dt);
-            }
-            verlet::kick(sys, 0.5 * dt);
-            verlet::drift(sys, dt);
-            let next = sys.step + 1;
-            if self.needs_rebuild(sys, next) {
-                self.rebuild(sys, next);
-            } else {
-                sys.comm.forward(&mut sys.store, Fields::POSITION);
-            }
-            self.conservative(sys)?;
-            verlet::kick(sys, 0.5 * dt);
-            sys.comm.forward(&mut sys.store, Fields::MOMENTUM);
-            if many_body {
-                many_body::work(sys, 0.25 * dt);
-                many_body::refresh_state(&self.eos, sys, false)?;
-                sys.comm.forward(&mut sys.store, sweep::SWEPT);
-            }
+            let outcome = self.reversible(sys);
+            sys.settle(outcome)?;
         }
         let heat_on = |model| {
             let s = &self.settings;
             s.dissipation.as_ref().is_some_and(|d| d.kappa > 0.0 && d.heat == model)
                 || s.reservoir.as_ref().is_some_and(|r| r.heat == model)
         };
-        if heat_on(HeatModel::Original) {
-            self.irreversible::<Original>(sys)?;
+        let outcome = if heat_on(HeatModel::Original) {
+            self.irreversible::<Original>(sys)
         } else if heat_on(HeatModel::Fourier) {
-            self.irreversible::<Fourier>(sys)?;
+            self.irreversible::<Fourier>(sys)
         } else {
-            self.irreversible::<NoHeat>(sys)?;
-        }
+            self.irreversible::<NoHeat>(sys)
+        };
+        sys.settle(outcome)?;
         sys.step += 1;
-        sys.time += dt;
+        sys.time += self.settings.dt;
         Ok(())
     }
 }

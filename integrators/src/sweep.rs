@@ -16,16 +16,19 @@ use gendpde_potentials::Eos;
 /// Fields the sweep writes, exchanged between colours.
 pub const SWEPT: Fields = Fields::MOMENTUM.union(Fields::ENERGY).union(Fields::THETA).union(Fields::INV_TAU);
 
-/// One full sweep over all pairs of all colours.
+/// One full sweep over all pairs of all colours. After a failure this rank stops
+/// updating pairs but keeps taking part in the exchanges, and reports the failure.
 pub fn sweep<E: Eos, H: HeatFlow>(eos: &E, d: &Dissipation, sys: &mut System, dt: f64) -> Result<(), StepError> {
     let kb = eos.kb();
     let sqrt_dt = dt.sqrt();
     let rc = d.cutoff();
     let (inv_rcd, inv_rch) = (1.0 / d.rc_friction, 1.0 / d.rc_heat);
     let step = sys.step;
+    let mut outcome = Ok(());
     for colour in 0..8 {
         let s = &mut sys.store;
-        for &[i, j] in sys.sweep.colour(colour) {
+        let pairs = if outcome.is_ok() { sys.sweep.colour(colour) } else { &[] };
+        for &[i, j] in pairs {
             let (i, j) = (i as usize, j as usize);
             let dr = sub(s.r[i], s.r[j]);
             let r2 = dot(dr, dr);
@@ -59,14 +62,16 @@ pub fn sweep<E: Eos, H: HeatFlow>(eos: &E, d: &Dissipation, sys: &mut System, dt
             s.p[j] = p_j;
             s.u[i] = u_i;
             s.u[j] = u_j;
-            refresh::<E, H>(eos, s, i, step)?;
-            refresh::<E, H>(eos, s, j, step)?;
+            outcome = refresh::<E, H>(eos, s, i, step).and_then(|_| refresh::<E, H>(eos, s, j, step));
+            if outcome.is_err() {
+                break;
+            }
         }
         let ghosts = &sys.sweep.ghost_writes[colour];
         sys.comm.reverse(&mut sys.store, ghosts, SWEPT);
         sys.comm.forward(&mut sys.store, SWEPT);
     }
-    Ok(())
+    outcome
 }
 
 /// Heat exchange of every owned particle with the reservoir (eq 72), then a forward
@@ -76,14 +81,17 @@ pub fn reservoir<E: Eos, H: HeatFlow>(eos: &E, res: &Reservoir, sys: &mut System
     let sqrt_dt = dt.sqrt();
     let step = sys.step;
     let s = &mut sys.store;
+    let mut outcome = Ok(());
     for i in 0..s.nlocal {
         let (q, alpha) = H::reservoir(kb, res.kappa, temps::<H>(s, i), res.temperature);
         let xi = normal_pair(res.seed, step, s.tag[i], 0, stream::RESERVOIR).0;
         s.u[i] += dt * q + sqrt_dt * alpha * xi;
-        refresh::<E, H>(eos, s, i, step)?;
+        if let Err(e) = refresh::<E, H>(eos, s, i, step) {
+            outcome = outcome.and(Err(e));
+        }
     }
     sys.comm.forward(&mut sys.store, SWEPT);
-    Ok(())
+    outcome
 }
 
 #[inline(always)]
@@ -94,8 +102,7 @@ fn temps<H: HeatFlow>(s: &Particles, i: usize) -> Temps {
 /// theta(u, n) at fixed n after a pair update, and 1/tau where the heat law reads it.
 #[inline(always)]
 fn refresh<E: Eos, H: HeatFlow>(eos: &E, s: &mut Particles, i: usize, step: u64) -> Result<(), StepError> {
-    let n = if s.n.is_empty() { 0.0 } else { s.n[i] };
-    let n = n.max(gendpde_potentials::ISOLATED_DENSITY);
+    let n = crate::many_body::density_of(s, i).max(gendpde_potentials::ISOLATED_DENSITY);
     let theta = eos.theta(s.u[i], n, s.theta[i]);
     if !(theta > 0.0 && theta.is_finite()) {
         let e = gendpde_potentials::EosError::NonPositiveTheta { u: s.u[i], n, theta };

@@ -1,23 +1,24 @@
 //! The simulated system: box, particles, communication and the lists built on them.
 
+use crate::error::StepError;
 use gendpde_engine::cells::CellBins;
-use gendpde_engine::{dot, sub, CellGrid, Comm, Domain, GridError, NeighborList, Particles, SweepPairs, Vec3};
+use gendpde_engine::{dot, sub, CellGrid, Comm, Domain, NeighborList, Particles, SweepPairs, Vec3};
 
 /// State that the step mutates.
 pub struct System {
     pub domain: Domain,
     pub store: Particles,
-    pub comm: Box<dyn Comm>,
+    pub comm: Comm,
     pub grid: Option<CellGrid>,
     pub bins: CellBins,
     /// Full neighbour lists for the density and force passes.
     pub nlist: NeighborList,
     /// Coloured pair lists for the Shardlow sweep.
     pub sweep: SweepPairs,
-    /// F_ij of each neighbour-list entry (f_ij = F_ij r_ij), from the last force pass.
+    /// F_ij of each neighbour-list entry (f_ij = F_ij r_ij).
     pub pair_force: Vec<f64>,
-    /// This rank's sum over pairs i<j of r_ij . f^C_ij (eq 52), from the last force pass.
-    pub virial: f64,
+    /// w'(r_ij)/([w] r_ij) of each neighbour-list entry, from the last force pass.
+    pub pair_geometry: Vec<f64>,
     pub step: u64,
     pub time: f64,
     /// Step of the last list build.
@@ -29,7 +30,7 @@ pub struct System {
 }
 
 impl System {
-    pub fn new(domain: Domain, comm: Box<dyn Comm>) -> Self {
+    pub fn new(domain: Domain, comm: Comm) -> Self {
         Self {
             domain,
             store: Particles::default(),
@@ -39,7 +40,7 @@ impl System {
             nlist: NeighborList::default(),
             sweep: SweepPairs::default(),
             pair_force: Vec::new(),
-            virial: 0.0,
+            pair_geometry: Vec::new(),
             step: 0,
             time: 0.0,
             last_build: 0,
@@ -48,10 +49,36 @@ impl System {
         }
     }
 
-    /// Lays the cell grid for interactions up to `cut` (cutoff plus skin).
-    pub fn lay_grid(&mut self, cut: f64) -> Result<(), GridError> {
-        self.grid = Some(CellGrid::new(&self.domain, cut)?);
+    /// Lays the cell grid for interactions up to `cut` (cutoff plus skin); every rank
+    /// must own at least one cell along each dimension.
+    pub fn lay_grid(&mut self, cut: f64) -> Result<(), String> {
+        let grid = CellGrid::new(&self.domain, cut).map_err(|e| e.to_string())?;
+        let procs = self.comm.grid.dims;
+        for d in 0..3 {
+            if grid.count[d] < procs[d] {
+                let axis = ["x", "y", "z"][d];
+                return Err(format!(
+                    "{} ranks along {axis} need at least {} cells of side cutoff + skin = {cut:.6}, the box holds {}: \
+                     use at most {} ranks along {axis} (processors command) or a box of length >= {:.6}",
+                    procs[d],
+                    procs[d],
+                    grid.count[d],
+                    grid.count[d],
+                    (procs[d].div_ceil(2) * 2).max(4) as f64 * cut
+                ));
+            }
+        }
+        self.grid = Some(grid);
         Ok(())
+    }
+
+    /// Agrees over all ranks whether the step failed: Err on every rank if any failed.
+    pub fn settle(&self, outcome: Result<(), StepError>) -> Result<(), StepError> {
+        if self.comm.any(outcome.is_err()) {
+            Err(outcome.err().unwrap_or_else(|| StepError::elsewhere(self.step)))
+        } else {
+            Ok(())
+        }
     }
 
     /// Migrates particles, rebuilds ghosts and bins, and the lists of the given radii;
@@ -64,6 +91,7 @@ impl System {
         if let Some(radius) = density_radius {
             self.nlist.build(&self.store, &self.bins, radius);
             self.pair_force.resize(self.nlist.neighbors.len(), 0.0);
+            self.pair_geometry.resize(self.nlist.neighbors.len(), 0.0);
         }
         if let Some(radius) = sweep_radius {
             self.sweep.build(&self.store, &self.bins, lo, hi, radius);

@@ -1,12 +1,14 @@
 //! Input-script handling for gendpde: a LAMMPS-style script reader with
 //! variable substitution, the variable store, an equal-style expression
-//! evaluator and C-printf-compatible number formatting.
+//! evaluator, C-printf-compatible number formatting and LAMMPS data files.
 
+pub mod data_file;
 pub mod expr;
 pub mod format;
 pub mod script;
 pub mod variables;
 
+pub use data_file::{parse_data, read_data, write_data, AtomStyle, DataAtom, DataFile};
 pub use expr::evaluate;
 pub use format::{format_g, format_printf};
 pub use script::{Command, Location, ScriptError, ScriptReader};

@@ -6,8 +6,10 @@
 //! the app's style table (see docs/DESIGN.md).
 
 mod linear;
+mod lj;
 
 pub use linear::LinearTheta;
+pub use lj::LennardJones;
 
 use std::fmt;
 

@@ -1,0 +1,298 @@
+//! Communication between the owners of particles and their ghost copies, over a 3D
+//! grid of ranks (LAMMPS's "swaps": per dimension, one exchange with each neighbour).
+//!
+//! One code path serves every rank count: on a single rank the neighbours are the rank
+//! itself and the swaps create the periodic images, so every test exercises the same
+//! packing, borders, forward and reverse exchanges that MPI runs use.
+
+mod exact_sum;
+#[cfg(feature = "mpi")]
+mod mpi;
+mod procs;
+mod transport;
+
+pub use exact_sum::exact_sums;
+#[cfg(feature = "mpi")]
+pub use mpi::MpiTransport;
+pub use procs::ProcGrid;
+pub use transport::{Local, Transport};
+
+use crate::{CellGrid, Domain, Fields, Particles, Vec3};
+
+/// One exchange of the ghost layer with a neighbour, recorded for forward and reverse
+/// communication.
+#[derive(Clone, Debug)]
+struct Swap {
+    dim: usize,
+    /// Position shift the sender applies (0 or +-L across the periodic boundary).
+    shift: f64,
+    dest: usize,
+    src: usize,
+    /// Local indices sent (owned or ghosts received in earlier swaps).
+    send: Vec<u32>,
+    recv_start: usize,
+    recv_count: usize,
+}
+
+/// Owner/ghost exchanges, migration and reductions of one rank.
+pub struct Comm {
+    t: Box<dyn Transport>,
+    pub grid: ProcGrid,
+    /// Owned cell range [lo, hi), set at each exchange.
+    lo: [i32; 3],
+    hi: [i32; 3],
+    swaps: Vec<Swap>,
+    send: Vec<f64>,
+    recv: Vec<f64>,
+    written: Vec<bool>,
+}
+
+impl Comm {
+    /// A single-rank communicator.
+    pub fn serial() -> Self {
+        Self::new(Box::new(Local), [1, 1, 1])
+    }
+
+    /// A communicator over `t` with the processor grid `procs` (product = rank count).
+    pub fn new(t: Box<dyn Transport>, procs: [usize; 3]) -> Self {
+        let grid = ProcGrid::new(procs, t.rank());
+        Self { t, grid, lo: [0; 3], hi: [0; 3], swaps: Vec::new(), send: Vec::new(), recv: Vec::new(), written: Vec::new() }
+    }
+
+    pub fn rank(&self) -> usize {
+        self.t.rank()
+    }
+
+    pub fn size(&self) -> usize {
+        self.t.size()
+    }
+
+    pub fn transport(&self) -> &dyn Transport {
+        self.t.as_ref()
+    }
+
+    /// Whether a particle created at `r` starts on this rank (before cells exist: the box
+    /// split evenly; the first exchange moves it to the owner of its cell).
+    pub fn keeps(&self, domain: &Domain, r: Vec3) -> bool {
+        let len = domain.len();
+        (0..3).all(|d| {
+            let p = self.grid.dims[d];
+            let k = (((r[d] - domain.lo[d]) / len[d]) * p as f64).floor() as i64;
+            k.clamp(0, p as i64 - 1) as usize == self.grid.coords[d]
+        })
+    }
+
+    /// Owned cell range [lo, hi) of this rank on `grid`.
+    pub fn owned_cells(&self, grid: &CellGrid) -> ([i32; 3], [i32; 3]) {
+        let lo = [0, 1, 2].map(|d| (self.grid.coords[d] * grid.count[d] / self.grid.dims[d]) as i32);
+        let hi = [0, 1, 2].map(|d| ((self.grid.coords[d] + 1) * grid.count[d] / self.grid.dims[d]) as i32);
+        (lo, hi)
+    }
+
+    /// Largest value over ranks.
+    pub fn max(&self, x: f64) -> f64 {
+        let mut v = [x];
+        self.t.max(&mut v);
+        v[0]
+    }
+
+    /// Whether any rank says yes.
+    pub fn any(&self, yes: bool) -> bool {
+        self.max(if yes { 1.0 } else { 0.0 }) > 0.0
+    }
+
+    /// Wraps owned particles into the box, hands them to the owners of their cells, and
+    /// rebuilds the ghost layer: one cell on every side of the sub-domain.
+    pub fn exchange(&mut self, store: &mut Particles, domain: &Domain, grid: &CellGrid) {
+        store.truncate_ghosts();
+        (self.lo, self.hi) = self.owned_cells(grid);
+        for i in 0..store.nlocal {
+            domain.wrap(&mut store.r[i], &mut store.image[i]);
+            store.cell[i] = grid.locate(store.r[i]);
+        }
+        self.migrate(store, grid);
+        self.borders(store, domain, grid);
+    }
+
+    /// Moves owned particles to the neighbour towards their cell until none is astray.
+    fn migrate(&mut self, store: &mut Particles, grid: &CellGrid) {
+        let hops = *self.grid.dims.iter().max().unwrap_or(&1);
+        for _ in 0..hops {
+            for d in 0..3 {
+                if self.grid.dims[d] == 1 {
+                    continue;
+                }
+                let n = grid.count[d] as i32;
+                for dir in [-1, 1] {
+                    self.send.clear();
+                    let mut i = store.nlocal;
+                    while i > 0 {
+                        i -= 1;
+                        let c = store.cell[i][d];
+                        if c >= self.lo[d] && c < self.hi[d] {
+                            continue;
+                        }
+                        // the shorter way round the periodic box
+                        let down = (self.lo[d] - c).rem_euclid(n);
+                        let up = (c - (self.hi[d] - 1)).rem_euclid(n);
+                        if (down <= up) == (dir == -1) {
+                            store.pack_owned(i, &mut self.send);
+                            store.remove_owned(i);
+                        }
+                    }
+                    let (dest, src) = self.grid.neighbours(d, dir);
+                    self.t.sendrecv(&self.send, dest, src, &mut self.recv);
+                    for rec in self.recv.chunks_exact(Particles::OWNED_RECORD) {
+                        store.unpack_owned(rec);
+                        let i = store.nlocal - 1;
+                        store.cell[i] = grid.locate(store.r[i]);
+                    }
+                }
+            }
+            let astray = (0..store.nlocal).any(|i| (0..3).any(|d| store.cell[i][d] < self.lo[d] || store.cell[i][d] >= self.hi[d]));
+            if !self.any(astray) {
+                return;
+            }
+        }
+    }
+
+    /// Builds the ghost layer dimension by dimension; ghosts received in earlier
+    /// dimensions travel on, so edges and corners are covered.
+    fn borders(&mut self, store: &mut Particles, domain: &Domain, grid: &CellGrid) {
+        self.swaps.clear();
+        let len = domain.len();
+        for d in 0..3 {
+            let n = grid.count[d] as i32;
+            for dir in [-1, 1] {
+                let layer = if dir == -1 { self.lo[d] } else { self.hi[d] - 1 };
+                let edge = if dir == -1 { 0 } else { self.grid.dims[d] - 1 };
+                let wraps = self.grid.coords[d] == edge;
+                let (shift, cell_shift) = if wraps { (-(dir as f64) * len[d], -dir * n) } else { (0.0, 0) };
+                let send: Vec<u32> = (0..store.len() as u32).filter(|&i| store.cell[i as usize][d] == layer).collect();
+                self.send.clear();
+                for &i in &send {
+                    store.pack_ghost(i as usize, d, shift, cell_shift, &mut self.send);
+                }
+                let (dest, src) = self.grid.neighbours(d, dir);
+                self.t.sendrecv(&self.send, dest, src, &mut self.recv);
+                let recv_start = store.len();
+                for rec in self.recv.chunks_exact(store.ghost_record()) {
+                    store.unpack_ghost(rec);
+                }
+                let recv_count = store.len() - recv_start;
+                self.swaps.push(Swap { dim: d, shift, dest, src, send, recv_start, recv_count });
+            }
+        }
+    }
+
+    /// Copies `fields` from the owners to all their ghosts.
+    pub fn forward(&mut self, store: &mut Particles, fields: Fields) {
+        let width = record_width(store, fields);
+        for s in &self.swaps {
+            self.send.clear();
+            for &i in &s.send {
+                pack_fields(store, i as usize, fields, Some((s.dim, s.shift)), &mut self.send);
+            }
+            self.t.sendrecv(&self.send, s.dest, s.src, &mut self.recv);
+            for (k, rec) in self.recv.chunks_exact(width).enumerate() {
+                unpack_fields(store, s.recv_start + k, fields, rec);
+            }
+        }
+    }
+
+    /// Copies `fields` of the listed ghosts back to their owners: values, not deltas.
+    /// Within one colour of the sweep each particle has exactly one writer, so only the
+    /// ghosts written travel back, hop by hop through the swaps in reverse order.
+    pub fn reverse(&mut self, store: &mut Particles, ghosts: &[u32], fields: Fields) {
+        let fields = fields.without(Fields::POSITION);
+        let width = 1 + record_width(store, fields);
+        self.written.clear();
+        self.written.resize(store.len(), false);
+        for &g in ghosts {
+            self.written[g as usize] = true;
+        }
+        for s in self.swaps.iter().rev() {
+            self.send.clear();
+            for k in 0..s.recv_count {
+                if self.written[s.recv_start + k] {
+                    self.send.push(k as f64);
+                    pack_fields(store, s.recv_start + k, fields, None, &mut self.send);
+                }
+            }
+            self.t.sendrecv(&self.send, s.src, s.dest, &mut self.recv);
+            for rec in self.recv.chunks_exact(width) {
+                let i = s.send[rec[0] as usize] as usize;
+                unpack_fields(store, i, fields, &rec[1..]);
+                if i >= store.nlocal {
+                    self.written[i] = true;
+                }
+            }
+        }
+    }
+}
+
+/// Number of f64 per particle for `fields`.
+fn record_width(store: &Particles, fields: Fields) -> usize {
+    let mut w = 0;
+    for (f, n) in [(Fields::POSITION, 3), (Fields::MOMENTUM, 3), (Fields::ENERGY, 1), (Fields::THETA, 1)] {
+        if fields.contains(f) {
+            w += n;
+        }
+    }
+    for (f, v) in [(Fields::DENSITY, &store.n), (Fields::PRESSURE, &store.pn2), (Fields::INV_TAU, &store.inv_tau)] {
+        if fields.contains(f) && !v.is_empty() {
+            w += 1;
+        }
+    }
+    w
+}
+
+fn pack_fields(store: &Particles, i: usize, fields: Fields, shift: Option<(usize, f64)>, buf: &mut Vec<f64>) {
+    if fields.contains(Fields::POSITION) {
+        let mut r = store.r[i];
+        if let Some((d, s)) = shift {
+            r[d] += s;
+        }
+        buf.extend_from_slice(&r);
+    }
+    if fields.contains(Fields::MOMENTUM) {
+        buf.extend_from_slice(&store.p[i]);
+    }
+    if fields.contains(Fields::ENERGY) {
+        buf.push(store.u[i]);
+    }
+    if fields.contains(Fields::THETA) {
+        buf.push(store.theta[i]);
+    }
+    for (f, v) in [(Fields::DENSITY, &store.n), (Fields::PRESSURE, &store.pn2), (Fields::INV_TAU, &store.inv_tau)] {
+        if fields.contains(f) && !v.is_empty() {
+            buf.push(v[i]);
+        }
+    }
+}
+
+fn unpack_fields(store: &mut Particles, i: usize, fields: Fields, rec: &[f64]) {
+    let mut k = 0;
+    if fields.contains(Fields::POSITION) {
+        store.r[i] = [rec[0], rec[1], rec[2]];
+        k += 3;
+    }
+    if fields.contains(Fields::MOMENTUM) {
+        store.p[i] = [rec[k], rec[k + 1], rec[k + 2]];
+        k += 3;
+    }
+    if fields.contains(Fields::ENERGY) {
+        store.u[i] = rec[k];
+        k += 1;
+    }
+    if fields.contains(Fields::THETA) {
+        store.theta[i] = rec[k];
+        k += 1;
+    }
+    for (f, v) in [(Fields::DENSITY, &mut store.n), (Fields::PRESSURE, &mut store.pn2), (Fields::INV_TAU, &mut store.inv_tau)] {
+        if fields.contains(f) && !v.is_empty() {
+            v[i] = rec[k];
+            k += 1;
+        }
+    }
+}

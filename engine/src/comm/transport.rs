@@ -1,0 +1,36 @@
+//! How ranks exchange bytes: a [`Transport`] moves f64 buffers between neighbour ranks
+//! and performs the few collectives the engine needs. [`Local`] is the single-rank
+//! transport (every send reaches the sender itself); MPI lives in `mpi.rs`.
+
+/// Point-to-point exchange and collectives between ranks.
+pub trait Transport {
+    fn rank(&self) -> usize;
+    fn size(&self) -> usize;
+    /// Sends `data` to rank `dest` while receiving the buffer rank `src` sends to us.
+    fn sendrecv(&self, data: &[f64], dest: usize, src: usize, recv: &mut Vec<f64>);
+    /// Element-wise maximum over ranks, in place.
+    fn max(&self, values: &mut [f64]);
+    /// The `local` slices of all ranks, concatenated in rank order.
+    fn all_gather(&self, local: &[u64]) -> Vec<u64>;
+}
+
+/// One rank: the world is this process.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Local;
+
+impl Transport for Local {
+    fn rank(&self) -> usize {
+        0
+    }
+    fn size(&self) -> usize {
+        1
+    }
+    fn sendrecv(&self, data: &[f64], _dest: usize, _src: usize, recv: &mut Vec<f64>) {
+        recv.clear();
+        recv.extend_from_slice(data);
+    }
+    fn max(&self, _values: &mut [f64]) {}
+    fn all_gather(&self, local: &[u64]) -> Vec<u64> {
+        local.to_vec()
+    }
+}

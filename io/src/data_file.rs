@@ -1,0 +1,1412 @@
+//! Reading and writing LAMMPS data files (`read_data` / `write_data`).
+//!
+//! Only what gendpde needs is supported: an orthogonal box, atom types with
+//! optional masses, atoms in `atom_style atomic` or `atom_style dpd` and
+//! optional velocities. Anything that would need more (bonds, triclinic
+//! boxes, coefficient sections, ...) is reported as an error rather than
+//! silently dropped.
+//!
+//! Layout, as in LAMMPS: the first line is a title and is skipped; header
+//! lines (`N atoms`, `N atom types`, `lo hi xlo xhi`, ...) follow in any
+//! order until the first section keyword (`Masses`, `Atoms`, `Velocities`).
+//! A section keyword is followed by exactly as many data lines as the header
+//! says. `#` starts a comment anywhere; blank and comment-only lines are
+//! ignored. `Atoms # dpd` names the atom style of the section's lines.
+//!
+//! Errors are [`ScriptError`]s located in the data file, displayed as
+//! `data.dpde:17: Atoms: expected 6 columns (id type dpdTheta x y z), got 5`.
+
+use std::collections::HashMap;
+use std::ffi::OsString;
+use std::fmt::Write as _;
+use std::io::Write as _;
+use std::path::{Path, PathBuf};
+
+use crate::script::{Location, ScriptError};
+
+/// Most atom types a data file may declare; the masses table is allocated
+/// up front, so an absurd count in a corrupt header must not reach it.
+pub const MAX_ATOM_TYPES: usize = 1_000_000;
+
+/// The per-atom column layout of the `Atoms` section.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AtomStyle {
+    /// `id type x y z [ix iy iz]`.
+    Atomic,
+    /// `id type dpdTheta x y z [ix iy iz]` (LAMMPS `atom_style dpd`).
+    Dpd,
+}
+
+impl AtomStyle {
+    /// The LAMMPS name, as used in `atom_style` and the `Atoms # ...` hint.
+    pub fn name(self) -> &'static str {
+        match self {
+            AtomStyle::Atomic => "atomic",
+            AtomStyle::Dpd => "dpd",
+        }
+    }
+
+    /// The style with LAMMPS name `name`, if supported.
+    pub fn from_name(name: &str) -> Option<Self> {
+        match name {
+            "atomic" => Some(AtomStyle::Atomic),
+            "dpd" => Some(AtomStyle::Dpd),
+            _ => None,
+        }
+    }
+
+    /// Column names of an `Atoms` line without image flags.
+    fn columns(self) -> &'static [&'static str] {
+        match self {
+            AtomStyle::Atomic => &["id", "type", "x", "y", "z"],
+            AtomStyle::Dpd => &["id", "type", "dpdTheta", "x", "y", "z"],
+        }
+    }
+}
+
+/// One line of the `Atoms` section.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DataAtom {
+    /// Atom id (LAMMPS tag), at least 1.
+    pub tag: u64,
+    /// Atom type, 1-based.
+    pub kind: u32,
+    /// Internal temperature `dpdTheta` (`Some` exactly for [`AtomStyle::Dpd`]).
+    pub theta: Option<f64>,
+    /// Position.
+    pub r: [f64; 3],
+    /// Image flags (zero when the line has none).
+    pub image: [i32; 3],
+}
+
+/// The contents of a data file.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DataFile {
+    /// The first line, trimmed.
+    pub title: String,
+    /// Number of atoms; equals `atoms.len()` in a file read by [`read_data`].
+    pub natoms: usize,
+    /// Number of atom types.
+    pub ntypes: usize,
+    /// Lower box corner (LAMMPS default -0.5 when the header omits it).
+    pub lo: [f64; 3],
+    /// Upper box corner (LAMMPS default 0.5 when the header omits it).
+    pub hi: [f64; 3],
+    /// Mass of each type, index `type - 1`; all `None` without `Masses`.
+    pub masses: Vec<Option<f64>>,
+    /// The atoms in file order.
+    pub atoms: Vec<DataAtom>,
+    /// `(id, velocity)` in file order, if the file has a `Velocities` section.
+    pub velocities: Option<Vec<(u64, [f64; 3])>>,
+}
+
+/// Reads a data file; bytes that are not UTF-8 become U+FFFD.
+pub fn read_data(path: &Path, style: AtomStyle) -> Result<DataFile, ScriptError> {
+    let bytes = std::fs::read(path).map_err(|e| {
+        ScriptError::new(format!("cannot open data file '{}': {e}", path.display()))
+    })?;
+    parse_data(
+        &path.to_string_lossy(),
+        &String::from_utf8_lossy(&bytes),
+        style,
+    )
+}
+
+/// Parses the text of a data file, reporting errors as in file `name`.
+pub fn parse_data(name: &str, text: &str, style: AtomStyle) -> Result<DataFile, ScriptError> {
+    Parser::new(name, text, style).parse()
+}
+
+/// Writes `data` as a LAMMPS data file that [`read_data`] with the same
+/// `style` reads back identically (up to the title being trimmed). The file
+/// is written to `path` with `.tmp` appended and then renamed over `path`,
+/// so an interrupted write never leaves a partial file at `path`.
+///
+/// Fails with [`std::io::ErrorKind::InvalidInput`] if `data` could not be
+/// read back: counts disagreeing with the lists, masses given for only some
+/// types, missing `dpdTheta` in the dpd style or non-finite numbers.
+pub fn write_data(path: &Path, data: &DataFile, style: AtomStyle) -> std::io::Result<()> {
+    let text = render(data, style)
+        .map_err(|msg| std::io::Error::new(std::io::ErrorKind::InvalidInput, msg))?;
+    let mut tmp = OsString::from(path.as_os_str());
+    tmp.push(".tmp");
+    let tmp = PathBuf::from(tmp);
+    let result = (|| {
+        let mut file = std::fs::File::create(&tmp)?;
+        file.write_all(text.as_bytes())?;
+        file.sync_all()?;
+        drop(file);
+        std::fs::rename(&tmp, path)
+    })();
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result
+}
+
+/// The text of a data file, or why `data` cannot be written faithfully.
+fn render(data: &DataFile, style: AtomStyle) -> Result<String, String> {
+    if data.natoms != data.atoms.len() {
+        return Err(format!(
+            "natoms is {} but there are {} atoms",
+            data.natoms,
+            data.atoms.len()
+        ));
+    }
+    if data.ntypes != data.masses.len() {
+        return Err(format!(
+            "ntypes is {} but there are {} mass entries",
+            data.ntypes,
+            data.masses.len()
+        ));
+    }
+    let given = data.masses.iter().filter(|m| m.is_some()).count();
+    if given != 0 && given != data.masses.len() {
+        return Err(format!(
+            "masses are set for only {given} of {} atom types",
+            data.masses.len()
+        ));
+    }
+    if let Some(v) = &data.velocities {
+        if v.len() != data.natoms {
+            return Err(format!("{} velocities for {} atoms", v.len(), data.natoms));
+        }
+    }
+    let finite = |what: &str, x: f64| {
+        if x.is_finite() {
+            Ok(x)
+        } else {
+            Err(format!("{what} is not finite: {x}"))
+        }
+    };
+
+    let mut out = String::new();
+    let title = data.title.replace(['\n', '\r'], " ");
+    // `write!` to a String cannot fail.
+    let _ = writeln!(out, "{}\n", title.trim());
+    let _ = writeln!(out, "{} atoms", data.natoms);
+    let _ = writeln!(out, "{} atom types\n", data.ntypes);
+    for (d, (lo_name, hi_name)) in [("xlo", "xhi"), ("ylo", "yhi"), ("zlo", "zhi")]
+        .into_iter()
+        .enumerate()
+    {
+        let lo = finite(lo_name, data.lo[d])?;
+        let hi = finite(hi_name, data.hi[d])?;
+        let _ = writeln!(out, "{lo:?} {hi:?} {lo_name} {hi_name}");
+    }
+    if given != 0 {
+        out.push_str("\nMasses\n\n");
+        for (i, m) in data.masses.iter().enumerate() {
+            let m = finite("mass", m.unwrap_or(f64::NAN))?;
+            let _ = writeln!(out, "{} {m:?}", i + 1);
+        }
+    }
+    let _ = writeln!(out, "\nAtoms # {}\n", style.name());
+    for a in &data.atoms {
+        let _ = write!(out, "{} {}", a.tag, a.kind);
+        if style == AtomStyle::Dpd {
+            let Some(theta) = a.theta else {
+                return Err(format!("atom {} has no dpdTheta", a.tag));
+            };
+            let _ = write!(out, " {:?}", finite("dpdTheta", theta)?);
+        }
+        for x in a.r {
+            let _ = write!(out, " {:?}", finite("position", x)?);
+        }
+        let [ix, iy, iz] = a.image;
+        let _ = writeln!(out, " {ix} {iy} {iz}");
+    }
+    // Written even when empty, so that `Some(vec![])` reads back as itself.
+    if let Some(velocities) = &data.velocities {
+        out.push_str("\nVelocities\n\n");
+        for (tag, v) in velocities {
+            let _ = write!(out, "{tag}");
+            for x in v {
+                let _ = write!(out, " {:?}", finite("velocity", *x)?);
+            }
+            out.push('\n');
+        }
+    }
+    Ok(out)
+}
+
+/// A line holding data: comment stripped and trimmed, never empty.
+#[derive(Clone, Copy)]
+struct Line<'a> {
+    /// 1-based line number.
+    num: usize,
+    text: &'a str,
+    /// Text after `#`, if any.
+    comment: Option<&'a str>,
+}
+
+impl Line<'_> {
+    /// Whether the line starts a section rather than holding numbers.
+    fn is_keyword(&self) -> bool {
+        self.text.chars().next().is_some_and(char::is_alphabetic)
+    }
+
+    /// The section keyword with whitespace runs collapsed (`Pair  Coeffs`).
+    fn keyword(&self) -> String {
+        self.text.split_whitespace().collect::<Vec<_>>().join(" ")
+    }
+}
+
+/// What a header keyword means to gendpde.
+#[derive(Clone, Copy, PartialEq)]
+enum HeaderKind {
+    Atoms,
+    AtomTypes,
+    /// Box bounds in dimension 0, 1 or 2.
+    Bounds(usize),
+    /// Triclinic box: unsupported.
+    Triclinic,
+    /// A count of things gendpde cannot read (bonds, ...): must be 0.
+    MustBeZero,
+    /// Irrelevant to gendpde (`bond types`, `extra ... per atom`).
+    Ignored,
+}
+
+/// Header keywords and the number of values before them.
+const HEADER_KEYWORDS: &[(&str, usize, HeaderKind)] = &[
+    ("atoms", 1, HeaderKind::Atoms),
+    ("atom types", 1, HeaderKind::AtomTypes),
+    ("xlo xhi", 2, HeaderKind::Bounds(0)),
+    ("ylo yhi", 2, HeaderKind::Bounds(1)),
+    ("zlo zhi", 2, HeaderKind::Bounds(2)),
+    ("xy xz yz", 3, HeaderKind::Triclinic),
+    ("avec", 3, HeaderKind::Triclinic),
+    ("bvec", 3, HeaderKind::Triclinic),
+    ("cvec", 3, HeaderKind::Triclinic),
+    ("abc origin", 3, HeaderKind::Triclinic),
+    ("bonds", 1, HeaderKind::MustBeZero),
+    ("angles", 1, HeaderKind::MustBeZero),
+    ("dihedrals", 1, HeaderKind::MustBeZero),
+    ("impropers", 1, HeaderKind::MustBeZero),
+    ("ellipsoids", 1, HeaderKind::MustBeZero),
+    ("lines", 1, HeaderKind::MustBeZero),
+    ("triangles", 1, HeaderKind::MustBeZero),
+    ("bodies", 1, HeaderKind::MustBeZero),
+    ("bond types", 1, HeaderKind::Ignored),
+    ("angle types", 1, HeaderKind::Ignored),
+    ("dihedral types", 1, HeaderKind::Ignored),
+    ("improper types", 1, HeaderKind::Ignored),
+    ("extra bond per atom", 1, HeaderKind::Ignored),
+    ("extra angle per atom", 1, HeaderKind::Ignored),
+    ("extra dihedral per atom", 1, HeaderKind::Ignored),
+    ("extra improper per atom", 1, HeaderKind::Ignored),
+    ("extra special per atom", 1, HeaderKind::Ignored),
+];
+
+struct Parser<'a> {
+    file: PathBuf,
+    style: AtomStyle,
+    title: String,
+    /// Lines after the title that hold something besides a comment.
+    lines: Vec<Line<'a>>,
+    /// Index into `lines` of the next unread line.
+    next: usize,
+    /// Number of the file's last line, for errors at its end.
+    last_line: usize,
+}
+
+impl<'a> Parser<'a> {
+    fn new(name: &str, text: &'a str, style: AtomStyle) -> Self {
+        let mut raw = text.lines();
+        let title = raw.next().unwrap_or("").trim().to_string();
+        let mut lines = Vec::new();
+        let mut last_line = 1;
+        for (i, line) in raw.enumerate() {
+            let num = i + 2;
+            last_line = num;
+            let (text, comment) = match line.split_once('#') {
+                Some((text, comment)) => (text, Some(comment)),
+                None => (line, None),
+            };
+            let text = text.trim();
+            if !text.is_empty() {
+                lines.push(Line { num, text, comment });
+            }
+        }
+        Parser {
+            file: PathBuf::from(name),
+            style,
+            title,
+            lines,
+            next: 0,
+            last_line,
+        }
+    }
+
+    fn error(&self, line: usize, section: Option<&str>, msg: impl Into<String>) -> ScriptError {
+        ScriptError {
+            loc: Some(Location {
+                file: self.file.clone(),
+                line,
+            }),
+            command: section.map(str::to_string),
+            message: msg.into(),
+        }
+    }
+
+    fn parse(mut self) -> Result<DataFile, ScriptError> {
+        let header = self.header()?;
+        let mut data = DataFile {
+            title: std::mem::take(&mut self.title),
+            natoms: header.natoms,
+            ntypes: header.ntypes,
+            lo: header.lo,
+            hi: header.hi,
+            masses: vec![None; header.ntypes],
+            atoms: Vec::new(),
+            velocities: None,
+        };
+        let mut masses_at = None;
+        let mut atoms_at = None;
+        let mut velocities_at = None;
+        // Atom id -> line number, filled by the Atoms section.
+        let mut ids = HashMap::new();
+        while let Some(kw) = self.lines.get(self.next).copied() {
+            self.next += 1;
+            let keyword = kw.keyword();
+            let seen = match keyword.as_str() {
+                "Masses" => &mut masses_at,
+                "Atoms" => &mut atoms_at,
+                "Velocities" => &mut velocities_at,
+                _ => {
+                    return Err(self.error(
+                        kw.num,
+                        None,
+                        format!(
+                            "unsupported section '{keyword}': gendpde reads only \
+                             Masses, Atoms and Velocities"
+                        ),
+                    ))
+                }
+            };
+            if let Some(first) = *seen {
+                return Err(self.error(
+                    kw.num,
+                    Some(&keyword),
+                    format!("second {keyword} section (the first is at line {first})"),
+                ));
+            }
+            *seen = Some(kw.num);
+            match keyword.as_str() {
+                "Masses" => {
+                    let body = self.body(&kw, "Masses", header.ntypes, "atom types")?;
+                    self.masses(&body, &mut data.masses)?;
+                }
+                "Atoms" => {
+                    self.check_style_hint(&kw)?;
+                    let body = self.body(&kw, "Atoms", header.natoms, "atoms")?;
+                    data.atoms = self.atoms(&body, header.ntypes, &mut ids)?;
+                }
+                _ => {
+                    if atoms_at.is_none() {
+                        return Err(self.error(
+                            kw.num,
+                            Some("Velocities"),
+                            "the Atoms section must come before Velocities",
+                        ));
+                    }
+                    let body = self.body(&kw, "Velocities", header.natoms, "atoms")?;
+                    data.velocities = Some(self.velocities(&body, &ids)?);
+                }
+            }
+        }
+        if header.natoms > 0 && atoms_at.is_none() {
+            return Err(self.error(
+                header.natoms_line,
+                None,
+                format!(
+                    "the header gives {} atoms but the file has no Atoms section",
+                    header.natoms
+                ),
+            ));
+        }
+        Ok(data)
+    }
+
+    /// Reads the header lines up to the first section keyword.
+    fn header(&mut self) -> Result<Header, ScriptError> {
+        let mut h = Header {
+            natoms: 0,
+            natoms_line: 1,
+            ntypes: 0,
+            lo: [-0.5; 3],
+            hi: [0.5; 3],
+        };
+        let mut seen: HashMap<&str, usize> = HashMap::new();
+        while let Some(line) = self.lines.get(self.next).copied() {
+            if line.is_keyword() {
+                break;
+            }
+            self.next += 1;
+            let words: Vec<&str> = line.text.split_whitespace().collect();
+            let Some(&(keyword, nvalues, kind)) = HEADER_KEYWORDS
+                .iter()
+                .filter(|(k, _, _)| {
+                    let k: Vec<&str> = k.split(' ').collect();
+                    words.ends_with(&k)
+                })
+                .max_by_key(|(k, _, _)| k.len())
+            else {
+                return Err(self.error(
+                    line.num,
+                    None,
+                    format!("unknown header line '{}'", line.text),
+                ));
+            };
+            let values = &words[..words.len() - keyword.split(' ').count()];
+            if values.len() != nvalues {
+                return Err(self.error(
+                    line.num,
+                    None,
+                    format!(
+                        "'{keyword}' needs {nvalues} value{} before it, got {}",
+                        if nvalues == 1 { "" } else { "s" },
+                        values.len()
+                    ),
+                ));
+            }
+            if let Some(first) = seen.insert(keyword, line.num) {
+                return Err(self.error(
+                    line.num,
+                    None,
+                    format!("'{keyword}' given twice (first at line {first})"),
+                ));
+            }
+            let count = || -> Result<usize, ScriptError> {
+                values
+                    .first()
+                    .and_then(|v| v.parse::<usize>().ok())
+                    .ok_or_else(|| {
+                        self.error(
+                            line.num,
+                            None,
+                            format!(
+                                "'{keyword}' needs a non-negative integer, got '{}'",
+                                values.join(" ")
+                            ),
+                        )
+                    })
+            };
+            match kind {
+                HeaderKind::Atoms => {
+                    h.natoms = count()?;
+                    h.natoms_line = line.num;
+                }
+                HeaderKind::AtomTypes => {
+                    h.ntypes = count()?;
+                    if h.ntypes == 0 || h.ntypes > MAX_ATOM_TYPES {
+                        return Err(self.error(
+                            line.num,
+                            None,
+                            format!(
+                                "the number of atom types must be between 1 and \
+                                 {MAX_ATOM_TYPES}, got {}",
+                                h.ntypes
+                            ),
+                        ));
+                    }
+                }
+                HeaderKind::Bounds(d) => {
+                    let mut bounds = [0.0; 2];
+                    for (b, v) in bounds.iter_mut().zip(values) {
+                        *b = number(v)
+                            .map_err(|e| self.error(line.num, None, format!("'{keyword}': {e}")))?;
+                    }
+                    let [lo, hi] = bounds;
+                    if lo >= hi {
+                        return Err(self.error(
+                            line.num,
+                            None,
+                            format!("'{keyword}': the lower bound {lo} is not below the upper bound {hi}"),
+                        ));
+                    }
+                    h.lo[d] = lo;
+                    h.hi[d] = hi;
+                }
+                HeaderKind::Triclinic => {
+                    return Err(self.error(
+                        line.num,
+                        None,
+                        format!("'{keyword}': triclinic boxes are not supported"),
+                    ))
+                }
+                HeaderKind::MustBeZero => {
+                    let n = count()?;
+                    if n != 0 {
+                        return Err(self.error(
+                            line.num,
+                            None,
+                            format!("the header gives {n} {keyword}, but gendpde supports none"),
+                        ));
+                    }
+                }
+                HeaderKind::Ignored => {
+                    count()?;
+                }
+            }
+        }
+        if h.ntypes == 0 {
+            let at = self.lines.get(self.next).map_or(self.last_line, |l| l.num);
+            return Err(self.error(at, None, "the header has no 'atom types' line"));
+        }
+        Ok(h)
+    }
+
+    /// The `# style` hint after `Atoms`, if any, must name the requested style.
+    fn check_style_hint(&self, kw: &Line) -> Result<(), ScriptError> {
+        let Some(hint) = kw.comment.and_then(|c| c.split_whitespace().next()) else {
+            return Ok(());
+        };
+        if hint == self.style.name() {
+            return Ok(());
+        }
+        Err(self.error(
+            kw.num,
+            Some("Atoms"),
+            format!(
+                "the section is marked '# {hint}' but atom_style {} was requested",
+                self.style.name()
+            ),
+        ))
+    }
+
+    /// The `count` data lines after section keyword `kw`. `what` names the
+    /// header count, e.g. "atoms".
+    fn body(
+        &mut self,
+        kw: &Line,
+        section: &str,
+        count: usize,
+        what: &str,
+    ) -> Result<Vec<Line<'a>>, ScriptError> {
+        let mut body = Vec::new();
+        while body.len() < count {
+            match self.lines.get(self.next) {
+                Some(line) if !line.is_keyword() => {
+                    body.push(*line);
+                    self.next += 1;
+                }
+                end => {
+                    let found = body.len();
+                    let end = match end {
+                        Some(line) => format!("section '{}' at line {}", line.keyword(), line.num),
+                        None => format!("the end of the file at line {}", self.last_line),
+                    };
+                    return Err(self.error(
+                        kw.num,
+                        Some(section),
+                        format!(
+                            "expected {count} lines ({count} {what} in the header), \
+                             found {found} before {end}"
+                        ),
+                    ));
+                }
+            }
+        }
+        if let Some(line) = self.lines.get(self.next).filter(|l| !l.is_keyword()) {
+            return Err(self.error(
+                line.num,
+                Some(section),
+                format!("more than {count} lines ({count} {what} in the header)"),
+            ));
+        }
+        Ok(body)
+    }
+
+    fn masses(&self, body: &[Line], masses: &mut [Option<f64>]) -> Result<(), ScriptError> {
+        let mut first_line = vec![0; masses.len()];
+        for line in body {
+            let err = |msg: String| self.error(line.num, Some("Masses"), msg);
+            let words: Vec<&str> = line.text.split_whitespace().collect();
+            let [kind, mass] = words[..] else {
+                return Err(err(format!(
+                    "expected 2 columns (type mass), got {}",
+                    words.len()
+                )));
+            };
+            let t = atom_type(kind, masses.len()).map_err(err)?;
+            let mass = number(mass).map_err(|e| err(format!("mass: {e}")))?;
+            if mass <= 0.0 {
+                return Err(err(format!("mass must be positive, got {mass}")));
+            }
+            let slot = t as usize - 1;
+            if let (Some(seen), Some(m)) = (first_line.get_mut(slot), masses.get_mut(slot)) {
+                if *seen != 0 {
+                    return Err(err(format!(
+                        "second mass for type {t} (the first is at line {seen})"
+                    )));
+                }
+                *seen = line.num;
+                *m = Some(mass);
+            }
+        }
+        Ok(())
+    }
+
+    fn atoms(
+        &self,
+        body: &[Line],
+        ntypes: usize,
+        ids: &mut HashMap<u64, usize>,
+    ) -> Result<Vec<DataAtom>, ScriptError> {
+        let columns = self.style.columns();
+        let base = columns.len();
+        let mut atoms = Vec::with_capacity(body.len());
+        for line in body {
+            let err = |msg: String| self.error(line.num, Some("Atoms"), msg);
+            let words: Vec<&str> = line.text.split_whitespace().collect();
+            if words.len() != base && words.len() != base + 3 {
+                let msg = if words.len() < base {
+                    format!(
+                        "expected {base} columns ({}), got {}",
+                        columns.join(" "),
+                        words.len()
+                    )
+                } else {
+                    format!(
+                        "expected {base} or {} columns ({} [ix iy iz]), got {}",
+                        base + 3,
+                        columns.join(" "),
+                        words.len()
+                    )
+                };
+                return Err(err(msg));
+            }
+            let tag = atom_id(words[0]).map_err(err)?;
+            let kind = atom_type(words[1], ntypes).map_err(err)?;
+            let mut col = 2;
+            let theta = match self.style {
+                AtomStyle::Atomic => None,
+                AtomStyle::Dpd => {
+                    let theta = number(words[col]).map_err(|e| err(format!("dpdTheta: {e}")))?;
+                    col += 1;
+                    if theta <= 0.0 {
+                        return Err(err(format!("dpdTheta must be positive, got {theta}")));
+                    }
+                    Some(theta)
+                }
+            };
+            let mut r = [0.0; 3];
+            for (x, name) in r.iter_mut().zip(["x", "y", "z"]) {
+                *x = number(words[col]).map_err(|e| err(format!("{name}: {e}")))?;
+                col += 1;
+            }
+            let mut image = [0; 3];
+            if words.len() > col {
+                for (i, name) in image.iter_mut().zip(["ix", "iy", "iz"]) {
+                    *i = words[col].parse().map_err(|_| {
+                        err(format!(
+                            "{name}: expected an integer image flag, got '{}'",
+                            words[col]
+                        ))
+                    })?;
+                    col += 1;
+                }
+            }
+            if let Some(first) = ids.insert(tag, line.num) {
+                return Err(err(format!(
+                    "duplicate atom id {tag} (first at line {first})"
+                )));
+            }
+            atoms.push(DataAtom {
+                tag,
+                kind,
+                theta,
+                r,
+                image,
+            });
+        }
+        Ok(atoms)
+    }
+
+    fn velocities(
+        &self,
+        body: &[Line],
+        ids: &HashMap<u64, usize>,
+    ) -> Result<Vec<(u64, [f64; 3])>, ScriptError> {
+        let mut seen: HashMap<u64, usize> = HashMap::with_capacity(body.len());
+        let mut velocities = Vec::with_capacity(body.len());
+        for line in body {
+            let err = |msg: String| self.error(line.num, Some("Velocities"), msg);
+            let words: Vec<&str> = line.text.split_whitespace().collect();
+            let [id, vx, vy, vz] = words[..] else {
+                return Err(err(format!(
+                    "expected 4 columns (id vx vy vz), got {}",
+                    words.len()
+                )));
+            };
+            let tag = atom_id(id).map_err(err)?;
+            if !ids.contains_key(&tag) {
+                return Err(err(format!(
+                    "velocity for atom id {tag}, which is not in the Atoms section"
+                )));
+            }
+            if let Some(first) = seen.insert(tag, line.num) {
+                return Err(err(format!(
+                    "second velocity for atom id {tag} (the first is at line {first})"
+                )));
+            }
+            let mut v = [0.0; 3];
+            for ((x, word), name) in v.iter_mut().zip([vx, vy, vz]).zip(["vx", "vy", "vz"]) {
+                *x = number(word).map_err(|e| err(format!("{name}: {e}")))?;
+            }
+            velocities.push((tag, v));
+        }
+        Ok(velocities)
+    }
+}
+
+/// What the header says.
+struct Header {
+    natoms: usize,
+    /// Line of `N atoms` (1 if absent), for errors about missing atoms.
+    natoms_line: usize,
+    ntypes: usize,
+    lo: [f64; 3],
+    hi: [f64; 3],
+}
+
+/// A finite floating-point number.
+fn number(word: &str) -> Result<f64, String> {
+    match word.parse::<f64>() {
+        Ok(x) if x.is_finite() => Ok(x),
+        Ok(_) => Err(format!("'{word}' is not a finite number")),
+        Err(_) => Err(format!("expected a number, got '{word}'")),
+    }
+}
+
+/// An atom id: a positive integer.
+fn atom_id(word: &str) -> Result<u64, String> {
+    match word.parse::<u64>() {
+        Ok(id) if id > 0 => Ok(id),
+        _ => Err(format!("expected a positive integer atom id, got '{word}'")),
+    }
+}
+
+/// An atom type in `1..=ntypes`.
+fn atom_type(word: &str, ntypes: usize) -> Result<u32, String> {
+    let t = word
+        .parse::<u32>()
+        .map_err(|_| format!("expected an integer atom type, got '{word}'"))?;
+    if t == 0 || t as usize > ntypes {
+        return Err(format!("atom type {t} is outside 1..{ntypes}"));
+    }
+    Ok(t)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A small dpd-style file in the layout LAMMPS writes.
+    const SMALL: &str = "\
+LAMMPS data file via write_data, atom_style dpd
+
+3 atoms
+2 atom types
+
+0.0 10.0 xlo xhi
+-5.0 5.0 ylo yhi
+0.0 2.5e1 zlo zhi
+
+Masses
+
+1 1.0
+2 2.5
+
+Atoms # dpd
+
+1 1 1.0 0.5 0.5 0.5 0 0 0
+2 2 1.25 9.75 -4.0 3.0 1 -1 2
+3 1 0.999 5.0 0.0 12.5
+
+Velocities
+
+1 0.1 -0.2 0.3
+3 0.0 0.0 1e-3
+2 -1.5 2.0 0.0
+";
+
+    fn parse(text: &str) -> Result<DataFile, ScriptError> {
+        parse_data("data.dpde", text, AtomStyle::Dpd)
+    }
+
+    fn error(text: &str) -> String {
+        match parse(text) {
+            Ok(data) => panic!("expected an error, got {data:?}"),
+            Err(e) => e.to_string(),
+        }
+    }
+
+    /// SMALL with line `line` (1-based) replaced by `with`.
+    fn replace_line(line: usize, with: &str) -> String {
+        SMALL
+            .lines()
+            .enumerate()
+            .map(|(i, l)| if i + 1 == line { with } else { l })
+            .collect::<Vec<_>>()
+            .join("\n")
+    }
+
+    /// A fresh scratch directory for file-based tests.
+    fn scratch(tag: &str) -> PathBuf {
+        let dir = std::env::temp_dir().join(format!("gendpde-io-{}-{tag}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        dir
+    }
+
+    /// A LAMMPS-DPDE-style file: `n`^3 atoms on a lattice in a 40^3 box.
+    fn dpde_file(n: usize) -> String {
+        let mut text = format!(
+            "DPD-E test\n\n{} atoms\n1 atom types\n\n\
+             0.0 40.0 xlo xhi\n0.0 40.0 ylo yhi\n0.0 40.0 zlo zhi\n\n\
+             Masses\n\n1 100.0\n\nAtoms\n\n",
+            n * n * n
+        );
+        let spacing = 40.0 / n as f64;
+        let mut id = 0;
+        for i in 0..n {
+            for j in 0..n {
+                for k in 0..n {
+                    id += 1;
+                    let theta = 1.0 + 0.001 * (id % 17) as f64;
+                    let _ = writeln!(
+                        text,
+                        "{id} 1 {theta} {} {} {}",
+                        (i as f64 + 0.5) * spacing,
+                        (j as f64 + 0.5) * spacing,
+                        (k as f64 + 0.5) * spacing
+                    );
+                }
+            }
+        }
+        text.push_str("\nVelocities\n\n");
+        for id in 1..=n * n * n {
+            let v = (id as f64 * 0.37).sin();
+            let _ = writeln!(text, "{id} {v} {} {}", -v / 3.0, v * 1e-7);
+        }
+        text
+    }
+
+    #[test]
+    fn reads_small_file() {
+        let data = parse(SMALL).unwrap();
+        assert_eq!(
+            data.title,
+            "LAMMPS data file via write_data, atom_style dpd"
+        );
+        assert_eq!((data.natoms, data.ntypes), (3, 2));
+        assert_eq!(data.lo, [0.0, -5.0, 0.0]);
+        assert_eq!(data.hi, [10.0, 5.0, 25.0]);
+        assert_eq!(data.masses, vec![Some(1.0), Some(2.5)]);
+        assert_eq!(
+            data.atoms[1],
+            DataAtom {
+                tag: 2,
+                kind: 2,
+                theta: Some(1.25),
+                r: [9.75, -4.0, 3.0],
+                image: [1, -1, 2],
+            }
+        );
+        assert_eq!(data.atoms[2].image, [0, 0, 0]);
+        assert_eq!(data.atoms[2].theta, Some(0.999));
+        let v = data.velocities.unwrap();
+        assert_eq!(v[1], (3, [0.0, 0.0, 1e-3]));
+    }
+
+    #[test]
+    fn dpde_header_and_round_trip() {
+        let text = dpde_file(10);
+        let data = parse(&text).unwrap();
+        assert_eq!(
+            (data.natoms, data.ntypes, data.atoms.len()),
+            (1000, 1, 1000)
+        );
+        assert_eq!((data.lo, data.hi), ([0.0; 3], [40.0; 3]));
+        assert_eq!(data.masses, vec![Some(100.0)]);
+        assert_eq!(data.velocities.as_ref().map(Vec::len), Some(1000));
+
+        let dir = scratch("dpde-round-trip");
+        let path = dir.join("data.dpde");
+        write_data(&path, &data, AtomStyle::Dpd).unwrap();
+        assert!(!dir.join("data.dpde.tmp").exists());
+        let back = read_data(&path, AtomStyle::Dpd).unwrap();
+        assert_eq!(back, data);
+        let written = std::fs::read_to_string(&path).unwrap();
+        assert!(written.starts_with("DPD-E test\n\n1000 atoms\n1 atom types\n"));
+        assert!(written.contains("\nAtoms # dpd\n\n1 1 1.001 "));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn round_trip_keeps_awkward_floats() {
+        let mut data = parse(SMALL).unwrap();
+        data.atoms[0].r = [0.1 + 0.2, 1.0 / 3.0, 7.0e-300];
+        data.atoms[0].theta = Some(1e300);
+        data.atoms[1].r = [-0.0, 9.999_999_999_999_998, 123_456_789_012_345_680.0];
+        data.lo[0] = -1e-20;
+        let dir = scratch("awkward-round-trip");
+        let path = dir.join("data.out");
+        write_data(&path, &data, AtomStyle::Dpd).unwrap();
+        assert_eq!(read_data(&path, AtomStyle::Dpd).unwrap(), data);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn atomic_style_round_trip() {
+        let text = "atomic\n2 atoms\n1 atom types\n0 1 xlo xhi\n\nAtoms # atomic\n\n\
+                    7 1 0.25 0.5 0.75\n3 1 0.5 0.5 0.5 -1 0 4\n";
+        let data = parse_data("data.atomic", text, AtomStyle::Atomic).unwrap();
+        assert_eq!(data.atoms[0].theta, None);
+        assert_eq!(data.atoms[1].image, [-1, 0, 4]);
+        assert_eq!(data.masses, vec![None]);
+        assert_eq!(data.velocities, None);
+        // Defaults for the dimensions the header leaves out.
+        assert_eq!((data.lo, data.hi), ([0.0, -0.5, -0.5], [1.0, 0.5, 0.5]));
+        let dir = scratch("atomic-round-trip");
+        let path = dir.join("data.atomic");
+        write_data(&path, &data, AtomStyle::Atomic).unwrap();
+        let written = std::fs::read_to_string(&path).unwrap();
+        assert!(!written.contains("Masses") && !written.contains("Velocities"));
+        assert!(written.contains("Atoms # atomic"));
+        assert_eq!(read_data(&path, AtomStyle::Atomic).unwrap(), data);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn write_refuses_what_it_cannot_read_back() {
+        let dir = scratch("write-refuses");
+        let path = dir.join("data.bad");
+        let good = parse(SMALL).unwrap();
+        let mut cases = Vec::new();
+        let mut d = good.clone();
+        d.natoms = 4;
+        cases.push(d);
+        let mut d = good.clone();
+        d.masses[1] = None;
+        cases.push(d);
+        let mut d = good.clone();
+        d.atoms[0].theta = None;
+        cases.push(d);
+        let mut d = good.clone();
+        d.atoms[0].r[1] = f64::NAN;
+        cases.push(d);
+        let mut d = good.clone();
+        d.velocities.as_mut().unwrap().pop();
+        cases.push(d);
+        for d in cases {
+            let e = write_data(&path, &d, AtomStyle::Dpd).unwrap_err();
+            assert_eq!(e.kind(), std::io::ErrorKind::InvalidInput);
+            assert!(!path.exists());
+        }
+        // The atomic style simply drops dpdTheta.
+        let mut d = good.clone();
+        d.atoms[0].theta = None;
+        write_data(&path, &d, AtomStyle::Atomic).unwrap();
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn empty_system_round_trip() {
+        let data = DataFile {
+            title: "empty".into(),
+            natoms: 0,
+            ntypes: 2,
+            lo: [0.0; 3],
+            hi: [1.0, 2.0, 3.0],
+            masses: vec![Some(1.0), Some(2.0)],
+            atoms: vec![],
+            velocities: Some(vec![]),
+        };
+        let dir = scratch("empty-round-trip");
+        let path = dir.join("data.empty");
+        write_data(&path, &data, AtomStyle::Dpd).unwrap();
+        assert_eq!(read_data(&path, AtomStyle::Dpd).unwrap(), data);
+        let data = DataFile {
+            velocities: None,
+            ..data
+        };
+        write_data(&path, &data, AtomStyle::Dpd).unwrap();
+        assert_eq!(read_data(&path, AtomStyle::Dpd).unwrap(), data);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn missing_file() {
+        let e = read_data(Path::new("/nonexistent/data.dpde"), AtomStyle::Dpd).unwrap_err();
+        assert!(e
+            .to_string()
+            .starts_with("cannot open data file '/nonexistent/data.dpde'"));
+    }
+
+    #[test]
+    fn comments_blank_lines_and_ignored_header_keywords() {
+        let text = "# title with # signs\n\
+                    \n   # a comment\n\
+                    1 atom types # trailing\n\
+                    0 bonds\n0 angles\n5 bond types\n2 extra bond per atom\n\
+                    2 atoms\n\
+                    0 4 xlo xhi\n0 4 ylo yhi\n0 4 zlo zhi\n\
+                    Atoms\n\
+                    # comment inside a section\n\
+                    1 1 2.0 1 1 1\n\n\
+                    2 1 2.0 2 2 2 # trailing comment\n";
+        let data = parse(text).unwrap();
+        assert_eq!(data.title, "# title with # signs");
+        assert_eq!(data.atoms.len(), 2);
+        assert_eq!(data.atoms[1].r, [2.0, 2.0, 2.0]);
+    }
+
+    #[test]
+    fn column_errors() {
+        assert_eq!(
+            error(&replace_line(17, "1 1 1.0 0.5 0.5")),
+            "data.dpde:17: Atoms: expected 6 columns (id type dpdTheta x y z), got 5"
+        );
+        assert_eq!(
+            error(&replace_line(17, "1 1 1.0 0.5 0.5 0.5 0")),
+            "data.dpde:17: Atoms: expected 6 or 9 columns (id type dpdTheta x y z [ix iy iz]), got 7"
+        );
+        let e = parse_data("data.atomic", SMALL, AtomStyle::Atomic).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "data.dpde:15: Atoms: the section is marked '# dpd' but atom_style atomic was requested"
+                .replace("data.dpde", "data.atomic")
+        );
+        let unmarked = replace_line(15, "Atoms");
+        let e = parse_data("d", &unmarked, AtomStyle::Atomic).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "d:17: Atoms: expected 5 or 8 columns (id type x y z [ix iy iz]), got 9"
+        );
+        assert_eq!(
+            error(&replace_line(12, "1 1.0 7")),
+            "data.dpde:12: Masses: expected 2 columns (type mass), got 3"
+        );
+        assert_eq!(
+            error(&replace_line(23, "1 0.1 -0.2")),
+            "data.dpde:23: Velocities: expected 4 columns (id vx vy vz), got 3"
+        );
+    }
+
+    #[test]
+    fn value_errors() {
+        let cases = [
+            (17, "1 3 1.0 0.5 0.5 0.5", "data.dpde:17: Atoms: atom type 3 is outside 1..2"),
+            (17, "1 0 1.0 0.5 0.5 0.5", "data.dpde:17: Atoms: atom type 0 is outside 1..2"),
+            (
+                17,
+                "1 x 1.0 0.5 0.5 0.5",
+                "data.dpde:17: Atoms: expected an integer atom type, got 'x'",
+            ),
+            (
+                18,
+                "1 2 1.0 0.5 0.5 0.5",
+                "data.dpde:18: Atoms: duplicate atom id 1 (first at line 17)",
+            ),
+            (
+                17,
+                "0 1 1.0 0.5 0.5 0.5",
+                "data.dpde:17: Atoms: expected a positive integer atom id, got '0'",
+            ),
+            (
+                17,
+                "-1 1 1.0 0.5 0.5 0.5",
+                "data.dpde:17: Atoms: expected a positive integer atom id, got '-1'",
+            ),
+            (
+                17,
+                "1 1 0.0 0.5 0.5 0.5",
+                "data.dpde:17: Atoms: dpdTheta must be positive, got 0",
+            ),
+            (
+                17,
+                "1 1 -2 0.5 0.5 0.5",
+                "data.dpde:17: Atoms: dpdTheta must be positive, got -2",
+            ),
+            (17, "1 1 1.0 0.5 nan 0.5", "data.dpde:17: Atoms: y: 'nan' is not a finite number"),
+            (17, "1 1 1.0 0.5 0.5 inf", "data.dpde:17: Atoms: z: 'inf' is not a finite number"),
+            (17, "1 1 1.0 1e999 0.5 0.5", "data.dpde:17: Atoms: x: '1e999' is not a finite number"),
+            (17, "1 1 NaN 0.5 0.5 0.5", "data.dpde:17: Atoms: dpdTheta: 'NaN' is not a finite number"),
+            (17, "1 1 1.0 0.5 0.5 0.5z", "data.dpde:17: Atoms: z: expected a number, got '0.5z'"),
+            (
+                17,
+                "1 1 1.0 0.5 0.5 0.5 0 0 1.5",
+                "data.dpde:17: Atoms: iz: expected an integer image flag, got '1.5'",
+            ),
+            (12, "3 1.0", "data.dpde:12: Masses: atom type 3 is outside 1..2"),
+            (13, "1 2.0", "data.dpde:13: Masses: second mass for type 1 (the first is at line 12)"),
+            (12, "1 -1.0", "data.dpde:12: Masses: mass must be positive, got -1"),
+            (12, "1 inf", "data.dpde:12: Masses: mass: 'inf' is not a finite number"),
+            (
+                23,
+                "4 0.1 -0.2 0.3",
+                "data.dpde:23: Velocities: velocity for atom id 4, which is not in the Atoms section",
+            ),
+            (
+                24,
+                "1 0.0 0.0 1e-3",
+                "data.dpde:24: Velocities: second velocity for atom id 1 (the first is at line 23)",
+            ),
+            (25, "2 -1.5 2.0 -inf", "data.dpde:25: Velocities: vz: '-inf' is not a finite number"),
+        ];
+        for (line, with, expected) in cases {
+            assert_eq!(
+                error(&replace_line(line, with)),
+                expected,
+                "line {line}: {with}"
+            );
+        }
+    }
+
+    #[test]
+    fn header_errors() {
+        let cases = [
+            (
+                5,
+                "10.0 0.0 xlo xhi",
+                "data.dpde:5: 'xlo xhi': the lower bound 10 is not below the upper bound 0",
+            ),
+            (
+                6,
+                "5 5 ylo yhi",
+                "data.dpde:6: 'ylo yhi': the lower bound 5 is not below the upper bound 5",
+            ),
+            (
+                7,
+                "0 nan zlo zhi",
+                "data.dpde:7: 'zlo zhi': 'nan' is not a finite number",
+            ),
+            (
+                7,
+                "0 zlo zhi",
+                "data.dpde:7: 'zlo zhi' needs 2 values before it, got 1",
+            ),
+            (
+                8,
+                "0.0 0.0 0.0 xy xz yz",
+                "data.dpde:8: 'xy xz yz': triclinic boxes are not supported",
+            ),
+            (
+                8,
+                "12 bonds",
+                "data.dpde:8: the header gives 12 bonds, but gendpde supports none",
+            ),
+            (
+                8,
+                "1 angles",
+                "data.dpde:8: the header gives 1 angles, but gendpde supports none",
+            ),
+            (
+                8,
+                "3 atoms",
+                "data.dpde:8: 'atoms' given twice (first at line 3)",
+            ),
+            (
+                8,
+                "7 widgets",
+                "data.dpde:8: unknown header line '7 widgets'",
+            ),
+            (
+                3,
+                "3.5 atoms",
+                "data.dpde:3: 'atoms' needs a non-negative integer, got '3.5'",
+            ),
+            (
+                3,
+                "-3 atoms",
+                "data.dpde:3: 'atoms' needs a non-negative integer, got '-3'",
+            ),
+            (
+                4,
+                "0 atom types",
+                "data.dpde:4: the number of atom types must be between 1 and 1000000, got 0",
+            ),
+            (4, "1", "data.dpde:4: unknown header line '1'"),
+            (4, "", "data.dpde:10: the header has no 'atom types' line"),
+        ];
+        for (line, with, expected) in cases {
+            assert_eq!(
+                error(&replace_line(line, with)),
+                expected,
+                "line {line}: {with}"
+            );
+        }
+    }
+
+    #[test]
+    fn section_errors() {
+        assert_eq!(
+            error(&replace_line(19, "")),
+            "data.dpde:15: Atoms: expected 3 lines (3 atoms in the header), \
+             found 2 before section 'Velocities' at line 21"
+        );
+        assert_eq!(
+            error(&replace_line(13, "")),
+            "data.dpde:10: Masses: expected 2 lines (2 atom types in the header), \
+             found 1 before section 'Atoms' at line 15"
+        );
+        assert_eq!(
+            error(&replace_line(3, "2 atoms")),
+            "data.dpde:19: Atoms: more than 2 lines (2 atoms in the header)"
+        );
+        assert_eq!(
+            error(&format!("{SMALL}4 0 0 0\n")),
+            "data.dpde:26: Velocities: more than 3 lines (3 atoms in the header)"
+        );
+        assert_eq!(
+            error(&format!("{SMALL}\nBonds\n\n1 1 1 2\n")),
+            "data.dpde:27: unsupported section 'Bonds': gendpde reads only Masses, Atoms and Velocities"
+        );
+        assert_eq!(
+            error(&replace_line(10, "Pair   Coeffs # dpd")),
+            "data.dpde:10: unsupported section 'Pair Coeffs': gendpde reads only Masses, Atoms and Velocities"
+        );
+        assert_eq!(
+            error(&format!("{SMALL}\nMasses\n\n1 1.0\n2 1.0\n")),
+            "data.dpde:27: Masses: second Masses section (the first is at line 10)"
+        );
+        // Truncated in the middle of a section.
+        let truncated: String = SMALL.lines().take(18).map(|l| format!("{l}\n")).collect();
+        assert_eq!(
+            error(&truncated),
+            "data.dpde:15: Atoms: expected 3 lines (3 atoms in the header), \
+             found 2 before the end of the file at line 18"
+        );
+        let truncated: String = SMALL.lines().take(23).collect::<Vec<_>>().join("\n");
+        assert_eq!(
+            error(&truncated),
+            "data.dpde:21: Velocities: expected 3 lines (3 atoms in the header), \
+             found 1 before the end of the file at line 23"
+        );
+        // No Atoms section at all.
+        let header_only: String = SMALL.lines().take(14).map(|l| format!("{l}\n")).collect();
+        assert_eq!(
+            error(&header_only),
+            "data.dpde:3: the header gives 3 atoms but the file has no Atoms section"
+        );
+        // Velocities before Atoms.
+        let text = "t\n1 atoms\n1 atom types\nVelocities\n\n1 0 0 0\nAtoms\n\n1 1 1 0 0 0\n";
+        assert_eq!(
+            error(text),
+            "data.dpde:4: Velocities: the Atoms section must come before Velocities"
+        );
+    }
+
+    #[test]
+    fn degenerate_inputs() {
+        assert_eq!(
+            error(""),
+            "data.dpde:1: the header has no 'atom types' line"
+        );
+        let data = parse("title only\n1 atom types\n").unwrap();
+        assert_eq!((data.natoms, data.atoms.len()), (0, 0));
+        let data = parse("t\r\n0 atoms\r\n1 atom types\r\n\r\nAtoms # dpd\r\n\r\n").unwrap();
+        assert!(data.atoms.is_empty());
+        assert!(parse("t\n1 atom types\n99999999999999999999 atoms\n").is_err());
+        assert!(parse("t\n4294967296 atom types\n").is_err());
+    }
+
+    #[test]
+    fn mutated_files_never_panic() {
+        let base = SMALL.as_bytes();
+        const JUNK: &[&str] = &[
+            "",
+            " ",
+            "\n",
+            "#",
+            "-",
+            "0",
+            "1",
+            "9",
+            ".",
+            "e",
+            "nan",
+            "inf",
+            "Atoms",
+            "Masses",
+            "Velocities",
+            "Atoms # atomic",
+            "xlo xhi",
+            "atom types",
+            "atoms",
+            "bonds",
+            "\r",
+            "\t",
+            "é",
+            "😀",
+            "\0",
+            "99999999999999999999",
+            "-2147483649",
+            "1e400",
+            "+",
+            "xy xz yz",
+        ];
+        let mut state: u64 = 0x9e37_79b9_7f4a_7c15;
+        let mut rand = move || {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (state >> 33) as usize
+        };
+        // Every truncation of a valid file.
+        for end in (0..=SMALL.len()).filter(|&i| SMALL.is_char_boundary(i)) {
+            let _ = parse(&SMALL[..end]);
+        }
+        let mut accepted = 0;
+        for round in 0..4000 {
+            let mut text = String::from_utf8_lossy(base).into_owned();
+            let edits = 1 + rand() % 4;
+            for _ in 0..edits {
+                let mut at = rand() % (text.len() + 1);
+                while !text.is_char_boundary(at) {
+                    at -= 1;
+                }
+                match rand() % 5 {
+                    0 => text.truncate(at),
+                    1 => {
+                        let mut end = (at + 1 + rand() % 12).min(text.len());
+                        while !text.is_char_boundary(end) {
+                            end -= 1;
+                        }
+                        text.replace_range(at..end, "");
+                    }
+                    2 => text.insert_str(at, JUNK[rand() % JUNK.len()]),
+                    3 => {
+                        // Duplicate a random line.
+                        let lines: Vec<&str> = text.lines().collect();
+                        if !lines.is_empty() {
+                            let l = lines[rand() % lines.len()].to_string();
+                            text.insert_str(at, &format!("\n{l}\n"));
+                        }
+                    }
+                    _ => {
+                        // Replace a byte-sized char with a digit.
+                        let digit = char::from(b'0' + (rand() % 10) as u8);
+                        if text[at..].chars().next().is_some_and(|c| c.is_ascii()) {
+                            text.replace_range(at..at + 1, &digit.to_string());
+                        }
+                    }
+                }
+            }
+            let style = if round % 7 == 0 {
+                AtomStyle::Atomic
+            } else {
+                AtomStyle::Dpd
+            };
+            if let Ok(data) = parse_data("fuzz", &text, style) {
+                accepted += 1;
+                assert_eq!(data.natoms, data.atoms.len());
+                assert_eq!(data.ntypes, data.masses.len());
+            }
+        }
+        // Some mutations (e.g. in comments or the title) leave the file valid.
+        assert!(accepted > 0);
+    }
+}

@@ -1,0 +1,597 @@
+//! Lennard-Jones fluid EOS of Kolafa and Nezbeda, Fluid Phase Equilib. 100, 1 (1994)
+//! (2019 paper, appendix A.3, eqs 104-108; eq 107 is misprinted there, the form used here
+//! is the one of the project's physics spec, SPEC.md sec 3). Reduced LJ units, k_B = 1.
+//!
+//! Residual Helmholtz energy per particle, with eta = (pi/6) n d(theta)^3 (eq 104):
+//!
+//! f_res = theta [A_HS(eta) + n dB2(theta) e^{-gamma_BH n^2}] + sum_ij C_ij theta^{i/2} n^j,
+//! A_HS(eta) = (5/3) ln(1 - eta) + eta (34 - 33 eta + 4 eta^2) / (6 (1 - eta)^2)   (eq 106),
+//!
+//! with the hybrid Barker-Henderson diameter d(theta) (fit of eq 105) and the residual
+//! second virial coefficient dB2(theta) (fit of eq 108). As a particle EOS (constant ideal
+//! heat capacity C_V, theta0 = 1):
+//!
+//! f = f_res - C_V theta (ln theta - 1),  u = C_V theta + u_res,  u_res = f_res - theta f_res,t,
+//! pi/n^2 = f_res,n (an excess pressure, text after eq 53),  s = C_V ln theta - f_res,t,
+//! C_V(theta, n) = C_V - theta f_res,tt  (eq 22),
+//!
+//! where ,t and ,n denote d/dtheta and d/dn. All derivatives are exact: f_res is evaluated
+//! once over a four-component forward-mode jet (value, d/dtheta, d^2/dtheta^2, d/dn).
+//!
+//! Domain. d(theta) and dB2(theta) diverge as theta -> 0 (like 1/theta and theta^-3.5), so
+//! eta reaches the pole of A_HS at 1 at any density once theta is small enough, and the fit
+//! is meaningless long before. States are accepted for [`LennardJones::THETA_MIN`] <= theta
+//! <= [`LennardJones::THETA_MAX`] and eta(theta, n) <= [`LennardJones::ETA_MAX`] = 0.9: the
+//! lowest admissible theta at density n is where eta = 0.9 (about 0.014 at n = 0.5, 0.036
+//! at n = 1, 0.40 at n = 1.5), and no theta is admissible above n ~ 6.0. [`Eos::theta`]
+//! returns 0 when u lies below u at that floor (the model's ground state at this density
+//! within the domain), +inf when u lies above u(THETA_MAX, n), NaN for non-finite input or
+//! n ~> 6, so that [`Eos::state`] reports an error. On this domain the residual heat
+//! capacity -theta f_res,tt is positive for n <= 1.5 (checked on a fine grid), so u is
+//! monotonic in theta and the root is unique; above n ~ 1.55 the fitted C_ij polynomial
+//! gives negative residual heat capacities at moderate theta (far outside the fitted fluid
+//! range), hence [`Eos::max_density`] = 1.5. There u(theta) is no longer monotonic: the
+//! solve never diverges or panics, but it may return one of several roots or an error
+//! value although a root exists (a randomized check over n <= 1.5, theta in the domain and
+//! C_V from 0.01 to 1e4 recovered theta to 3e-14 relative). The public formulas
+//! ([`LennardJones::f_res`] etc.) are evaluated without domain checks (NaN once eta >= 1).
+
+use super::Eos;
+use std::f64::consts::PI;
+use std::ops::{Add, Div, Mul, Neg, Sub};
+
+/// Coefficients of d(theta) = D_LN ln T + D_M1 / T + D_MH / sqrt T + D_0 + D_H sqrt T.
+const D_LN: f64 = -0.063920968;
+const D_M1: f64 = 0.011117524;
+const D_MH: f64 = -0.076383859;
+const D_0: f64 = 1.080142248;
+const D_H: f64 = 0.000693129;
+
+/// dB2(theta) = DB2_0 + sum_k DB2[k] T^-(k+2)/2, k = 0..5 (powers -1, -1.5, ..., -3.5).
+const DB2_0: f64 = 0.02459877;
+const DB2: [f64; 6] = [-7.02181962, 2.90616279, -4.13749995, 0.87361369, 0.43102052, -0.58544978];
+
+/// gamma_BH of the exp(-gamma n^2) damping of the virial term.
+const GAMMA_BH: f64 = 1.92907278;
+
+/// C_ij for i = 0, -1, -2, -4 (rows; theta^{i/2}) and j = 2..6 (columns; n^j).
+const C: [[f64; 5]; 4] = [
+    [2.01546797, -28.17881636, 28.28313847, -10.42402873, 0.0],
+    [-19.58371655, 75.62340289, -120.70586598, 93.92740328, -27.37737354],
+    [29.34470520, -112.35356937, 170.64908980, -123.06669187, 34.42288969],
+    [-13.37031968, 65.38059570, -115.09233113, 88.91973082, -25.62099890],
+];
+
+/// Kolafa-Nezbeda Lennard-Jones EOS with constant ideal heat capacity `cv` (k_B = 1).
+#[derive(Clone, Debug, PartialEq)]
+pub struct LennardJones {
+    /// Ideal (constant) part of the particle heat capacity C_V.
+    pub cv: f64,
+}
+
+/// f_res and the derivatives the particle EOS needs, at one (theta, n).
+#[derive(Clone, Copy, Debug)]
+struct Fres {
+    f: f64,
+    ft: f64,
+    ftt: f64,
+    fn_: f64,
+}
+
+impl LennardJones {
+    /// Lowest particle temperature accepted by [`Eos::theta`].
+    pub const THETA_MIN: f64 = 1e-3;
+    /// Highest particle temperature accepted by [`Eos::theta`].
+    pub const THETA_MAX: f64 = 1e3;
+    /// Largest packing fraction eta accepted by [`Eos::theta`] (A_HS has its pole at 1).
+    pub const ETA_MAX: f64 = 0.9;
+    /// Iteration cap of the theta(u, n) solve (pure bisection needs about 50).
+    const MAX_ITER: usize = 200;
+    /// Relative tolerance of the theta(u, n) solve.
+    const TOL: f64 = 1e-14;
+
+    pub fn new(cv: f64) -> Self {
+        Self { cv }
+    }
+
+    /// Hybrid Barker-Henderson diameter d(theta) (fit of eq 105).
+    pub fn diameter(theta: f64) -> f64 {
+        let sq = theta.sqrt();
+        D_LN * theta.ln() + D_M1 / theta + D_MH / sq + D_0 + D_H * sq
+    }
+
+    /// Packing fraction eta = (pi/6) n d(theta)^3 (eq 104).
+    pub fn packing_fraction(theta: f64, n: f64) -> f64 {
+        PI / 6.0 * n * Self::diameter(theta).powi(3)
+    }
+
+    /// Whether (theta, n) lies in the domain where [`Eos::theta`] accepts states.
+    pub fn in_domain(theta: f64, n: f64) -> bool {
+        (Self::THETA_MIN..=Self::THETA_MAX).contains(&theta)
+            && n >= 0.0
+            && Self::packing_fraction(theta, n) <= Self::ETA_MAX
+    }
+
+    /// Residual Helmholtz energy per particle f_res(theta, n).
+    pub fn f_res(&self, theta: f64, n: f64) -> f64 {
+        Self::eval(theta, n).f
+    }
+
+    /// Residual internal energy per particle u_res = f_res - theta df_res/dtheta.
+    pub fn u_res(&self, theta: f64, n: f64) -> f64 {
+        let r = Self::eval(theta, n);
+        r.f - theta * r.ft
+    }
+
+    /// Total macroscopic pressure P = n theta + n^2 df_res/dn (the KN pressure).
+    pub fn pressure(&self, theta: f64, n: f64) -> f64 {
+        n * theta + n * n * Self::eval(theta, n).fn_
+    }
+
+    /// u(theta, n) and C_V(theta, n) = du/dtheta from one evaluation.
+    #[inline]
+    fn u_and_cv(&self, theta: f64, n: f64) -> (f64, f64) {
+        let r = Self::eval(theta, n);
+        (self.cv * theta + r.f - theta * r.ft, self.cv - theta * r.ftt)
+    }
+
+    /// f_res over a jet seeded with d/dtheta and d/dn.
+    #[inline]
+    fn eval(theta: f64, n: f64) -> Fres {
+        let j = Self::f_res_jet(Jet::var_t(theta), Jet::var_n(n));
+        Fres { f: j.v, ft: j.t, ftt: j.tt, fn_: j.n }
+    }
+
+    /// f_res(theta, n) evaluated over jets (eqs 104-107 in the form of SPEC.md sec 3).
+    #[inline]
+    fn f_res_jet(t: Jet, n: Jet) -> Jet {
+        let sq = t.sqrt();
+        let s = sq.recip(); // theta^-1/2
+        let s2 = s * s;
+        // d(theta) and eta
+        let d = D_LN * t.ln() + D_M1 * s2 + D_MH * s + D_0 + D_H * sq;
+        let eta = (PI / 6.0) * n * d * d * d;
+        // A_HS(eta), eq 106
+        let om = 1.0 - eta;
+        let a_hs =
+            (5.0 / 3.0) * om.ln() + eta * (34.0 + eta * (-33.0 + 4.0 * eta)) / (6.0 * om * om);
+        // dB2(theta) in powers of s = theta^-1/2, Horner
+        let mut p = Jet::cst(DB2[5]);
+        for &c in DB2[..5].iter().rev() {
+            p = p * s + c;
+        }
+        let db2 = p * s2 + DB2_0;
+        let n2 = n * n;
+        let virial = n * db2 * (-GAMMA_BH * n2).exp();
+        // sum_ij C_ij theta^{i/2} n^j = n^2 [P_0(n) + s P_-1(n) + s^2 P_-2(n) + s^4 P_-4(n)]
+        let poly = |row: &[f64; 5]| {
+            let mut q = Jet::cst(row[4]);
+            for &c in row[..4].iter().rev() {
+                q = q * n + c;
+            }
+            q
+        };
+        let sum = n2 * (poly(&C[0]) + s * poly(&C[1]) + s2 * (poly(&C[2]) + s2 * poly(&C[3])));
+        t * (a_hs + virial) + sum
+    }
+
+    /// Bracketed Newton solve of u(theta, n) = u on [THETA_MIN, THETA_MAX] (see module doc).
+    fn solve_theta(&self, u: f64, n: f64, guess: f64) -> f64 {
+        if !(u.is_finite() && n.is_finite() && n >= 0.0) {
+            return f64::NAN;
+        }
+        let (mut lo, mut hi) = (Self::THETA_MIN, Self::THETA_MAX);
+        // whether an in-domain point with u(x) < u (resp. > u) has been seen
+        let (mut lo_hit, mut hi_hit) = (false, false);
+        let mut x = if guess > 0.0 && guess.is_finite() {
+            guess
+        } else {
+            let t1 = 1.0;
+            let x0 =
+                if Self::in_domain(t1, n) { (u - self.u_res(t1, n)) / self.cv } else { f64::NAN };
+            if x0.is_finite() {
+                x0.max(Self::THETA_MIN)
+            } else {
+                (lo * hi).sqrt()
+            }
+        };
+        x = x.clamp(lo, hi);
+        for _ in 0..Self::MAX_ITER {
+            let mut next = f64::NAN;
+            if Self::in_domain(x, n) {
+                let (ux, cvx) = self.u_and_cv(x, n);
+                let r = ux - u;
+                if r == 0.0 {
+                    return x;
+                }
+                if r < 0.0 {
+                    lo = x;
+                    lo_hit = true;
+                } else {
+                    hi = x;
+                    hi_hit = true;
+                }
+                next = x - r / cvx;
+                if (next - x).abs() <= Self::TOL * x && next > 0.0 {
+                    return next;
+                }
+            } else {
+                // x in [THETA_MIN, THETA_MAX] is out of the domain only by eta > ETA_MAX:
+                // below the floor at this density, so the root lies above
+                lo = x;
+            }
+            if hi - lo <= Self::TOL * lo {
+                break;
+            }
+            if !(next > lo && next < hi) {
+                next = (lo * hi).sqrt(); // bisection in ln theta: the bracket spans decades
+            }
+            x = next;
+        }
+        match (lo_hit, hi_hit) {
+            (true, true) => 0.5 * (lo + hi),
+            (false, true) => 0.0, // u below the ground state at this density
+            (true, false) => f64::INFINITY, // u above u(THETA_MAX, n)
+            (false, false) => f64::NAN, // eta > ETA_MAX at every theta: n too high
+        }
+    }
+}
+
+impl Eos for LennardJones {
+    fn kb(&self) -> f64 {
+        1.0
+    }
+    fn density_dependent(&self) -> bool {
+        true
+    }
+    #[inline]
+    fn theta(&self, u: f64, n: f64, guess: f64) -> f64 {
+        self.solve_theta(u, n, guess)
+    }
+    #[inline]
+    fn u(&self, theta: f64, n: f64) -> f64 {
+        self.cv * theta + self.u_res(theta, n)
+    }
+    #[inline]
+    fn pn2(&self, theta: f64, n: f64) -> f64 {
+        Self::eval(theta, n).fn_
+    }
+    #[inline]
+    fn cv(&self, theta: f64, n: f64) -> f64 {
+        self.cv - theta * Self::eval(theta, n).ftt
+    }
+    fn entropy(&self, u: f64, n: f64) -> Option<f64> {
+        let theta = self.solve_theta(u, n, f64::NAN);
+        (theta > 0.0 && theta.is_finite()).then(|| self.cv * theta.ln() - Self::eval(theta, n).ft)
+    }
+    /// 1.5: above it the fit loses thermodynamic stability (see the module doc).
+    fn max_density(&self) -> Option<f64> {
+        Some(1.5)
+    }
+}
+
+/// Truncated two-variable Taylor jet a(theta0 + dt, n0 + dn) modulo (dt^3, dt dn, dn^2):
+/// value, d/dtheta, d^2/dtheta^2 and d/dn, exact under +, -, *, / and the elementary
+/// functions below. Copy, four f64, no allocation.
+#[derive(Clone, Copy, Debug)]
+struct Jet {
+    v: f64,
+    t: f64,
+    tt: f64,
+    n: f64,
+}
+
+impl Jet {
+    #[inline]
+    fn cst(v: f64) -> Self {
+        Self { v, t: 0.0, tt: 0.0, n: 0.0 }
+    }
+    #[inline]
+    fn var_t(v: f64) -> Self {
+        Self { v, t: 1.0, tt: 0.0, n: 0.0 }
+    }
+    #[inline]
+    fn var_n(v: f64) -> Self {
+        Self { v, t: 0.0, tt: 0.0, n: 1.0 }
+    }
+    /// g(self) from g, g', g'' at self.v (chain rule to second order in theta).
+    #[inline]
+    fn chain(self, g: f64, g1: f64, g2: f64) -> Self {
+        Self { v: g, t: g1 * self.t, tt: g1 * self.tt + g2 * self.t * self.t, n: g1 * self.n }
+    }
+    #[inline]
+    fn recip(self) -> Self {
+        let r = 1.0 / self.v;
+        self.chain(r, -r * r, 2.0 * r * r * r)
+    }
+    #[inline]
+    fn sqrt(self) -> Self {
+        let s = self.v.sqrt();
+        self.chain(s, 0.5 / s, -0.25 / (s * self.v))
+    }
+    #[inline]
+    fn ln(self) -> Self {
+        let r = 1.0 / self.v;
+        self.chain(self.v.ln(), r, -r * r)
+    }
+    #[inline]
+    fn exp(self) -> Self {
+        let e = self.v.exp();
+        self.chain(e, e, e)
+    }
+}
+
+impl Add for Jet {
+    type Output = Jet;
+    #[inline]
+    fn add(self, b: Jet) -> Jet {
+        Jet { v: self.v + b.v, t: self.t + b.t, tt: self.tt + b.tt, n: self.n + b.n }
+    }
+}
+impl Sub for Jet {
+    type Output = Jet;
+    #[inline]
+    fn sub(self, b: Jet) -> Jet {
+        Jet { v: self.v - b.v, t: self.t - b.t, tt: self.tt - b.tt, n: self.n - b.n }
+    }
+}
+impl Mul for Jet {
+    type Output = Jet;
+    #[inline]
+    fn mul(self, b: Jet) -> Jet {
+        Jet {
+            v: self.v * b.v,
+            t: self.v * b.t + self.t * b.v,
+            tt: self.v * b.tt + 2.0 * self.t * b.t + self.tt * b.v,
+            n: self.v * b.n + self.n * b.v,
+        }
+    }
+}
+impl Div for Jet {
+    type Output = Jet;
+    #[inline]
+    fn div(self, b: Jet) -> Jet {
+        // q = a/b: q' = (a' - q b')/b, q'' = (a'' - 2 q' b' - q b'')/b
+        let r = 1.0 / b.v;
+        let v = self.v * r;
+        let t = (self.t - v * b.t) * r;
+        Jet { v, t, tt: (self.tt - 2.0 * t * b.t - v * b.tt) * r, n: (self.n - v * b.n) * r }
+    }
+}
+impl Neg for Jet {
+    type Output = Jet;
+    #[inline]
+    fn neg(self) -> Jet {
+        Jet { v: -self.v, t: -self.t, tt: -self.tt, n: -self.n }
+    }
+}
+impl Add<f64> for Jet {
+    type Output = Jet;
+    #[inline]
+    fn add(self, c: f64) -> Jet {
+        Jet { v: self.v + c, ..self }
+    }
+}
+impl Add<Jet> for f64 {
+    type Output = Jet;
+    #[inline]
+    fn add(self, a: Jet) -> Jet {
+        a + self
+    }
+}
+impl Sub<Jet> for f64 {
+    type Output = Jet;
+    #[inline]
+    fn sub(self, a: Jet) -> Jet {
+        -a + self
+    }
+}
+impl Mul<f64> for Jet {
+    type Output = Jet;
+    #[inline]
+    fn mul(self, c: f64) -> Jet {
+        Jet { v: self.v * c, t: self.t * c, tt: self.tt * c, n: self.n * c }
+    }
+}
+impl Mul<Jet> for f64 {
+    type Output = Jet;
+    #[inline]
+    fn mul(self, a: Jet) -> Jet {
+        a * self
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::EosError;
+    use super::*;
+
+    fn grid() -> Vec<(f64, f64)> {
+        let mut g = Vec::new();
+        for i in 0..=9 {
+            let theta = 0.5 * (10.0f64).powf(i as f64 / 9.0); // 0.5 .. 5, log-spaced
+            for k in 0..=17 {
+                g.push((theta, 0.05 + 0.05 * k as f64)); // 0.05 .. 0.9
+            }
+        }
+        g
+    }
+
+    fn rel(a: f64, b: f64) -> f64 {
+        (a - b).abs() / b.abs()
+    }
+
+    /// SPEC sec 3 check values (Kolafa's published code): agreement to ~1e-5 relative.
+    #[test]
+    fn kolafa_nezbeda_check_values() {
+        let m = LennardJones::new(60.0);
+        let checks = [
+            ("U/N(1.3, 0.2)", m.u_res(1.3, 0.2), -1.5371511277396868),
+            ("U/N(1.3, 0.4)", m.u_res(1.3, 0.4), -2.806016725054152),
+            ("P(1.3, 0.2)", m.pressure(1.3, 0.2), 0.12147936810578708),
+            ("P(1.3, 0.4)", m.pressure(1.3, 0.4), 0.11253334756806482),
+        ];
+        for (name, got, want) in checks {
+            let r = (got - want) / want;
+            eprintln!("{name}: {got:.16} vs {want:.16}, relative deviation {r:+.3e}");
+            assert!(r.abs() < 1e-5, "{name}: {got} vs {want}");
+        }
+        // independent evaluation quoted in SPEC
+        assert!((m.u_res(1.3, 0.2) + 1.5371513).abs() < 1e-7);
+        assert!((m.pressure(1.3, 0.4) - 0.1125328).abs() < 1e-7);
+    }
+
+    /// Central five-point first derivative, error O(h^4).
+    fn d1(f: impl Fn(f64) -> f64, x: f64, h: f64) -> f64 {
+        (8.0 * (f(x + h) - f(x - h)) - (f(x + 2.0 * h) - f(x - 2.0 * h))) / (12.0 * h)
+    }
+
+    #[test]
+    fn derivatives_match_finite_differences() {
+        let m = LennardJones::new(1.5);
+        let close = |a: f64, b: f64, tol: f64| (a - b).abs() <= tol * b.abs().max(1.0);
+        let mut worst = [0.0f64; 4];
+        for (theta, n) in grid() {
+            let r = LennardJones::eval(theta, n);
+            assert_eq!(r.f, m.f_res(theta, n));
+            let (ht, hn) = (1e-3 * theta, 3e-4);
+            let fd_t = d1(|t| m.f_res(t, n), theta, ht);
+            let fd_tt = d1(|t| LennardJones::eval(t, n).ft, theta, ht);
+            let fd_n = d1(|x| m.f_res(theta, x), n, hn);
+            let fd_cv = d1(|t| m.u(t, n), theta, ht);
+            let fd_s = -d1(|t| m.f_res(t, n) - m.cv * t * (t.ln() - 1.0), theta, ht);
+            for (w, (a, b)) in worst.iter_mut().zip([
+                (r.ft, fd_t),
+                (r.ftt, fd_tt),
+                (r.fn_, fd_n),
+                (m.cv(theta, n), fd_cv),
+            ]) {
+                *w = w.max((a - b).abs() / b.abs().max(1.0));
+            }
+            assert!(close(r.ft, fd_t, 1e-9), "f_t at ({theta}, {n}): {} vs {fd_t}", r.ft);
+            assert!(close(r.ftt, fd_tt, 1e-9), "f_tt at ({theta}, {n}): {} vs {fd_tt}", r.ftt);
+            assert!(close(r.fn_, fd_n, 1e-9), "f_n at ({theta}, {n}): {} vs {fd_n}", r.fn_);
+            assert_eq!(m.pn2(theta, n), r.fn_);
+            assert!(close(m.cv(theta, n), fd_cv, 1e-9), "cv at ({theta}, {n})");
+            assert!(close(m.pressure(theta, n), n * theta + n * n * fd_n, 1e-9));
+            assert!(close(m.u_res(theta, n), r.f - theta * fd_t, 1e-9));
+            // entropy s = -df/dtheta of the full particle free energy
+            let s = m.entropy(m.u(theta, n), n).unwrap();
+            assert!(close(s, fd_s, 1e-9), "s at ({theta}, {n}): {s} vs {fd_s}");
+        }
+        eprintln!("worst relative FD deviation of f_t, f_tt, f_n, C_V: {worst:?}");
+    }
+
+    #[test]
+    fn theta_inverts_u_from_any_guess() {
+        for cv in [1.5, 60.0] {
+            let m = LennardJones::new(cv);
+            for (theta, n) in grid() {
+                let u = m.u(theta, n);
+                for guess in [theta, 1.0, 0.0, -1.0, f64::NAN, f64::INFINITY, 1e3, 1e-9] {
+                    let t = m.theta(u, n, guess);
+                    assert!(rel(t, theta) < 1e-12, "cv {cv} ({theta}, {n}) guess {guess}: {t}");
+                }
+                let st = m.state(u, n, theta).unwrap();
+                assert!(rel(st.theta, theta) < 1e-12);
+                assert_eq!(st.pn2, m.pn2(st.theta, n));
+                assert!(st.cv > 1.0);
+            }
+        }
+    }
+
+    #[test]
+    fn theta_solve_covers_the_domain() {
+        let m = LennardJones::new(1.5);
+        for &n in &[0.0, 1e-6, 0.01, 0.3, 0.8, 1.2, 1.5] {
+            for k in 0..=60 {
+                let theta = 1e-3 * (10.0f64).powf(k as f64 / 10.0);
+                if !LennardJones::in_domain(theta, n) {
+                    continue;
+                }
+                let u = m.u(theta, n);
+                assert!(m.cv(theta, n) > 0.0, "C_V <= 0 at ({theta}, {n})");
+                for guess in [f64::NAN, 1.0, 1e3, 1e-3] {
+                    let t = m.theta(u, n, guess);
+                    assert!(rel(t, theta) < 1e-12, "({theta}, {n}) guess {guess}: {t}");
+                }
+            }
+        }
+    }
+
+    /// u(s, n) at fixed s: solve C_V ln theta - f_res,theta(theta, n) = s for theta.
+    fn u_at_entropy(m: &LennardJones, s: f64, n: f64, mut theta: f64) -> f64 {
+        for _ in 0..100 {
+            let r = LennardJones::eval(theta, n);
+            let g = m.cv * theta.ln() - r.ft - s;
+            let step = g / (m.cv / theta - r.ftt); // ds/dtheta = C_V(theta, n)/theta
+            theta -= step;
+            if step.abs() < 1e-15 * theta {
+                break;
+            }
+        }
+        m.u(theta, n)
+    }
+
+    #[test]
+    fn particle_pressure_is_du_dn_at_fixed_entropy() {
+        let m = LennardJones::new(1.5);
+        for (theta, n) in grid() {
+            let u = m.u(theta, n);
+            let s = m.entropy(u, n).unwrap();
+            assert!((u_at_entropy(&m, s, n, theta) - u).abs() < 1e-12 * u.abs().max(1.0));
+            let h = 1e-5;
+            let fd =
+                (u_at_entropy(&m, s, n + h, theta) - u_at_entropy(&m, s, n - h, theta)) / (2.0 * h);
+            let pn2 = m.pn2(theta, n);
+            assert!((fd - pn2).abs() < 1e-7 * pn2.abs().max(1.0), "({theta}, {n}): {fd} vs {pn2}");
+            // theta = du/ds at fixed n (eq 6)
+            let hs = 1e-5;
+            let ts = (u_at_entropy(&m, s + hs, n, theta) - u_at_entropy(&m, s - hs, n, theta))
+                / (2.0 * hs);
+            assert!(rel(ts, theta) < 1e-7, "({theta}, {n}): du/ds {ts}");
+        }
+    }
+
+    #[test]
+    fn states_outside_the_domain_are_errors() {
+        let m = LennardJones::new(1.5);
+        let n = 0.5;
+        // below the ground state (u at the floor of the domain)
+        for u in [-1e12, -1e300, f64::MIN] {
+            let e = m.state(u, n, 1.0);
+            assert!(matches!(e, Err(EosError::NonPositiveTheta { .. })), "{e:?}");
+            assert_eq!(m.theta(u, n, 1.0), 0.0);
+            assert!(m.entropy(u, n).is_none());
+        }
+        // hotter than THETA_MAX, NaN, or denser than the domain at any theta
+        assert!(m.state(1e9, n, 1.0).is_err());
+        assert_eq!(m.theta(1e9, n, 1.0), f64::INFINITY);
+        assert!(m.state(f64::NAN, n, 1.0).is_err());
+        assert!(m.state(f64::INFINITY, n, 1.0).is_err());
+        assert!(m.state(10.0, f64::NAN, 1.0).is_err());
+        assert!(m.state(10.0, 10.0, 1.0).is_err());
+        assert!(m.theta(10.0, -1.0, 1.0).is_nan());
+        // just inside and just outside the edges
+        let lo = LennardJones::THETA_MIN;
+        let u_lo = m.u(lo, 1e-6);
+        assert!(u_lo < 0.0);
+        let above = m.state(u_lo + 1e-9 * u_lo.abs(), 1e-6, 1.0).unwrap();
+        assert!(above.theta >= lo && above.theta < lo * (1.0 + 1e-6));
+        assert_eq!(m.theta(u_lo - 1e-6 * u_lo.abs(), 1e-6, 1.0), 0.0);
+        assert!(m.theta(10.0, 10.0, 1.0).is_nan());
+    }
+
+    #[test]
+    fn isolated_particles_feel_no_pressure() {
+        let m = LennardJones::new(60.0);
+        let st = m.state(90.0, 0.0, 1.5).unwrap();
+        assert_eq!(st.pn2, 0.0);
+        assert!(rel(st.theta, 1.5) < 1e-6);
+        assert!(rel(m.u(st.theta, ISOLATED), 90.0) < 1e-14);
+        assert!(m.density_dependent());
+        assert_eq!(m.kb(), 1.0);
+    }
+
+    use super::super::ISOLATED_DENSITY as ISOLATED;
+}
