@@ -1,13 +1,15 @@
 #!/usr/bin/env bash
-# Builds gendpde and runs the default example, a small van der Waals scene
+# Builds gendpde (with MPI) and runs the default example, a small van der Waals scene
 # (examples/vdw-equilibrium: N = 3375, 500 steps, about half a minute).
 # Extra arguments go to gendpde, e.g.  scripts/run-example.sh -var steps 2000
+# NP=2 scripts/run-example.sh runs it on 2 MPI ranks.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
-if ! command -v cargo >/dev/null; then
-  echo "cargo is missing: install the Rust toolchain (https://rustup.rs)" >&2
-  exit 1
-fi
-cargo build --release --quiet
+source scripts/deps.sh
+install_build_deps
+cargo build --release --quiet --features mpi
 cd examples/vdw-equilibrium
+if [ "${NP:-1}" -gt 1 ]; then
+  exec mpirun --oversubscribe -np "$NP" ../../target/release/gendpde run in.vdw-equilibrium "$@"
+fi
 exec ../../target/release/gendpde run in.vdw-equilibrium "$@"

@@ -205,6 +205,7 @@ impl Interpreter {
                     self.out.open_log(Path::new(&file), append).map_err(|e| a.err(format!("cannot open log file '{file}': {e}")))?;
                 }
             }
+            "write_dump" => crate::dump::write_dump(sim, &mut a)?,
             "run" => {
                 let n = a.u64("the number of steps")?;
                 a.done()?;
@@ -460,7 +461,7 @@ fn thermo_style(sim: &mut Sim, vars: &Variables, a: &mut Args) -> Result<(), Scr
         let known = crate::thermo::heading(k) != k || k.starts_with("v_");
         if !known {
             return Err(a.err(format!(
-                "unknown thermo keyword '{k}'; known: step elapsed time dt cpu atoms temp tint press pe ke etotal edrift vol density lx ly lz v_NAME"
+                "unknown thermo keyword '{k}'; known: step elapsed time dt cpu atoms temp tint press pe ke etotal edrift vol density lx ly lz pxtot pytot pztot v_NAME"
             )));
         }
         if let Some(name) = k.strip_prefix("v_") {

@@ -48,8 +48,10 @@ pub fn run(it: &mut Interpreter, cmd: &Command, nsteps: u64) -> Result<(), AppEr
     let energy0 = *sim.energy0.get_or_insert_with(|| Observables::measure(sys).energy());
     let keys = sim.thermo.keywords.clone();
     let start_step = sys.step;
+    let comm_before = sys.comm.time().as_secs_f64();
     let clock = Instant::now();
-    it.out.line(&format!("Setting up GenDPDE run: {} particles, timestep {} ...", sys.store.nlocal, sim.dt));
+    let natoms = Observables::measure(sys).atoms;
+    it.out.line(&format!("Setting up GenDPDE run: {natoms} particles, timestep {} ...", sim.dt));
     it.out.line(&header_line(&keys));
     let thermo = |it: &mut Interpreter| -> Result<(), AppError> {
         let sim = &it.sim;
@@ -90,7 +92,7 @@ pub fn run(it: &mut Interpreter, cmd: &Command, nsteps: u64) -> Result<(), AppEr
     }
     let secs = clock.elapsed().as_secs_f64();
     let sys = it.sim.system.as_ref().expect("system exists during a run");
-    let n = sys.store.nlocal;
+    let n = Observables::measure(sys).atoms as u64;
     it.out.line(&format!("Loop time of {secs:.6} on {} procs for {nsteps} steps with {n} atoms", sys.comm.size()));
     it.out.line("");
     if secs > 0.0 && nsteps > 0 {
@@ -101,6 +103,10 @@ pub fn run(it: &mut Interpreter, cmd: &Command, nsteps: u64) -> Result<(), AppEr
             rate,
             rate * n as f64 / 1e3
         ));
+    }
+    let comm = sys.comm.time().as_secs_f64() - comm_before;
+    if secs > 0.0 {
+        it.out.line(&format!("Comm time (rank 0) = {comm:.6} s ({:.1} % of the loop)", 100.0 * comm / secs));
     }
     it.out.line(&format!("Neighbor list builds = {}", sys.builds));
     it.out.flush();

@@ -3,7 +3,8 @@
 //! temp = sum p^2/m / (3N - 3) k_B; tint = mean theta; press = the virial pressure of
 //! the conservative force (eq 52; dissipative and random forces are not included);
 //! pe = sum u (the internal energy holds the EOS's configurational energy);
-//! ke = sum p^2/2m; etotal = pe + ke; edrift = (E - E0)/|E0| since the first setup.
+//! ke = sum p^2/2m; etotal = pe + ke; edrift = (E - E0)/|E0| since the first setup;
+//! pxtot, pytot, pztot = total momentum. Sums are decomposition-independent (exact_sums).
 //! With `thermo_modify norm yes` (the lj default) pe, ke and etotal are per particle.
 
 use gendpde_engine::exact_sums;
@@ -37,6 +38,8 @@ pub struct Observables {
     pub virial: f64,
     pub mass: f64,
     pub volume: f64,
+    /// Total momentum.
+    pub momentum: [f64; 3],
 }
 
 impl Observables {
@@ -46,7 +49,7 @@ impl Observables {
         let rows = (0..s.nlocal).map(|i| {
             let p = s.p[i];
             let virial = if s.virial.is_empty() { 0.0 } else { s.virial[i] };
-            [1.0, (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]) / s.mass[i], s.u[i], s.theta[i], s.mass[i], virial]
+            [1.0, (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]) / s.mass[i], s.u[i], s.theta[i], s.mass[i], virial, p[0], p[1], p[2]]
         });
         let sums = exact_sums(sys.comm.transport(), rows);
         Self {
@@ -58,6 +61,7 @@ impl Observables {
             virial: sums[5],
             mass: sums[4],
             volume: sys.domain.volume(),
+            momentum: [sums[6], sums[7], sums[8]],
         }
     }
 
@@ -114,6 +118,9 @@ impl ThermoContext<'_> {
             "lx" => l[0],
             "ly" => l[1],
             "lz" => l[2],
+            "pxtot" => o.momentum[0],
+            "pytot" => o.momentum[1],
+            "pztot" => o.momentum[2],
             _ => return None,
         })
     }
@@ -145,6 +152,9 @@ pub fn heading(name: &str) -> String {
         "lx" => "Lx".into(),
         "ly" => "Ly".into(),
         "lz" => "Lz".into(),
+        "pxtot" => "Pxtot".into(),
+        "pytot" => "Pytot".into(),
+        "pztot" => "Pztot".into(),
         other => other.into(),
     }
 }

@@ -45,6 +45,8 @@ pub struct Comm {
     send: Vec<f64>,
     recv: Vec<f64>,
     written: Vec<bool>,
+    /// Wall time spent in exchanges and collectives.
+    time: std::cell::Cell<std::time::Duration>,
 }
 
 impl Comm {
@@ -56,7 +58,29 @@ impl Comm {
     /// A communicator over `t` with the processor grid `procs` (product = rank count).
     pub fn new(t: Box<dyn Transport>, procs: [usize; 3]) -> Self {
         let grid = ProcGrid::new(procs, t.rank());
-        Self { t, grid, lo: [0; 3], hi: [0; 3], swaps: Vec::new(), send: Vec::new(), recv: Vec::new(), written: Vec::new() }
+        Self {
+            t,
+            grid,
+            lo: [0; 3],
+            hi: [0; 3],
+            swaps: Vec::new(),
+            send: Vec::new(),
+            recv: Vec::new(),
+            written: Vec::new(),
+            time: Default::default(),
+        }
+    }
+
+    /// Wall time spent in communication so far (exchanges, ghosts, collectives).
+    pub fn time(&self) -> std::time::Duration {
+        self.time.get()
+    }
+
+    fn timed<R>(&self, f: impl FnOnce() -> R) -> R {
+        let start = std::time::Instant::now();
+        let r = f();
+        self.time.set(self.time.get() + start.elapsed());
+        r
     }
 
     pub fn rank(&self) -> usize {
@@ -92,7 +116,7 @@ impl Comm {
     /// Largest value over ranks.
     pub fn max(&self, x: f64) -> f64 {
         let mut v = [x];
-        self.t.max(&mut v);
+        self.timed(|| self.t.max(&mut v));
         v[0]
     }
 
@@ -104,6 +128,12 @@ impl Comm {
     /// Wraps owned particles into the box, hands them to the owners of their cells, and
     /// rebuilds the ghost layer: one cell on every side of the sub-domain.
     pub fn exchange(&mut self, store: &mut Particles, domain: &Domain, grid: &CellGrid) {
+        let start = std::time::Instant::now();
+        self.exchange_untimed(store, domain, grid);
+        self.time.set(self.time.get() + start.elapsed());
+    }
+
+    fn exchange_untimed(&mut self, store: &mut Particles, domain: &Domain, grid: &CellGrid) {
         store.truncate_ghosts();
         (self.lo, self.hi) = self.owned_cells(grid);
         for i in 0..store.nlocal {
@@ -187,6 +217,7 @@ impl Comm {
 
     /// Copies `fields` from the owners to all their ghosts.
     pub fn forward(&mut self, store: &mut Particles, fields: Fields) {
+        let start = std::time::Instant::now();
         let width = record_width(store, fields);
         for s in &self.swaps {
             self.send.clear();
@@ -198,12 +229,14 @@ impl Comm {
                 unpack_fields(store, s.recv_start + k, fields, rec);
             }
         }
+        self.time.set(self.time.get() + start.elapsed());
     }
 
     /// Copies `fields` of the listed ghosts back to their owners: values, not deltas.
     /// Within one colour of the sweep each particle has exactly one writer, so only the
     /// ghosts written travel back, hop by hop through the swaps in reverse order.
     pub fn reverse(&mut self, store: &mut Particles, ghosts: &[u32], fields: Fields) {
+        let start = std::time::Instant::now();
         let fields = fields.without(Fields::POSITION);
         let width = 1 + record_width(store, fields);
         self.written.clear();
@@ -228,6 +261,7 @@ impl Comm {
                 }
             }
         }
+        self.time.set(self.time.get() + start.elapsed());
     }
 }
 

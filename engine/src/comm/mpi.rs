@@ -46,6 +46,18 @@ impl Transport for MpiTransport {
         self.world.all_reduce_into(&local[..], values, SystemOperation::max());
     }
 
+    fn gather_to_root(&self, local: &[f64], take: &mut dyn FnMut(&[f64])) {
+        if self.rank() == 0 {
+            take(local);
+            for r in 1..self.size() {
+                let (buf, _) = self.world.process_at_rank(r as i32).receive_vec::<f64>();
+                take(&buf);
+            }
+        } else {
+            self.world.process_at_rank(0).send(local);
+        }
+    }
+
     fn all_gather(&self, local: &[u64]) -> Vec<u64> {
         let mut out = vec![0u64; local.len() * self.size()];
         self.world.all_gather_into(local, &mut out[..]);

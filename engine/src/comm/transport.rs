@@ -12,6 +12,9 @@ pub trait Transport {
     fn max(&self, values: &mut [f64]);
     /// The `local` slices of all ranks, concatenated in rank order.
     fn all_gather(&self, local: &[u64]) -> Vec<u64>;
+    /// Rank 0 receives every other rank's `local` buffer in rank order, one at a time
+    /// (so it never holds more than one rank's share), and hands each to `take`.
+    fn gather_to_root(&self, local: &[f64], take: &mut dyn FnMut(&[f64]));
 }
 
 /// One rank: the world is this process.
@@ -32,5 +35,8 @@ impl Transport for Local {
     fn max(&self, _values: &mut [f64]) {}
     fn all_gather(&self, local: &[u64]) -> Vec<u64> {
         local.to_vec()
+    }
+    fn gather_to_root(&self, local: &[f64], take: &mut dyn FnMut(&[f64])) {
+        take(local);
     }
 }

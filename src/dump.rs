@@ -1,0 +1,132 @@
+//! `write_dump all custom FILE COLUMNS... [modify sort id]`: one snapshot in LAMMPS's
+//! text dump format, sorted by particle ID, written by rank 0.
+//!
+//! Rank 0 collects the particles in blocks of `BLOCK` consecutive IDs, so it never
+//! holds more than BLOCK x columns values (8 MB per column for the default block).
+//! Values are printed in the shortest form that reads back to the same double.
+
+use crate::args::Args;
+use crate::sim::Sim;
+use gendpde_integrators::System;
+use gendpde_io::ScriptError;
+use std::io::Write;
+
+/// Particle IDs per block gathered on rank 0.
+const BLOCK: u64 = 1 << 20;
+
+const COLUMNS: &str = "id type mass x y z xu yu zu ix iy iz vx vy vz px py pz u theta n";
+
+fn value(sys: &System, i: usize, col: &str) -> Option<f64> {
+    let s = &sys.store;
+    let unwrapped = || sys.domain.unwrap(s.r[i], s.image[i]);
+    let v = |k: usize| s.p[i][k] / s.mass[i];
+    Some(match col {
+        "id" => s.tag[i] as f64,
+        "type" => s.kind[i] as f64,
+        "mass" => s.mass[i],
+        "x" => s.r[i][0],
+        "y" => s.r[i][1],
+        "z" => s.r[i][2],
+        "xu" => unwrapped()[0],
+        "yu" => unwrapped()[1],
+        "zu" => unwrapped()[2],
+        "ix" => s.image[i][0] as f64,
+        "iy" => s.image[i][1] as f64,
+        "iz" => s.image[i][2] as f64,
+        "vx" => v(0),
+        "vy" => v(1),
+        "vz" => v(2),
+        "px" => s.p[i][0],
+        "py" => s.p[i][1],
+        "pz" => s.p[i][2],
+        "u" => s.u[i],
+        "theta" => s.theta[i],
+        "n" => s.n.get(i).copied().unwrap_or(0.0),
+        _ => return None,
+    })
+}
+
+fn is_integer(col: &str) -> bool {
+    matches!(col, "id" | "type" | "ix" | "iy" | "iz")
+}
+
+pub fn write_dump(sim: &Sim, a: &mut Args) -> Result<(), ScriptError> {
+    let group = a.word("a group")?;
+    if group != "all" {
+        return Err(a.err(format!("group '{group}': only group all is defined")));
+    }
+    match a.word("a dump style (custom)")? {
+        "custom" => {}
+        s => return Err(a.err(format!("unknown dump style '{s}'; known: custom"))),
+    }
+    let file = a.word("a file name")?.to_string();
+    let mut cols = Vec::new();
+    while let Some(w) = a.peek() {
+        a.word("a column")?;
+        if w == "modify" {
+            match (a.word("sort")?, a.word("id")?) {
+                ("sort", "id") => continue,
+                (k, v) => return Err(a.err(format!("write_dump modify {k} {v}: only 'sort id' is supported (dumps are always sorted)"))),
+            }
+        }
+        if !COLUMNS.split(' ').any(|c| c == w) {
+            return Err(a.err(format!("unknown column '{w}'; known: {COLUMNS}")));
+        }
+        cols.push(w.to_string());
+    }
+    if cols.is_empty() {
+        return Err(a.err("missing argument: expected dump columns"));
+    }
+    let sys = sim.system.as_ref().ok_or_else(|| a.err("write_dump before create_box"))?;
+    let root = sys.comm.rank() == 0;
+    let tmp = format!("{file}.tmp");
+    let mut out = if root {
+        let f = std::fs::File::create(&tmp).map_err(|e| a.err(format!("cannot create '{tmp}': {e}")))?;
+        Some(std::io::BufWriter::new(f))
+    } else {
+        None
+    };
+    let io_err = |e: std::io::Error| a.err(format!("writing '{file}': {e}"));
+    let natoms = crate::thermo::Observables::measure(sys).atoms as u64;
+    if let Some(o) = &mut out {
+        let d = &sys.domain;
+        write!(o, "ITEM: TIMESTEP\n{}\nITEM: NUMBER OF ATOMS\n{natoms}\nITEM: BOX BOUNDS pp pp pp\n", sys.step).map_err(io_err)?;
+        for k in 0..3 {
+            writeln!(o, "{:?} {:?}", d.lo[k], d.hi[k]).map_err(io_err)?;
+        }
+        writeln!(o, "ITEM: ATOMS {}", cols.join(" ")).map_err(io_err)?;
+    }
+    let max_tag = sim.max_tag;
+    let width = cols.len();
+    let mut block = 0;
+    while block * BLOCK < max_tag.max(1) {
+        let (lo, hi) = (block * BLOCK + 1, (block + 1) * BLOCK);
+        let mut local = Vec::new();
+        for i in (0..sys.store.nlocal).filter(|&i| (lo..=hi).contains(&sys.store.tag[i])) {
+            local.extend(cols.iter().map(|c| value(sys, i, c).unwrap_or(f64::NAN)));
+        }
+        let mut rows: Vec<Vec<f64>> = Vec::new();
+        sys.comm.transport().gather_to_root(&local, &mut |buf| rows.extend(buf.chunks_exact(width).map(<[f64]>::to_vec)));
+        if let Some(o) = &mut out {
+            let id = cols.iter().position(|c| c == "id");
+            if let Some(id) = id {
+                rows.sort_unstable_by(|x, y| x[id].total_cmp(&y[id]));
+            }
+            for row in &rows {
+                let line: Vec<String> = row
+                    .iter()
+                    .zip(&cols)
+                    .map(|(v, c)| if is_integer(c) { format!("{}", *v as i64) } else { format!("{v:?}") })
+                    .collect();
+                writeln!(o, "{}", line.join(" ")).map_err(io_err)?;
+            }
+        }
+        block += 1;
+    }
+    if let Some(mut o) = out {
+        o.flush().map_err(io_err)?;
+        drop(o);
+        std::fs::rename(&tmp, &file).map_err(|e| a.err(format!("renaming '{tmp}' to '{file}': {e}")))?;
+    }
+    Ok(())
+}
