@@ -9,7 +9,7 @@ use crate::thermo::{Observables, ThermoContext};
 use crate::{run, velocity};
 use gendpde_engine::{exact_sums, Comm, Domain, Local, ProcGrid, Transport};
 use gendpde_integrators::{StepError, System};
-use gendpde_io::{Command, ScriptError, ScriptReader, Variables};
+use gendpde_io::{AtomStyle, Command, ScriptError, ScriptReader, Variables};
 use std::fmt;
 use std::path::Path;
 
@@ -105,10 +105,14 @@ impl Interpreter {
                 }
                 a.done()?;
             }
-            "atom_style" => match a.word("an atom style")? {
-                "atomic" | "dpd" | "gendpde" => a.done()?,
-                s => return Err(a.err(format!("unknown atom style '{s}'; known: atomic, dpd, gendpde")).into()),
-            },
+            "atom_style" => {
+                sim.atom_style = match a.word("an atom style")? {
+                    "atomic" => AtomStyle::Atomic,
+                    "dpd" | "gendpde" => AtomStyle::Dpd,
+                    s => return Err(a.err(format!("unknown atom style '{s}'; known: atomic, dpd, gendpde")).into()),
+                };
+                a.done()?;
+            }
             "echo" => match a.word("none, screen, log or both")? {
                 "none" | "screen" | "log" | "both" => a.done()?,
                 s => return Err(a.err(format!("expected none, screen, log or both, got '{s}'")).into()),
@@ -126,6 +130,15 @@ impl Interpreter {
                 create_box(sim, &mut a, t)?
             }
             "create_atoms" => create_atoms(sim, &mut a)?,
+            "read_data" => {
+                if sim.system.is_some() {
+                    return Err(a.err("read_data: the box exists already").into());
+                }
+                let t = self.transport.take().ok_or_else(|| a.err("the box exists already"))?;
+                crate::data::read(sim, &mut a, t)?;
+                check_density_cap(sim, &a)?;
+            }
+            "write_data" => crate::data::write(sim, &mut a)?,
             "mass" => mass(sim, &mut a)?,
             "velocity" => velocity::velocity(sim, &mut a)?,
             "set" => set(sim, &mut a)?,

@@ -3,6 +3,7 @@
 
 mod args;
 pub mod commands;
+mod data;
 mod dump;
 pub mod lattice;
 pub mod output;

@@ -80,16 +80,22 @@ pub fn run(it: &mut Interpreter, cmd: &Command, nsteps: u64) -> Result<(), AppEr
     };
     thermo(it)?;
     let every = it.sim.thermo.every;
+    let progress = progress_bar(it.sim.system.as_ref().map_or(1, |s| s.comm.rank()) == 0, nsteps);
     for k in 1..=nsteps {
+        if k % 16 == 0 {
+            progress.set_position(k);
+        }
         let sys = it.sim.system.as_mut().expect("system exists during a run");
         if let Err(e) = physics.step(sys) {
+            progress.finish_and_clear();
             it.out.flush();
             return Err(AppError::Step { cmd: cmd.clone(), err: e });
         }
         if k == nsteps || (every > 0 && sys.step % every == 0) {
-            thermo(it)?;
+            progress.suspend(|| thermo(it))?;
         }
     }
+    progress.finish_and_clear();
     let secs = clock.elapsed().as_secs_f64();
     let sys = it.sim.system.as_ref().expect("system exists during a run");
     let n = Observables::measure(sys).atoms as u64;
@@ -111,4 +117,17 @@ pub fn run(it: &mut Interpreter, cmd: &Command, nsteps: u64) -> Result<(), AppEr
     it.out.line(&format!("Neighbor list builds = {}", sys.builds));
     it.out.flush();
     Ok(())
+}
+
+/// A progress bar with rate and ETA on stderr, shown only when stderr is a terminal.
+fn progress_bar(root: bool, nsteps: u64) -> indicatif::ProgressBar {
+    use std::io::IsTerminal;
+    if !root || !std::io::stderr().is_terminal() || nsteps < 2 {
+        return indicatif::ProgressBar::hidden();
+    }
+    let bar = indicatif::ProgressBar::new(nsteps);
+    let style = indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} steps  {per_sec}  ETA {eta}")
+        .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar());
+    bar.set_style(style);
+    bar
 }

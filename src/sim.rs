@@ -4,6 +4,7 @@ use crate::lattice::{Block, Lattice};
 use crate::styles::{Fix, PairGendpde};
 use crate::thermo::ThermoConfig;
 use gendpde_integrators::{RebuildPolicy, System};
+use gendpde_io::AtomStyle;
 use std::collections::HashMap;
 
 /// Everything the commands of a script have defined so far.
@@ -26,6 +27,8 @@ pub struct Sim {
     pub max_tag: u64,
     /// Ranks per dimension fixed by `processors` (None: chosen to minimise surface).
     pub procs: [Option<usize>; 3],
+    /// Column layout of data files (`atom_style dpd` or `gendpde`: with dpdTheta).
+    pub atom_style: AtomStyle,
 }
 
 impl Default for Sim {
@@ -46,6 +49,7 @@ impl Default for Sim {
             energy0: None,
             max_tag: 0,
             procs: [None; 3],
+            atom_style: AtomStyle::Atomic,
         }
     }
 }

@@ -1,0 +1,95 @@
+//! `read_data FILE` and `write_data FILE`: LAMMPS data files (atom styles atomic and
+//! dpd, whose `dpdTheta` column sets the particle temperature), so LAMMPS DPDE inputs
+//! run unchanged.
+
+use crate::args::Args;
+use crate::sim::Sim;
+use gendpde_engine::{exact_sums, Comm, Domain, ProcGrid, Transport};
+use gendpde_integrators::System;
+use gendpde_io::{read_data, write_data, DataAtom, DataFile, ScriptError};
+use std::path::Path;
+
+/// Creates the box, the types' masses and the particles of a data file. Every rank
+/// parses the file and keeps the particles of its part of the box.
+pub fn read(sim: &mut Sim, a: &mut Args, transport: Box<dyn Transport>) -> Result<(), ScriptError> {
+    let file = a.word("a data file")?;
+    a.done()?;
+    let data = read_data(Path::new(file), sim.atom_style)?;
+    let domain = Domain::new(data.lo, data.hi);
+    let procs = ProcGrid::choose(transport.size(), domain.len(), sim.procs).map_err(|e| a.err(e))?;
+    let mut sys = System::new(domain, Comm::new(transport, procs));
+    let max_tag = data.atoms.iter().map(|at| at.tag).max().unwrap_or(0);
+    if max_tag > u32::MAX as u64 {
+        return Err(a.err(format!("particle ID {max_tag} in '{file}' does not fit in 32 bits")));
+    }
+    let velocities: std::collections::HashMap<u64, [f64; 3]> = data.velocities.iter().flatten().copied().collect();
+    for at in &data.atoms {
+        if !sys.comm.keeps(&sys.domain, at.r) {
+            continue;
+        }
+        let mass = data.masses[at.kind as usize - 1].unwrap_or(f64::NAN);
+        sys.store.push(at.tag, at.kind, mass, at.r);
+        let i = sys.store.nlocal - 1;
+        sys.store.image[i] = at.image;
+        if let Some(v) = velocities.get(&at.tag) {
+            sys.store.p[i] = v.map(|c| c * mass);
+        }
+        if let Some(theta) = at.theta {
+            sys.store.theta[i] = theta;
+            sys.store.theta_given[i] = true;
+        }
+    }
+    sim.ntypes = data.ntypes;
+    sim.masses = data.masses;
+    sim.max_tag = max_tag;
+    sim.system = Some(sys);
+    Ok(())
+}
+
+/// Writes the current particles as a data file (rank 0 gathers them; its memory holds
+/// the whole system, about 100 bytes per particle).
+pub fn write(sim: &Sim, a: &mut Args) -> Result<(), ScriptError> {
+    let file = a.word("a data file")?;
+    a.done()?;
+    let sys = sim.system.as_ref().ok_or_else(|| a.err("write_data before create_box"))?;
+    let s = &sys.store;
+    let mut local = Vec::with_capacity(s.nlocal * 12);
+    for i in 0..s.nlocal {
+        let v = s.p[i].map(|c| c / s.mass[i]);
+        local.extend_from_slice(&[s.tag[i] as f64, s.kind[i] as f64, s.theta[i], s.r[i][0], s.r[i][1], s.r[i][2]]);
+        local.extend(s.image[i].iter().map(|&x| x as f64));
+        local.extend_from_slice(&v);
+    }
+    let mut atoms = Vec::new();
+    let mut velocities = Vec::new();
+    sys.comm.transport().gather_to_root(&local, &mut |buf| {
+        for row in buf.chunks_exact(12) {
+            let tag = row[0] as u64;
+            atoms.push(DataAtom {
+                tag,
+                kind: row[1] as u32,
+                theta: Some(row[2]),
+                r: [row[3], row[4], row[5]],
+                image: [row[6] as i32, row[7] as i32, row[8] as i32],
+            });
+            velocities.push((tag, [row[9], row[10], row[11]]));
+        }
+    });
+    let [count] = exact_sums(sys.comm.transport(), (0..s.nlocal).map(|_| [1.0]));
+    if sys.comm.rank() != 0 {
+        return Ok(());
+    }
+    atoms.sort_unstable_by_key(|at| at.tag);
+    velocities.sort_unstable_by_key(|v| v.0);
+    let data = DataFile {
+        title: format!("gendpde data file, step {}", sys.step),
+        natoms: count as usize,
+        ntypes: sim.ntypes,
+        lo: sys.domain.lo,
+        hi: sys.domain.hi,
+        masses: sim.masses.clone(),
+        atoms,
+        velocities: Some(velocities),
+    };
+    write_data(Path::new(file), &data, sim.atom_style).map_err(|e| a.err(format!("writing '{file}': {e}")))
+}
