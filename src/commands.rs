@@ -139,6 +139,44 @@ impl Interpreter {
                 check_density_cap(sim, &a)?;
             }
             "write_data" => crate::data::write(sim, &mut a)?,
+            "write_restart" => {
+                let file = a.word("a restart file")?.to_string();
+                a.done()?;
+                crate::restart::write(sim, &file).map_err(|e| a.err(e))?;
+            }
+            "read_restart" => {
+                let file = a.word("a restart file")?.to_string();
+                a.done()?;
+                if sim.system.is_some() {
+                    return Err(a.err("read_restart: the box exists already").into());
+                }
+                let t = self.transport.take().ok_or_else(|| a.err("the box exists already"))?;
+                let commands = crate::restart::read(sim, &file, t).map_err(|e| a.err(e))?;
+                let text = commands.join("\n") + "\n";
+                self.execute_str(&format!("{file} (stored commands)"), &text)?;
+            }
+            "checkpoint" => {
+                let every = a.u64("the checkpoint interval N (0: off)")?;
+                let file = a.word("a restart file")?.to_string();
+                a.done()?;
+                sim.checkpoint = (every > 0).then_some((every, file));
+            }
+            "dump" => {
+                let dump = crate::h5md_out::H5mdDump::parse(&mut a)?;
+                if sim.dumps.iter().any(|d| d.id == dump.id) {
+                    return Err(a.err(format!("dump ID '{}' is in use (undump it first)", dump.id)).into());
+                }
+                sim.dumps.push(dump);
+            }
+            "undump" => {
+                let id = a.word("a dump ID")?;
+                a.done()?;
+                let before = sim.dumps.len();
+                sim.dumps.retain(|d| d.id != id);
+                if sim.dumps.len() == before {
+                    return Err(a.err(format!("no dump with ID '{id}'")).into());
+                }
+            }
             "mass" => mass(sim, &mut a)?,
             "velocity" => velocity::velocity(sim, &mut a)?,
             "set" => set(sim, &mut a)?,
@@ -147,10 +185,13 @@ impl Interpreter {
                     return Err(a.err("pair_style comes after create_box").into());
                 }
                 sim.pair = Some(styles::parse_pair_style(cmd)?);
+                sim.pair_text = vec![echo(cmd)];
             }
             "pair_coeff" => {
                 let pair = sim.pair.as_mut().ok_or_else(|| a.err("pair_coeff before pair_style"))?;
                 pair.coeff = Some(styles::parse_pair_coeff(cmd, pair, sim.ntypes)?);
+                sim.pair_text.truncate(1);
+                sim.pair_text.push(echo(cmd));
             }
             "fix" => {
                 let fix = styles::parse_fix(cmd)?;
@@ -231,7 +272,7 @@ impl Interpreter {
 }
 
 /// The command as LAMMPS echoes it to the log.
-fn echo(cmd: &Command) -> String {
+pub fn echo(cmd: &Command) -> String {
     std::iter::once(cmd.name.as_str()).chain(cmd.args.iter().map(String::as_str)).collect::<Vec<_>>().join(" ")
 }
 

@@ -1,8 +1,8 @@
 //! `write_dump all custom FILE COLUMNS... [modify sort id]`: one snapshot in LAMMPS's
 //! text dump format, sorted by particle ID, written by rank 0.
 //!
-//! Rank 0 collects the particles in blocks of `BLOCK` consecutive IDs, so it never
-//! holds more than BLOCK x columns values (8 MB per column for the default block).
+//! Rank 0 collects the particles in blocks of 2^20 consecutive IDs (`gather`), so it
+//! never holds more than 2^20 rows (8 MB per column).
 //! Values are printed in the shortest form that reads back to the same double.
 
 use crate::args::Args;
@@ -10,9 +10,6 @@ use crate::sim::Sim;
 use gendpde_integrators::System;
 use gendpde_io::ScriptError;
 use std::io::Write;
-
-/// Particle IDs per block gathered on rank 0.
-const BLOCK: u64 = 1 << 20;
 
 const COLUMNS: &str = "id type mass x y z xu yu zu ix iy iz vx vy vz px py pz u theta n";
 
@@ -96,33 +93,23 @@ pub fn write_dump(sim: &Sim, a: &mut Args) -> Result<(), ScriptError> {
         }
         writeln!(o, "ITEM: ATOMS {}", cols.join(" ")).map_err(io_err)?;
     }
-    let max_tag = sim.max_tag;
-    let width = cols.len();
-    let mut block = 0;
-    while block * BLOCK < max_tag.max(1) {
-        let (lo, hi) = (block * BLOCK + 1, (block + 1) * BLOCK);
-        let mut local = Vec::new();
-        for i in (0..sys.store.nlocal).filter(|&i| (lo..=hi).contains(&sys.store.tag[i])) {
-            local.extend(cols.iter().map(|c| value(sys, i, c).unwrap_or(f64::NAN)));
+    let mut emit = |rows: &[f64]| -> std::io::Result<()> {
+        let Some(o) = &mut out else { return Ok(()) };
+        for row in rows.chunks_exact(cols.len() + 1) {
+            let line: Vec<String> = row[1..]
+                .iter()
+                .zip(&cols)
+                .map(|(v, c)| if is_integer(c) { format!("{}", *v as i64) } else { format!("{v:?}") })
+                .collect();
+            writeln!(o, "{}", line.join(" "))?;
         }
-        let mut rows: Vec<Vec<f64>> = Vec::new();
-        sys.comm.transport().gather_to_root(&local, &mut |buf| rows.extend(buf.chunks_exact(width).map(<[f64]>::to_vec)));
-        if let Some(o) = &mut out {
-            let id = cols.iter().position(|c| c == "id");
-            if let Some(id) = id {
-                rows.sort_unstable_by(|x, y| x[id].total_cmp(&y[id]));
-            }
-            for row in &rows {
-                let line: Vec<String> = row
-                    .iter()
-                    .zip(&cols)
-                    .map(|(v, c)| if is_integer(c) { format!("{}", *v as i64) } else { format!("{v:?}") })
-                    .collect();
-                writeln!(o, "{}", line.join(" ")).map_err(io_err)?;
-            }
-        }
-        block += 1;
-    }
+        Ok(())
+    };
+    let row = |i: usize, buf: &mut Vec<f64>| {
+        buf.push(sys.store.tag[i] as f64);
+        buf.extend(cols.iter().map(|c| value(sys, i, c).unwrap_or(f64::NAN)));
+    };
+    crate::gather::sorted_rows(sys, sim.max_tag, cols.len() + 1, row, &mut emit).map_err(io_err)?;
     if let Some(mut o) = out {
         o.flush().map_err(io_err)?;
         drop(o);

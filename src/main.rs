@@ -37,6 +37,44 @@ enum Cmd {
         #[command(flatten)]
         script: ScriptArgs,
     },
+    /// Evaluate a particle EOS: gendpde eos MODEL PARAMS... --theta T --n N (or --u U).
+    /// MODEL and PARAMS as in `fix ID all eos/MODEL PARAMS`, e.g. `vdw 60 2.4682 1.4142`.
+    Eos {
+        /// vdw, lj, ideal, cv, density or linear.
+        model: String,
+        /// The EOS parameters (C_V first).
+        #[arg(allow_negative_numbers = true)]
+        params: Vec<String>,
+        #[arg(long)]
+        theta: Option<f64>,
+        #[arg(long)]
+        u: Option<f64>,
+        #[arg(long)]
+        n: f64,
+    },
+}
+
+/// `gendpde eos`: one `name value` line per quantity.
+fn eos(model: String, params: Vec<String>, theta: Option<f64>, u: Option<f64>, n: f64) -> ExitCode {
+    let mut args = vec!["eos".to_string(), "all".to_string(), format!("eos/{model}")];
+    args.extend(params);
+    let cmd = gendpde_io::Command { name: "fix".into(), args, loc: gendpde_io::Location { file: "<command line>".into(), line: 0 } };
+    let result = gendpde::styles::parse_fix(&cmd).map_err(|e| e.message).and_then(|fix| match fix.style {
+        gendpde::styles::FixStyle::Eos(m) => m.describe(theta, u, n),
+        _ => Err(format!("unknown EOS model '{model}'")),
+    });
+    match result {
+        Ok(lines) => {
+            for (name, value) in lines {
+                println!("{name} {}", gendpde_io::format_g(value, 15));
+            }
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("ERROR: {e}");
+            ExitCode::FAILURE
+        }
+    }
 }
 
 /// LAMMPS spells long options with one dash (`-var`, `-log`, `-in`).
@@ -75,6 +113,7 @@ fn main() -> ExitCode {
     let (script, mode, log) = match cli.command {
         Cmd::Run { script, log } => (script, Mode::Run, Some(log)),
         Cmd::Check { script } => (script, Mode::Check, None),
+        Cmd::Eos { model, params, theta, u, n } => return eos(model, params, theta, u, n),
     };
     let transport = transport();
     let rank = transport.rank();

@@ -79,6 +79,8 @@ pub fn run(it: &mut Interpreter, cmd: &Command, nsteps: u64) -> Result<(), AppEr
         Ok(())
     };
     thermo(it)?;
+    outputs(it, cmd, false)?;
+    let mut last_good = gendpde_integrators::Snapshot::default();
     let every = it.sim.thermo.every;
     let progress = progress_bar(it.sim.system.as_ref().map_or(1, |s| s.comm.rank()) == 0, nsteps);
     for k in 1..=nsteps {
@@ -86,14 +88,22 @@ pub fn run(it: &mut Interpreter, cmd: &Command, nsteps: u64) -> Result<(), AppEr
             progress.set_position(k);
         }
         let sys = it.sim.system.as_mut().expect("system exists during a run");
-        if let Err(e) = physics.step(sys) {
+        sys.save(&mut last_good);
+        if let Err(mut e) = physics.step(sys) {
             progress.finish_and_clear();
+            sys.restore(&last_good);
+            let file = it.sim.checkpoint.as_ref().map_or_else(|| "failed.restart.h5".to_string(), |c| c.1.replace('*', &e.step.to_string()));
+            e.what = match crate::restart::write(&it.sim, &file) {
+                Ok(()) => format!("{}; the last good state (step {}) is in {file}", e.what, e.step),
+                Err(w) => format!("{}; writing the last good state to {file} failed: {w}", e.what),
+            };
             it.out.flush();
             return Err(AppError::Step { cmd: cmd.clone(), err: e });
         }
         if k == nsteps || (every > 0 && sys.step % every == 0) {
             progress.suspend(|| thermo(it))?;
         }
+        outputs(it, cmd, true)?;
     }
     progress.finish_and_clear();
     let secs = clock.elapsed().as_secs_f64();
@@ -130,4 +140,25 @@ fn progress_bar(root: bool, nsteps: u64) -> indicatif::ProgressBar {
         .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar());
     bar.set_style(style);
     bar
+}
+
+/// H5MD frames due at this step, and the periodic checkpoint (`checkpoint`) when
+/// `checkpoints` is set.
+fn outputs(it: &mut Interpreter, cmd: &Command, checkpoints: bool) -> Result<(), AppError> {
+    let err = |m: String| AppError::Script(ScriptError::at(cmd, m));
+    let sim = &mut it.sim;
+    let sys = sim.system.as_ref().expect("system exists during a run");
+    if !sim.dumps.is_empty() {
+        let natoms = Observables::measure(sys).atoms as usize;
+        for d in &mut sim.dumps {
+            d.maybe_write(sys, natoms, sim.max_tag).map_err(|e| err(format!("dump {}: {e}", d.id)))?;
+        }
+    }
+    if let Some((every, file)) = &sim.checkpoint {
+        if checkpoints && sys.step % every == 0 {
+            let file = file.replace('*', &sys.step.to_string());
+            crate::restart::write(sim, &file).map_err(|e| err(format!("checkpoint: {e}")))?;
+        }
+    }
+    Ok(())
 }

@@ -1,5 +1,6 @@
 //! The model a script builds: box, particles, styles and run settings.
 
+use crate::h5md_out::H5mdDump;
 use crate::lattice::{Block, Lattice};
 use crate::styles::{Fix, PairGendpde};
 use crate::thermo::ThermoConfig;
@@ -29,6 +30,12 @@ pub struct Sim {
     pub procs: [Option<usize>; 3],
     /// Column layout of data files (`atom_style dpd` or `gendpde`: with dpdTheta).
     pub atom_style: AtomStyle,
+    /// The `pair_style` and `pair_coeff` commands in force, as text (for restarts).
+    pub pair_text: Vec<String>,
+    /// `checkpoint N FILE`: a restart file every N steps.
+    pub checkpoint: Option<(u64, String)>,
+    /// `dump ... h5md` outputs.
+    pub dumps: Vec<H5mdDump>,
 }
 
 impl Default for Sim {
@@ -50,6 +57,24 @@ impl Default for Sim {
             max_tag: 0,
             procs: [None; 3],
             atom_style: AtomStyle::Atomic,
+            pair_text: Vec::new(),
+            checkpoint: None,
+            dumps: Vec::new(),
         }
+    }
+}
+
+impl Sim {
+    /// Commands that re-create the styles and run settings, for a restart file. Values
+    /// print in round-trip form.
+    pub fn style_commands(&self) -> Vec<String> {
+        let mut c = vec![format!("atom_style {}", self.atom_style.name())];
+        c.extend(self.pair_text.iter().cloned());
+        c.extend(self.fixes.iter().map(|f| f.text.clone()));
+        c.push(format!("timestep {:?}", self.dt));
+        c.push(format!("neighbor {:?} bin", self.skin));
+        let r = &self.rebuild;
+        c.push(format!("neigh_modify every {} delay {} check {}", r.every, r.delay, if r.check { "yes" } else { "no" }));
+        c
     }
 }

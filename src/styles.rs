@@ -6,7 +6,7 @@
 use crate::args::Args;
 use gendpde_integrators::{Dissipation, GenDpde, HeatModel, Physics, RebuildPolicy, Reservoir, Settings};
 use gendpde_io::{Command, ScriptError};
-use gendpde_potentials::{CubicSpline, Eos, LinearTheta, Linear, Lucy, Quadratic, WeightKind};
+use gendpde_potentials::{CubicSpline, Eos, LennardJones, LinearTheta, Linear, Lucy, Quadratic, WeightKind};
 
 /// `pair_style gendpde CUTOFF SEED [weight W]` with `pair_coeff * * GAMMA KAPPA [RC_D [RC_H]]`.
 #[derive(Clone, Debug, PartialEq)]
@@ -30,6 +30,7 @@ pub struct PairCoeff {
 #[derive(Clone, Debug, PartialEq)]
 pub enum EosModel {
     Linear(LinearTheta),
+    Lj(LennardJones),
 }
 
 impl EosModel {
@@ -37,8 +38,34 @@ impl EosModel {
     pub fn max_density(&self) -> Option<f64> {
         match self {
             Self::Linear(e) => e.max_density(),
+            Self::Lj(e) => e.max_density(),
         }
     }
+
+    /// The state at (theta, n), or at (u, n) when `u` is given: `name value` pairs as
+    /// `gendpde eos` prints them.
+    pub fn describe(&self, theta: Option<f64>, u: Option<f64>, n: f64) -> Result<Vec<(&'static str, f64)>, String> {
+        match self {
+            Self::Linear(e) => describe(e, theta, u, n),
+            Self::Lj(e) => describe(e, theta, u, n),
+        }
+    }
+}
+
+/// u, theta, n, the particle (excess) pressure pi, the total pressure n k_B theta + pi,
+/// C_V, the dressed temperature tau (eq 23) and the entropy s.
+fn describe<E: Eos>(eos: &E, theta: Option<f64>, u: Option<f64>, n: f64) -> Result<Vec<(&'static str, f64)>, String> {
+    let u = match (theta, u) {
+        (_, Some(u)) => u,
+        (Some(t), None) => eos.u(t, n),
+        (None, None) => return Err("give --theta or --u".into()),
+    };
+    let st = eos.state(u, n, theta.unwrap_or(1.0)).map_err(|e| e.to_string())?;
+    let pi = st.pn2 * n * n;
+    let mut out = vec![("u", u), ("theta", st.theta), ("n", n), ("pi", pi), ("pressure", n * eos.kb() * st.theta + pi), ("cv", st.cv)];
+    out.push(("tau", 1.0 / eos.inv_tau(st.theta, st.cv)));
+    out.push(("s", eos.entropy(u, n).unwrap_or(f64::NAN)));
+    Ok(out)
 }
 
 /// The fix styles.
@@ -57,9 +84,11 @@ pub enum FixStyle {
 pub struct Fix {
     pub id: String,
     pub style: FixStyle,
+    /// The command as written (restart files re-create fixes from it).
+    pub text: String,
 }
 
-pub const FIX_STYLES: &str = "eos/vdw, eos/ideal, eos/cv, eos/density, eos/linear, nve/gendpde, shardlow, heat/reservoir";
+pub const FIX_STYLES: &str = "eos/vdw, eos/lj, eos/ideal, eos/cv, eos/density, eos/linear, nve/gendpde, shardlow, heat/reservoir";
 
 pub fn parse_pair_style(cmd: &Command) -> Result<PairGendpde, ScriptError> {
     let mut a = Args::new(cmd);
@@ -123,7 +152,7 @@ pub fn parse_fix(cmd: &Command) -> Result<Fix, ScriptError> {
         other => return Err(a.err(format!("unknown fix style '{other}'; known: {FIX_STYLES}"))),
     };
     a.done()?;
-    Ok(Fix { id, style })
+    Ok(Fix { id, style, text: crate::commands::echo(cmd) })
 }
 
 fn heat_keyword(a: &mut Args) -> Result<Option<HeatModel>, ScriptError> {
@@ -138,7 +167,7 @@ fn heat_keyword(a: &mut Args) -> Result<Option<HeatModel>, ScriptError> {
     }
 }
 
-/// The EOS fixes: `eos/vdw CV A B [excess|full] [cap F]`, `eos/ideal CV`, `eos/cv CV`,
+/// The EOS fixes: `eos/vdw CV A B [excess|full] [cap F]`, `eos/lj CV`, `eos/ideal CV`, `eos/cv CV`,
 /// `eos/density CV c1 [c2 ...]`, `eos/linear CV Q R B [c1 ...]`.
 pub fn parse_eos(style: &str, a: &mut Args) -> Result<EosModel, ScriptError> {
     let cv = a.positive("the heat capacity C_V")?;
@@ -166,6 +195,7 @@ pub fn parse_eos(style: &str, a: &mut Args) -> Result<EosModel, ScriptError> {
             }
             e
         }
+        "eos/lj" => return Ok(EosModel::Lj(LennardJones::new(cv))),
         "eos/ideal" => LinearTheta::ideal(cv),
         "eos/cv" => LinearTheta::cv_only(cv),
         "eos/density" => LinearTheta::density_only(cv, coefficients(a)?),
@@ -239,8 +269,10 @@ pub fn build_physics(
         }
     }
     let settings = Settings { dt, skin, rebuild, verlet, dissipation, reservoir };
-    let EosModel::Linear(e) = eos;
-    Ok(with_weight(e, pair.weight, pair.cutoff, settings))
+    Ok(match eos {
+        EosModel::Linear(e) => with_weight(e, pair.weight, pair.cutoff, settings),
+        EosModel::Lj(e) => with_weight(e, pair.weight, pair.cutoff, settings),
+    })
 }
 
 /// Monomorphises the dynamics over the weight function.

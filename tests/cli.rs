@@ -124,4 +124,9 @@ fn a_blow_up_during_the_run_names_step_and_particle() {
     assert!(!out.status.success(), "the run should stop");
     assert!(err.contains("run stopped: particle ") && err.contains(" after step "), "{err}");
     assert!(!err.contains("internal error"), "{err}");
+    // the last good state was written and loads
+    assert!(err.contains("the last good state (step ") && err.contains("failed.restart.h5"), "{err}");
+    std::fs::write(dir.join("in.load"), "read_restart failed.restart.h5\nrun 0\n").unwrap();
+    let out = gendpde(&["run", "in.load", "-log", "none"], &dir);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
 }

@@ -109,3 +109,23 @@ fn too_many_ranks_for_the_box_is_refused_before_any_step() {
     assert!(!out.status.success());
     assert!(err.contains("8 ranks along x need at least 8 cells") && err.contains("use at most 4 ranks along x"), "{err}");
 }
+
+#[test]
+fn restart_on_two_ranks_continues_bit_identically() {
+    let dir = tempdir("restart");
+    let script = std::fs::read_to_string(common::example("vdw-equilibrium")).unwrap().replace(
+        "run          ${steps}",
+        "checkpoint 50 ck.*.h5\nrun ${steps}\nwrite_dump all custom straight.dump id x y z px py pz u theta",
+    );
+    std::fs::write(dir.join("in.straight"), script).unwrap();
+    std::fs::write(dir.join("in.continue"), "read_restart ck.50.h5\nrun 50\nwrite_dump all custom continued.dump id x y z px py pz u theta\n").unwrap();
+    let vars = ["-var", "n", "11", "-var", "rc", "3.0", "-var", "steps", "100"];
+    let mut args = vec!["run", "in.straight", "-log", "none"];
+    args.extend(vars);
+    let out = mpirun(2, &dir, &args);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let out = mpirun(2, &dir, &["run", "in.continue", "-log", "none"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let (a, b) = (std::fs::read(dir.join("straight.dump")).unwrap(), std::fs::read(dir.join("continued.dump")).unwrap());
+    assert!(a == b, "2-rank continuation differs from the straight 2-rank run");
+}

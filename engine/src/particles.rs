@@ -25,6 +25,8 @@ pub struct Particles {
     pub image: Vec<[i32; 3]>,
     /// Global cell coordinates at the last rebuild (ghosts: outside 0..n).
     pub cell: Vec<[i32; 3]>,
+    /// Position at the last rebuild (owned particles), for the skin criterion.
+    pub r_build: Vec<Vec3>,
     /// Conservative force.
     pub f: Vec<Vec3>,
     /// Local density n (eq 2); empty for pairwise scenes.
@@ -65,6 +67,7 @@ impl Particles {
         self.theta_given.push(false);
         self.image.push([0; 3]);
         self.cell.push([0; 3]);
+        self.r_build.push(r);
         self.nlocal += 1;
         self.resize_derived(self.len());
     }
@@ -95,6 +98,7 @@ impl Particles {
         self.theta_given.truncate(len);
         self.image.truncate(len);
         self.cell.truncate(len);
+        self.r_build.truncate(len);
         self.resize_derived(len);
     }
 
@@ -119,10 +123,17 @@ impl Particles {
         buf.extend_from_slice(&self.p[i]);
         buf.extend_from_slice(&[self.u[i], self.theta[i], self.theta_given[i] as u8 as f64]);
         buf.extend(self.image[i].iter().map(|&x| x as f64));
+        buf.extend(self.cell[i].iter().map(|&x| x as f64));
+        buf.extend_from_slice(&self.r_build[i]);
     }
 
     /// Length of one `pack_owned` record.
-    pub const OWNED_RECORD: usize = 15;
+    pub const OWNED_RECORD: usize = 21;
+
+    /// The cell a `pack_owned` record carries.
+    pub fn record_cell(rec: &[f64]) -> [i32; 3] {
+        [rec[15] as i32, rec[16] as i32, rec[17] as i32]
+    }
 
     /// Appends an owned particle from a `pack_owned` record (no ghosts may exist).
     pub fn unpack_owned(&mut self, rec: &[f64]) {
@@ -133,6 +144,7 @@ impl Particles {
         self.theta[i] = rec[10];
         self.theta_given[i] = rec[11] != 0.0;
         self.image[i] = [rec[12] as i32, rec[13] as i32, rec[14] as i32];
+        self.r_build[i] = [rec[18], rec[19], rec[20]];
     }
 
     /// Removes owned particle `i` (the last owned particle takes its index; no ghosts
@@ -149,6 +161,7 @@ impl Particles {
         self.theta_given.swap_remove(i);
         self.image.swap_remove(i);
         self.cell.swap_remove(i);
+        self.r_build.swap_remove(i);
         self.nlocal -= 1;
         self.resize_derived(self.nlocal);
     }
@@ -189,6 +202,7 @@ impl Particles {
         self.theta_given.push(false);
         self.image.push([0; 3]);
         self.cell.push([rec[11] as i32, rec[12] as i32, rec[13] as i32]);
+        self.r_build.push([rec[3], rec[4], rec[5]]);
         let len = self.len();
         self.resize_derived(len);
         let mut k = 14;

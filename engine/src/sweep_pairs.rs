@@ -111,7 +111,7 @@ mod tests {
             s.push(tag * 7 % 701, 1, 1.0, r);
         }
         let mut comm = Comm::serial();
-        comm.exchange(&mut s, &domain, &grid);
+        comm.exchange(&mut s, &domain, &grid, false);
         let mut bins = CellBins::default();
         let (lo, hi) = comm.owned_cells(&grid);
         bins.build(&s.cell, lo, hi);

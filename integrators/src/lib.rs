@@ -17,4 +17,4 @@ pub use error::StepError;
 pub use heat::HeatModel;
 pub use physics::{GenDpde, Physics, SetupError};
 pub use settings::{Dissipation, RebuildPolicy, Reservoir, Settings};
-pub use system::System;
+pub use system::{Snapshot, System};

@@ -2,7 +2,7 @@
 
 use crate::error::StepError;
 use gendpde_engine::cells::CellBins;
-use gendpde_engine::{dot, sub, CellGrid, Comm, Domain, NeighborList, Particles, SweepPairs, Vec3};
+use gendpde_engine::{dot, sub, CellGrid, Comm, Domain, NeighborList, Particles, SweepPairs};
 
 /// State that the step mutates.
 pub struct System {
@@ -25,8 +25,11 @@ pub struct System {
     pub last_build: u64,
     /// Number of list builds so far.
     pub builds: u64,
-    /// Owned positions at the last list build.
-    r_at_build: Vec<Vec3>,
+    /// The particles, cells and build positions were read from a restart: the next
+    /// build keeps them as stored, so the lists come out as when it was written.
+    pub restored: bool,
+    /// Cell counts of the grid the restored cells belong to.
+    pub restored_grid: Option<[usize; 3]>,
 }
 
 impl System {
@@ -45,7 +48,8 @@ impl System {
             time: 0.0,
             last_build: 0,
             builds: 0,
-            r_at_build: Vec::new(),
+            restored: false,
+            restored_grid: None,
         }
     }
 
@@ -68,6 +72,15 @@ impl System {
                 ));
             }
         }
+        if self.restored && self.restored_grid != Some(grid.count) {
+            log::warn!(
+                "the cell grid {:?} differs from the restart's {:?} (other cutoffs or skin): lists are rebuilt \
+                 and the continuation is not bit-identical",
+                grid.count,
+                self.restored_grid
+            );
+            self.restored = false;
+        }
         self.grid = Some(grid);
         Ok(())
     }
@@ -85,7 +98,8 @@ impl System {
     /// `at_step` is the step whose positions the lists are built from.
     pub fn rebuild(&mut self, density_radius: Option<f64>, sweep_radius: Option<f64>, at_step: u64) {
         let grid = self.grid.as_ref().expect("grid laid before rebuild");
-        self.comm.exchange(&mut self.store, &self.domain, grid);
+        let restored = std::mem::take(&mut self.restored);
+        self.comm.exchange(&mut self.store, &self.domain, grid, restored);
         let (lo, hi) = self.comm.owned_cells(grid);
         self.bins.build(&self.store.cell, lo, hi);
         if let Some(radius) = density_radius {
@@ -96,24 +110,62 @@ impl System {
         if let Some(radius) = sweep_radius {
             self.sweep.build(&self.store, &self.bins, lo, hi, radius);
         }
-        self.last_build = at_step;
+        if !restored {
+            self.last_build = at_step;
+            let s = &mut self.store;
+            s.r_build[..s.nlocal].copy_from_slice(&s.r[..s.nlocal]);
+        }
         self.builds += 1;
-        self.r_at_build.clear();
-        self.r_at_build.extend_from_slice(&self.store.r[..self.store.nlocal]);
     }
 }
 
 impl System {
     /// Largest displacement of an owned particle since the last list build (this rank).
     pub fn displacement_since_build(&self) -> f64 {
-        if self.r_at_build.len() != self.store.nlocal {
-            return f64::INFINITY;
-        }
+        let s = &self.store;
         let mut m: f64 = 0.0;
-        for (r, r0) in self.store.r[..self.store.nlocal].iter().zip(&self.r_at_build) {
+        for (r, r0) in s.r[..s.nlocal].iter().zip(&s.r_build[..s.nlocal]) {
             let d = sub(*r, *r0);
             m = m.max(dot(d, d));
         }
         m.sqrt()
+    }
+}
+
+/// The owned particles of one step, kept so a failed step can be undone and written out.
+#[derive(Clone, Debug, Default)]
+pub struct Snapshot {
+    records: Vec<f64>,
+    step: u64,
+    time: f64,
+    last_build: u64,
+}
+
+impl System {
+    /// Saves the owned particles and the clock into `snap` (reusing its memory).
+    pub fn save(&self, snap: &mut Snapshot) {
+        snap.records.clear();
+        for i in 0..self.store.nlocal {
+            self.store.pack_owned(i, &mut snap.records);
+        }
+        (snap.step, snap.time, snap.last_build) = (self.step, self.time, self.last_build);
+    }
+
+    /// Puts back the owned particles and the clock of `snap`; ghosts and lists are
+    /// dropped (the next setup rebuilds them from the saved cells).
+    pub fn restore(&mut self, snap: &Snapshot) {
+        let s = &mut self.store;
+        s.truncate_ghosts();
+        while s.nlocal > 0 {
+            s.remove_owned(s.nlocal - 1);
+        }
+        for rec in snap.records.chunks_exact(Particles::OWNED_RECORD) {
+            s.unpack_owned(rec);
+            let i = s.nlocal - 1;
+            s.cell[i] = Particles::record_cell(rec);
+        }
+        (self.step, self.time, self.last_build) = (snap.step, snap.time, snap.last_build);
+        self.restored = true;
+        self.restored_grid = self.grid.as_ref().map(|g| g.count);
     }
 }

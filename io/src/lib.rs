@@ -5,11 +5,15 @@
 pub mod data_file;
 pub mod expr;
 pub mod format;
+pub mod h5md;
+pub mod restart;
 pub mod script;
 pub mod variables;
 
 pub use data_file::{parse_data, read_data, write_data, AtomStyle, DataAtom, DataFile};
 pub use expr::evaluate;
 pub use format::{format_g, format_printf};
+pub use h5md::{check_h5md, repair_h5md, H5mdError, H5mdField, H5mdSummary, H5mdWriter};
+pub use restart::{ParticleRows, RestartError, RestartHeader, RestartReader, RestartWriter};
 pub use script::{Command, Location, ScriptError, ScriptReader};
 pub use variables::Variables;

@@ -6,5 +6,8 @@
 pub mod eos;
 pub mod weight;
 
-pub use eos::{Eos, EosError, EosState, LennardJones, LinearTheta, ISOLATED_DENSITY};
+pub use eos::{
+    Eos, EosError, EosState, ErrorAt, LennardJones, LinearTheta, TableError, TableErrors, TableGrid,
+    Tabulated, ISOLATED_DENSITY,
+};
 pub use weight::{CubicSpline, Linear, Lucy, Quadratic, Weight, WeightKind};

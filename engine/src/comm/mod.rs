@@ -126,26 +126,26 @@ impl Comm {
     }
 
     /// Wraps owned particles into the box, hands them to the owners of their cells, and
-    /// rebuilds the ghost layer: one cell on every side of the sub-domain.
-    pub fn exchange(&mut self, store: &mut Particles, domain: &Domain, grid: &CellGrid) {
+    /// rebuilds the ghost layer: one cell on every side of the sub-domain. With
+    /// `keep_cells` (a system read from a restart) positions and cells stay as stored,
+    /// so the lists come out as they were when the restart was written.
+    pub fn exchange(&mut self, store: &mut Particles, domain: &Domain, grid: &CellGrid, keep_cells: bool) {
         let start = std::time::Instant::now();
-        self.exchange_untimed(store, domain, grid);
+        store.truncate_ghosts();
+        (self.lo, self.hi) = self.owned_cells(grid);
+        if !keep_cells {
+            for i in 0..store.nlocal {
+                domain.wrap(&mut store.r[i], &mut store.image[i]);
+                store.cell[i] = grid.locate(store.r[i]);
+            }
+        }
+        self.migrate(store, grid, keep_cells);
+        self.borders(store, domain, grid);
         self.time.set(self.time.get() + start.elapsed());
     }
 
-    fn exchange_untimed(&mut self, store: &mut Particles, domain: &Domain, grid: &CellGrid) {
-        store.truncate_ghosts();
-        (self.lo, self.hi) = self.owned_cells(grid);
-        for i in 0..store.nlocal {
-            domain.wrap(&mut store.r[i], &mut store.image[i]);
-            store.cell[i] = grid.locate(store.r[i]);
-        }
-        self.migrate(store, grid);
-        self.borders(store, domain, grid);
-    }
-
     /// Moves owned particles to the neighbour towards their cell until none is astray.
-    fn migrate(&mut self, store: &mut Particles, grid: &CellGrid) {
+    fn migrate(&mut self, store: &mut Particles, grid: &CellGrid, keep_cells: bool) {
         let hops = *self.grid.dims.iter().max().unwrap_or(&1);
         for _ in 0..hops {
             for d in 0..3 {
@@ -175,7 +175,7 @@ impl Comm {
                     for rec in self.recv.chunks_exact(Particles::OWNED_RECORD) {
                         store.unpack_owned(rec);
                         let i = store.nlocal - 1;
-                        store.cell[i] = grid.locate(store.r[i]);
+                        store.cell[i] = if keep_cells { Particles::record_cell(rec) } else { grid.locate(store.r[i]) };
                     }
                 }
             }

@@ -7,9 +7,11 @@
 
 mod linear;
 mod lj;
+mod table;
 
 pub use linear::LinearTheta;
 pub use lj::LennardJones;
+pub use table::{ErrorAt, TableError, TableErrors, TableGrid, Tabulated};
 
 use std::fmt;
 

@@ -1,0 +1,1262 @@
+//! H5MD 1.1 trajectory snapshots (<https://www.nongnu.org/h5md/h5md.html>).
+//!
+//! Layout written by [`H5mdWriter`]:
+//!
+//! ```text
+//! /h5md                      attr version = [1, 1] (int32)
+//! /h5md/author               attr name
+//! /h5md/creator              attrs name = "gendpde", version
+//! /particles/all/box         attrs dimension = 3, boundary = ["periodic"; 3]
+//! /particles/all/box/edges   float64 [3] (time independent: the box is fixed)
+//! /particles/all/<element>/value   [frames, N, 3] or [frames, N]
+//! /particles/all/<element>/step    int64 [frames]
+//! /particles/all/<element>/time    float64 [frames]
+//! ```
+//!
+//! All time-dependent datasets are chunked with an unlimited frame axis.  The
+//! `step` and `time` datasets are stored once (in the first element) and are
+//! hard links in every other element, as H5MD permits, so a frame becomes
+//! visible to every element with a single extension of `step`.  Strings are
+//! variable-length UTF-8 (read by h5py as `str`).
+//!
+//! Durability: the file is created with the v110 format and switched to
+//! SWMR-write mode once every object exists, so HDF5 orders its metadata
+//! writes and the file stays consistent if the writer is killed.  A frame is
+//! committed in [`H5mdWriter::end_frame`] by (1) writing `time` and flushing
+//! (values and time reach the OS), then (2) extending `step` and flushing.
+//! Readers count frames by the length of `step`, so a value or time entry
+//! beyond it is an incomplete frame that [`H5mdWriter::append`] drops.
+//! A file whose writer was killed keeps HDF5's "open for writing" superblock
+//! flag; [`H5mdWriter::append`] and [`check_h5md`] clear/tolerate it (the
+//! equivalent of `h5clear -s`).
+
+use std::collections::BTreeSet;
+use std::fmt;
+use std::path::{Path, PathBuf};
+use std::str::FromStr;
+
+use hdf5::file::LibraryVersion;
+use hdf5::types::{FixedAscii, FixedUnicode, TypeDescriptor, VarLenAscii, VarLenUnicode};
+use hdf5::{Attribute, Dataset, Extent, File, Group, H5Type, SimpleExtents};
+
+/// Error of the H5MD reader/writer; the message names the file.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct H5mdError(pub String);
+
+impl fmt::Display for H5mdError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for H5mdError {}
+
+/// A per-particle quantity stored as an H5MD time-dependent element.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum H5mdField {
+    Position,
+    Image,
+    Velocity,
+    Momentum,
+    Mass,
+    Id,
+    Species,
+    InternalEnergy,
+    Temperature,
+    Density,
+}
+
+/// Storage type of an element's `value` dataset.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Kind {
+    F64,
+    I32,
+    I64,
+}
+
+impl H5mdField {
+    /// Every field, in the canonical order.
+    pub const ALL: [H5mdField; 10] = [
+        H5mdField::Position,
+        H5mdField::Image,
+        H5mdField::Velocity,
+        H5mdField::Momentum,
+        H5mdField::Mass,
+        H5mdField::Id,
+        H5mdField::Species,
+        H5mdField::InternalEnergy,
+        H5mdField::Temperature,
+        H5mdField::Density,
+    ];
+
+    /// Parses an input-script word: `x|position`, `image`, `v|velocity`,
+    /// `p|momentum`, `mass`, `id`, `type|species`, `u|internal_energy`,
+    /// `theta|temperature`, `n|density`.
+    pub fn parse(word: &str) -> Option<Self> {
+        Some(match word {
+            "x" | "position" => Self::Position,
+            "image" => Self::Image,
+            "v" | "velocity" => Self::Velocity,
+            "p" | "momentum" => Self::Momentum,
+            "mass" => Self::Mass,
+            "id" => Self::Id,
+            "type" | "species" => Self::Species,
+            "u" | "internal_energy" => Self::InternalEnergy,
+            "theta" | "temperature" => Self::Temperature,
+            "n" | "density" => Self::Density,
+            _ => return None,
+        })
+    }
+
+    /// Values per particle: 3 for vectors, 1 for scalars.
+    pub fn width(self) -> usize {
+        match self {
+            Self::Position | Self::Image | Self::Velocity | Self::Momentum => 3,
+            _ => 1,
+        }
+    }
+
+    /// Name of the element group under `/particles/all`.
+    pub fn h5md_name(self) -> &'static str {
+        match self {
+            Self::Position => "position",
+            Self::Image => "image",
+            Self::Velocity => "velocity",
+            Self::Momentum => "momentum",
+            Self::Mass => "mass",
+            Self::Id => "id",
+            Self::Species => "species",
+            Self::InternalEnergy => "internal_energy",
+            Self::Temperature => "temperature",
+            Self::Density => "density",
+        }
+    }
+
+    /// Inverse of [`H5mdField::h5md_name`].
+    pub fn from_h5md_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|f| f.h5md_name() == name)
+    }
+
+    fn kind(self) -> Kind {
+        match self {
+            Self::Image | Self::Species => Kind::I32,
+            Self::Id => Kind::I64,
+            _ => Kind::F64,
+        }
+    }
+}
+
+impl fmt::Display for H5mdField {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.h5md_name())
+    }
+}
+
+/// Maximum bytes of one chunk of a `value` dataset.
+const CHUNK_BYTES: usize = 1 << 20;
+/// Chunk length of the `step` and `time` datasets.
+const STEP_CHUNK: usize = 256;
+/// Raw-data chunk cache of the writer's file.
+const CHUNK_CACHE_BYTES: usize = 32 << 20;
+const CHUNK_CACHE_SLOTS: usize = 12_421;
+
+/// HDF5 property of the file-access class that clears the superblock
+/// "file is open for writing" flags on open (what `h5clear -s` uses).
+const CLEAR_STATUS_FLAGS: &[u8] = b"clear_status_flags\0";
+/// Property that skips the "file shorter than its EOA" check on open.
+const SKIP_EOF_CHECK: &[u8] = b"skip_eof_check\0";
+/// EOA margin added by [`repair_h5md`] (h5clear's default).
+const REPAIR_EOA_INCREMENT: u64 = 1 << 20;
+
+type Hid = i64; // hid_t of HDF5 >= 1.10
+
+extern "C" {
+    fn H5Pset(plist_id: Hid, name: *const std::ffi::c_char, value: *const std::ffi::c_void) -> i32;
+    fn H5Fopen(name: *const std::ffi::c_char, flags: u32, fapl_id: Hid) -> Hid;
+    fn H5Fclose(file_id: Hid) -> i32;
+    fn H5Fincrement_filesize(file_id: Hid, increment: u64) -> i32;
+}
+
+/// `H5F_ACC_RDWR`.
+const H5F_ACC_RDWR: u32 = 0x0001;
+
+struct Element {
+    field: H5mdField,
+    value: Dataset,
+    step: Dataset,
+    time: Dataset,
+}
+
+/// Streams frames of per-particle data into an H5MD 1.1 file.
+pub struct H5mdWriter {
+    path: PathBuf,
+    // Datasets are declared before the file so they are closed first.
+    elements: Vec<Element>,
+    fields: Vec<H5mdField>,
+    file: File,
+    n: usize,
+    frames: usize,
+    /// Step and time of the frame in progress.
+    current: Option<(u64, f64)>,
+}
+
+impl fmt::Debug for H5mdWriter {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("H5mdWriter")
+            .field("path", &self.path)
+            .field("n", &self.n)
+            .field("fields", &self.fields)
+            .field("frames", &self.frames)
+            .field("current", &self.current)
+            .finish()
+    }
+}
+
+fn error(path: &Path, what: impl fmt::Display) -> H5mdError {
+    H5mdError(format!("{}: {}", path.display(), what))
+}
+
+/// Maps an hdf5 error into an [`H5mdError`] naming the file and the action.
+fn h5<T>(path: &Path, what: &str, r: hdf5::Result<T>) -> Result<T, H5mdError> {
+    r.map_err(|e| error(path, format_args!("{what}: {e}")))
+}
+
+fn vlen(path: &Path, s: &str) -> Result<VarLenUnicode, H5mdError> {
+    VarLenUnicode::from_str(s).map_err(|e| error(path, format_args!("invalid string {s:?}: {e}")))
+}
+
+fn write_str_attr(path: &Path, loc: &Group, name: &str, value: &str) -> Result<(), H5mdError> {
+    let v = vlen(path, value)?;
+    let attr = h5(path, &format!("creating attribute {name}"), loc.new_attr::<VarLenUnicode>().create(name))?;
+    h5(path, &format!("writing attribute {name}"), attr.write_scalar(&v))
+}
+
+fn value_dtype_name(kind: Kind) -> &'static str {
+    match kind {
+        Kind::F64 => "float64",
+        Kind::I32 => "int32",
+        Kind::I64 => "int64",
+    }
+}
+
+/// Silences the HDF5 C library's error printing for this thread (the hdf5
+/// crate does this on first use; calling it again is cheap and harmless).
+fn silence() {
+    hdf5::silence_errors(true);
+}
+
+/// The writer's file-access settings: v110 format (required for SWMR) and
+/// a raw-data chunk cache large enough for one frame's block writes.
+fn writer_options() -> hdf5::FileBuilder {
+    let mut b = File::with_options();
+    b.with_fapl(|p| {
+        p.libver_bounds(LibraryVersion::V110, LibraryVersion::latest())
+            .chunk_cache(CHUNK_CACHE_SLOTS, CHUNK_CACHE_BYTES, 1.0)
+    });
+    b
+}
+
+/// Repairs a file whose writer was killed, like `h5clear -s -i 1M`:
+/// clears the superblock "open for writing" flags (without which HDF5
+/// refuses to open the file except in SWMR-read mode) and raises the
+/// end-of-allocation address to cover everything written (SWMR writes data
+/// and metadata before the superblock's EOA is updated).  Harmless on a
+/// cleanly closed file.  Must not be used while a writer has the file open.
+pub fn repair_h5md(path: &Path) -> Result<(), H5mdError> {
+    silence();
+    let cpath = std::ffi::CString::new(path.as_os_str().as_encoded_bytes())
+        .map_err(|_| error(path, "file name contains a NUL byte"))?;
+    let fapl = h5(path, "creating file access list", hdf5::plist::FileAccess::try_new())?;
+    hdf5::sync::sync(|| {
+        let on: u8 = 1; // hbool_t
+        // SAFETY: both properties exist in every file-access list of HDF5
+        // >= 1.10 with the size of hbool_t (1 byte, checked in the tests by
+        // their effect); the pointers are valid for the duration of the
+        // calls, and the hdf5 crate's global lock is held as for its own calls.
+        unsafe {
+            for prop in [CLEAR_STATUS_FLAGS, SKIP_EOF_CHECK] {
+                if H5Pset(fapl.id(), prop.as_ptr().cast(), (&on as *const u8).cast()) < 0 {
+                    return Err(error(path, "cannot set the repair properties (HDF5 older than 1.10?)"));
+                }
+            }
+            let id = H5Fopen(cpath.as_ptr(), H5F_ACC_RDWR, fapl.id());
+            if id < 0 {
+                return Err(error(path, "cannot open for repair (not an HDF5 file, or still open?)"));
+            }
+            let grown = H5Fincrement_filesize(id, REPAIR_EOA_INCREMENT);
+            if H5Fclose(id) < 0 || grown < 0 {
+                return Err(error(path, "repair failed"));
+            }
+        }
+        Ok(())
+    })
+}
+
+impl H5mdWriter {
+    /// Creates (truncating) `path` for `n` particles and the given fields.
+    pub fn create(
+        path: &Path,
+        n: usize,
+        edges: [f64; 3],
+        fields: &[H5mdField],
+        author: &str,
+        creator_version: &str,
+    ) -> Result<Self, H5mdError> {
+        silence();
+        check_fields(path, fields)?;
+        // Build the file under a temporary name and rename it into place
+        // once it is complete and in SWMR mode, so a process killed during
+        // create leaves no half-built (unreadable) file at `path`.
+        let name = path.file_name().ok_or_else(|| error(path, "not a file name"))?;
+        let mut tmp_name = std::ffi::OsString::from(".");
+        tmp_name.push(name);
+        tmp_name.push(format!(".tmp{}", std::process::id()));
+        let tmp = path.with_file_name(tmp_name);
+        let result = Self::create_at(path, &tmp, n, edges, fields, author, creator_version).and_then(|w| {
+            std::fs::rename(&tmp, path).map_err(|e| error(path, format_args!("cannot rename {}: {e}", tmp.display())))?;
+            Ok(w)
+        });
+        if result.is_err() {
+            let _ = std::fs::remove_file(&tmp);
+        }
+        result
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn create_at(
+        path: &Path,
+        tmp: &Path,
+        n: usize,
+        edges: [f64; 3],
+        fields: &[H5mdField],
+        author: &str,
+        creator_version: &str,
+    ) -> Result<Self, H5mdError> {
+        let file = h5(path, "cannot create file", writer_options().create(tmp))?;
+
+        write_metadata(path, &file, edges, author, creator_version)?;
+        let all = h5(path, "opening /particles/all", file.group("particles/all"))?;
+
+        // Time-dependent elements; step/time live in the first one and are
+        // hard-linked from the others.
+        let mut shared: Option<String> = None;
+        for &field in fields {
+            let name = field.h5md_name();
+            let g = h5(path, &format!("creating element {name}"), all.create_group(name))?;
+            create_value(path, &g, field, n)?;
+            match &shared {
+                None => {
+                    create_series::<i64>(path, &g, "step")?;
+                    create_series::<f64>(path, &g, "time")?;
+                    shared = Some(format!("/particles/all/{name}"));
+                }
+                Some(first) => {
+                    h5(path, &format!("linking {name}/step"), g.link_hard(&format!("{first}/step"), "step"))?;
+                    h5(path, &format!("linking {name}/time"), g.link_hard(&format!("{first}/time"), "time"))?;
+                }
+            }
+        }
+        drop(all);
+        Self::start_swmr(path, file, n, fields, 0)
+    }
+
+    /// Switches `file` (with no object open) to SWMR-write mode and opens
+    /// the element datasets.  HDF5 1.10 fails to start SWMR mode when
+    /// objects are open ("ID already in use"), hence the reopening.
+    fn start_swmr(path: &Path, file: File, n: usize, fields: &[H5mdField], frames: usize) -> Result<Self, H5mdError> {
+        h5(path, "flushing", file.flush())?;
+        h5(path, "starting SWMR write mode", file.start_swmr())?;
+        let mut elements = Vec::with_capacity(fields.len());
+        for &field in fields {
+            let name = field.h5md_name();
+            let open = |what: &str| {
+                h5(path, &format!("opening {name}/{what}"), file.dataset(&format!("particles/all/{name}/{what}")))
+            };
+            elements.push(Element { field, value: open("value")?, step: open("step")?, time: open("time")? });
+        }
+        Ok(Self { path: path.to_path_buf(), elements, fields: fields.to_vec(), file, n, frames, current: None })
+    }
+
+    /// Opens an existing file written by [`H5mdWriter::create`] to append
+    /// frames (a run continued from a restart); `n` and the set of `fields`
+    /// must match the file.  A trailing incomplete frame (writer killed
+    /// before `end_frame` finished) is dropped.
+    pub fn append(path: &Path, n: usize, fields: &[H5mdField]) -> Result<Self, H5mdError> {
+        silence();
+        check_fields(path, fields)?;
+        if !path.exists() {
+            return Err(error(path, "cannot append: file does not exist"));
+        }
+        let file = match writer_options().open_rw(path) {
+            Ok(f) => f,
+            Err(first) => {
+                // Most likely a writer was killed and left the superblock
+                // marked "open for writing"; repair and retry.
+                if repair_h5md(path).is_err() {
+                    return Err(error(path, format_args!("cannot open for appending: {first}")));
+                }
+                h5(path, "cannot open for appending", writer_options().open_rw(path))?
+            }
+        };
+        let all = file
+            .group("particles/all")
+            .map_err(|_| error(path, "not an H5MD file written by gendpde: no /particles/all group"))?;
+
+        // Compare the element sets.
+        let names = h5(path, "listing /particles/all", all.member_names())?;
+        let mut in_file = BTreeSet::new();
+        for name in names.iter().filter(|s| *s != "box") {
+            match H5mdField::from_h5md_name(name) {
+                Some(f) => {
+                    in_file.insert(f);
+                }
+                None => return Err(error(path, format_args!("unknown element /particles/all/{name}"))),
+            }
+        }
+        let wanted: BTreeSet<H5mdField> = fields.iter().copied().collect();
+        if in_file != wanted {
+            let list = |s: &BTreeSet<H5mdField>| s.iter().map(|f| f.h5md_name()).collect::<Vec<_>>().join(" ");
+            let missing: BTreeSet<_> = wanted.difference(&in_file).copied().collect();
+            let extra: BTreeSet<_> = in_file.difference(&wanted).copied().collect();
+            return Err(error(
+                path,
+                format_args!(
+                    "cannot append: the file holds fields [{}] but [{}] were requested (missing in file: [{}]; not requested: [{}])",
+                    list(&in_file),
+                    list(&wanted),
+                    list(&missing),
+                    list(&extra)
+                ),
+            ));
+        }
+
+        let mut elements = Vec::with_capacity(fields.len());
+        let mut frames: Option<usize> = None;
+        for &field in fields {
+            let name = field.h5md_name();
+            let g = h5(path, &format!("opening element {name}"), all.group(name))?;
+            let value = h5(path, &format!("opening {name}/value"), g.dataset("value"))?;
+            let step = h5(path, &format!("opening {name}/step"), g.dataset("step"))?;
+            let time = h5(path, &format!("opening {name}/time"), g.dataset("time"))?;
+            let shape = value.shape();
+            let expect_ndim = if field.width() == 3 { 3 } else { 2 };
+            if shape.len() != expect_ndim || (expect_ndim == 3 && shape[2] != 3) {
+                return Err(error(path, format_args!("{name}/value has shape {shape:?}, not [frames, N{}]",
+                    if expect_ndim == 3 { ", 3" } else { "" })));
+            }
+            if shape[1] != n {
+                return Err(error(
+                    path,
+                    format_args!("cannot append: the file holds {} particles but the run has {n}", shape[1]),
+                ));
+            }
+            let kind = dtype_kind(path, &value, name)?;
+            if kind != Some(field.kind()) {
+                return Err(error(path, format_args!("{name}/value is not {}", value_dtype_name(field.kind()))));
+            }
+            let len = step.size();
+            match frames {
+                None => frames = Some(len),
+                Some(f) if f != len => {
+                    return Err(error(path, format_args!("{name}/step has {len} frames but another element has {f}")))
+                }
+                _ => {}
+            }
+            if shape[0] < len || time.size() < len {
+                return Err(error(path, format_args!("{name}: value or time is shorter than step")));
+            }
+            elements.push(Element { field, value, step, time });
+        }
+        let frames = frames.unwrap_or(0);
+        // Drop an incomplete trailing frame.
+        for el in &elements {
+            let name = el.field.h5md_name();
+            if el.value.shape()[0] > frames {
+                let mut shape = el.value.shape();
+                shape[0] = frames;
+                h5(path, &format!("truncating {name}/value"), el.value.resize(shape))?;
+            }
+            if el.time.size() > frames {
+                h5(path, &format!("truncating {name}/time"), el.time.resize(frames))?;
+            }
+        }
+        drop(elements);
+        drop(all);
+        Self::start_swmr(path, file, n, fields, frames)
+    }
+
+    /// The fields written, in the order given to `create`/`append`.
+    pub fn fields(&self) -> &[H5mdField] {
+        &self.fields
+    }
+
+    /// Number of particles per frame.
+    pub fn particles(&self) -> usize {
+        self.n
+    }
+
+    /// The file written.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// Number of completed frames in the file.
+    pub fn frames(&self) -> usize {
+        self.frames
+    }
+
+    /// Starts a frame: grows every value dataset by one frame.
+    pub fn begin_frame(&mut self, step: u64, time: f64) -> Result<(), H5mdError> {
+        if let Some((s, _)) = self.current {
+            return Err(self.err(format_args!("begin_frame({step}) while frame of step {s} is not ended")));
+        }
+        i64::try_from(step).map_err(|_| self.err(format_args!("step {step} does not fit in int64")))?;
+        let frame = self.frames;
+        for el in &self.elements {
+            let mut shape = el.value.shape();
+            shape[0] = frame + 1;
+            h5(&self.path, &format!("extending {}/value", el.field), el.value.resize(shape))?;
+        }
+        self.current = Some((step, time));
+        Ok(())
+    }
+
+    /// Writes rows `first_row..first_row+len` of `field` in the current
+    /// frame; `data` holds `len * field.width()` values (integer fields are
+    /// converted and must hold integral values in range).
+    pub fn write_rows(&mut self, field: H5mdField, first_row: usize, data: &[f64]) -> Result<(), H5mdError> {
+        if self.current.is_none() {
+            return Err(self.err(format_args!("write_rows({field}) outside a frame (call begin_frame first)")));
+        }
+        let el = self
+            .elements
+            .iter()
+            .find(|e| e.field == field)
+            .ok_or_else(|| self.err(format_args!("field {field} is not written to this file")))?;
+        let width = field.width();
+        if data.len() % width != 0 {
+            return Err(self.err(format_args!(
+                "write_rows({field}): {} values is not a multiple of the width {width}",
+                data.len()
+            )));
+        }
+        let len = data.len() / width;
+        if first_row > self.n || len > self.n - first_row {
+            return Err(self.err(format_args!(
+                "write_rows({field}): rows {first_row}..{} outside 0..{}",
+                first_row.saturating_add(len),
+                self.n
+            )));
+        }
+        if len == 0 {
+            return Ok(());
+        }
+        let frame = self.frames;
+        let rows = first_row..first_row + len;
+        let what = format!("writing {field} rows {}..{}", rows.start, rows.end);
+        let r = match (field.kind(), width) {
+            (Kind::F64, 3) => el.value.write_slice::<_, f64, _, _>(as_triples(data, Ok::<f64, H5mdError>)?.as_slice(), (frame, rows, ..)),
+            (Kind::F64, _) => el.value.write_slice(data, (frame, rows)),
+            (Kind::I32, 3) => {
+                let v = as_triples(data, |x| to_int::<i32>(x).ok_or(x)).map_err(|x| self.bad_int(field, x))?;
+                el.value.write_slice::<_, i32, _, _>(v.as_slice(), (frame, rows, ..))
+            }
+            (Kind::I32, _) => {
+                let v = convert(data, to_int::<i32>).map_err(|x| self.bad_int(field, x))?;
+                el.value.write_slice(v.as_slice(), (frame, rows))
+            }
+            (Kind::I64, 3) => {
+                let v = as_triples(data, |x| to_int::<i64>(x).ok_or(x)).map_err(|x| self.bad_int(field, x))?;
+                el.value.write_slice::<_, i64, _, _>(v.as_slice(), (frame, rows, ..))
+            }
+            (Kind::I64, _) => {
+                let v = convert(data, to_int::<i64>).map_err(|x| self.bad_int(field, x))?;
+                el.value.write_slice(v.as_slice(), (frame, rows))
+            }
+        };
+        h5(&self.path, &what, r)
+    }
+
+    /// Completes the frame: appends step and time to every element and
+    /// flushes the file.  `time` is written and flushed before `step` is
+    /// extended, so a frame counts (by the length of `step`) only once all
+    /// its data is on disk.
+    pub fn end_frame(&mut self) -> Result<(), H5mdError> {
+        let Some((step, time)) = self.current else {
+            return Err(self.err("end_frame without begin_frame"));
+        };
+        let frame = self.frames;
+        let path = self.path.clone();
+        // step/time are usually shared by hard links; resizing/writing the
+        // same dataset again through another element is idempotent.
+        for el in &self.elements {
+            h5(&path, "extending time", el.time.resize(frame + 1))?;
+            h5(&path, "writing time", el.time.write_slice(&[time][..], frame..frame + 1))?;
+        }
+        h5(&path, "flushing", self.file.flush())?;
+        for el in &self.elements {
+            h5(&path, "extending step", el.step.resize(frame + 1))?;
+            h5(&path, "writing step", el.step.write_slice(&[step as i64][..], frame..frame + 1))?;
+        }
+        h5(&path, "flushing", self.file.flush())?;
+        self.frames += 1;
+        self.current = None;
+        Ok(())
+    }
+
+    fn err(&self, what: impl fmt::Display) -> H5mdError {
+        error(&self.path, what)
+    }
+
+    fn bad_int(&self, field: H5mdField, x: f64) -> H5mdError {
+        self.err(format_args!("write_rows({field}): value {x} is not a valid {}", value_dtype_name(field.kind())))
+    }
+}
+
+/// Writes `/h5md` and `/particles/all/box`.  A separate function so every
+/// attribute handle is closed before SWMR mode starts (HDF5 refuses to start
+/// it with open attributes).
+fn write_metadata(path: &Path, file: &File, edges: [f64; 3], author: &str, creator_version: &str) -> Result<(), H5mdError> {
+        // /h5md
+        let h5md = h5(path, "creating /h5md", file.create_group("h5md"))?;
+        let version = h5(path, "creating /h5md version", h5md.new_attr::<i32>().shape(2).create("version"))?;
+        h5(path, "writing /h5md version", version.write_raw(&[1i32, 1]))?;
+        let g = h5(path, "creating /h5md/author", h5md.create_group("author"))?;
+        write_str_attr(path, &g, "name", author)?;
+        let g = h5(path, "creating /h5md/creator", h5md.create_group("creator"))?;
+        write_str_attr(path, &g, "name", "gendpde")?;
+        write_str_attr(path, &g, "version", creator_version)?;
+
+        // /particles/all/box
+        let all = h5(path, "creating /particles/all", file.create_group("particles/all"))?;
+        let bx = h5(path, "creating box", all.create_group("box"))?;
+        let dim = h5(path, "creating box dimension", bx.new_attr::<i32>().create("dimension"))?;
+        h5(path, "writing box dimension", dim.write_scalar(&3i32))?;
+        let periodic = vlen(path, "periodic")?;
+        let boundary =
+            h5(path, "creating box boundary", bx.new_attr::<VarLenUnicode>().shape(3).create("boundary"))?;
+        h5(path, "writing box boundary", boundary.write_raw(&[periodic.clone(), periodic.clone(), periodic]))?;
+        let e = h5(path, "creating box edges", bx.new_dataset::<f64>().shape(3).create("edges"))?;
+        h5(path, "writing box edges", e.write_raw(&edges))?;
+
+        Ok(())
+}
+
+fn check_fields(path: &Path, fields: &[H5mdField]) -> Result<(), H5mdError> {
+    if fields.is_empty() {
+        return Err(error(path, "no fields to write"));
+    }
+    let mut seen = BTreeSet::new();
+    for f in fields {
+        if !seen.insert(*f) {
+            return Err(error(path, format_args!("field {f} listed twice")));
+        }
+    }
+    Ok(())
+}
+
+fn create_value(path: &Path, g: &Group, field: H5mdField, n: usize) -> Result<Dataset, H5mdError> {
+    let width = field.width();
+    let rows = (CHUNK_BYTES / (8 * width)).clamp(1, n.max(1));
+    // A fixed particle axis of length 0 cannot hold a chunk of 1 row, so an
+    // empty system gets an unlimited particle axis.
+    let particle_axis = if n == 0 { Extent::new(0, None) } else { Extent::fixed(n) };
+    let mut extents = vec![Extent::new(0, None), particle_axis];
+    let mut chunk = vec![1, rows];
+    if width == 3 {
+        extents.push(Extent::fixed(3));
+        chunk.push(3);
+    }
+    let b = match field.kind() {
+        Kind::F64 => g.new_dataset::<f64>(),
+        Kind::I32 => g.new_dataset::<i32>(),
+        Kind::I64 => g.new_dataset::<i64>(),
+    };
+    let what = format!("creating {}/value", field.h5md_name());
+    h5(path, &what, b.chunk(chunk).shape(SimpleExtents::from_vec(extents)).create("value"))
+}
+
+fn create_series<T: H5Type>(path: &Path, g: &Group, name: &str) -> Result<Dataset, H5mdError> {
+    h5(path, &format!("creating {name}"), g.new_dataset::<T>().chunk(STEP_CHUNK).shape(0..).create(name))
+}
+
+fn to_int<T: TryFrom<i64>>(x: f64) -> Option<T> {
+    // 2^63 as f64; values at or above it do not fit in i64.
+    if x.fract() != 0.0 || !x.is_finite() || x >= 9.223_372_036_854_775_808e18 || x < -9.223_372_036_854_775_808e18 {
+        return None;
+    }
+    T::try_from(x as i64).ok()
+}
+
+fn convert<T>(data: &[f64], f: fn(f64) -> Option<T>) -> Result<Vec<T>, f64> {
+    data.iter().map(|&x| f(x).ok_or(x)).collect()
+}
+
+fn as_triples<T: Copy, E>(data: &[f64], f: impl Fn(f64) -> Result<T, E>) -> Result<Vec<[T; 3]>, E> {
+    data.chunks_exact(3).map(|c| Ok([f(c[0])?, f(c[1])?, f(c[2])?])).collect()
+}
+
+fn dtype_kind(path: &Path, ds: &Dataset, name: &str) -> Result<Option<Kind>, H5mdError> {
+    let dt = h5(path, &format!("reading the type of {name}/value"), ds.dtype())?;
+    let d = h5(path, &format!("reading the type of {name}/value"), dt.to_descriptor())?;
+    use hdf5::types::{FloatSize, IntSize};
+    Ok(match d {
+        TypeDescriptor::Float(FloatSize::U8) => Some(Kind::F64),
+        TypeDescriptor::Integer(IntSize::U4) => Some(Kind::I32),
+        TypeDescriptor::Integer(IntSize::U8) => Some(Kind::I64),
+        _ => None,
+    })
+}
+
+// ---------------------------------------------------------------------------
+// Validation.
+
+/// What [`check_h5md`] found in a valid file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct H5mdSummary {
+    /// Number of particles (second dimension of every `value`).
+    pub particles: usize,
+    /// Completed frames (length of `step`).
+    pub frames: usize,
+    /// Names of the time-dependent elements under `/particles/all`, sorted.
+    pub elements: Vec<String>,
+    /// `step` of every completed frame.
+    pub steps: Vec<i64>,
+    /// `time` of every completed frame.
+    pub times: Vec<f64>,
+    /// `/particles/all/box/edges`.
+    pub edges: Vec<f64>,
+    /// `/h5md/creator` name and version.
+    pub creator: (String, String),
+    /// `/h5md/author` name.
+    pub author: String,
+    /// False if the file is still marked "open for writing" (its writer is
+    /// running or was killed): plain HDF5 readers then refuse it and only
+    /// SWMR-read mode opens it, until [`repair_h5md`] (or `h5clear -s`).
+    pub clean: bool,
+}
+
+fn open_for_reading(path: &Path) -> Result<(File, bool), H5mdError> {
+    silence();
+    match File::open(path) {
+        Ok(f) => Ok((f, true)),
+        // A file whose SWMR writer was killed (or is still running) keeps the
+        // "open for writing" superblock flag; SWMR read mode accepts it.
+        Err(first) => File::open_as(path, hdf5::OpenMode::ReadSWMR)
+            .map(|f| (f, false))
+            .map_err(|_| error(path, format_args!("cannot open: {first}"))),
+    }
+}
+
+fn read_string_attr(path: &Path, attr: &Attribute, what: &str) -> Result<String, H5mdError> {
+    let v = read_strings(path, attr, what)?;
+    if attr.ndim() != 0 || v.len() != 1 {
+        return Err(error(path, format_args!("{what} is not a scalar string")));
+    }
+    Ok(v.into_iter().next().unwrap_or_default())
+}
+
+/// Reads a string (array) attribute stored fixed- or variable-length.
+fn read_strings(path: &Path, attr: &Attribute, what: &str) -> Result<Vec<String>, H5mdError> {
+    let dt = h5(path, &format!("reading the type of {what}"), attr.dtype())?;
+    let d = h5(path, &format!("reading the type of {what}"), dt.to_descriptor())?;
+    let r = match d {
+        TypeDescriptor::VarLenUnicode => attr.read_raw::<VarLenUnicode>().map(|v| v.iter().map(|s| s.to_string()).collect()),
+        TypeDescriptor::VarLenAscii => attr.read_raw::<VarLenAscii>().map(|v| v.iter().map(|s| s.to_string()).collect()),
+        TypeDescriptor::FixedAscii(_) => {
+            attr.read_raw::<FixedAscii<1024>>().map(|v| v.iter().map(|s| s.to_string()).collect())
+        }
+        TypeDescriptor::FixedUnicode(_) => {
+            attr.read_raw::<FixedUnicode<1024>>().map(|v| v.iter().map(|s| s.to_string()).collect())
+        }
+        other => return Err(error(path, format_args!("{what} is not a string but {other}"))),
+    };
+    h5(path, &format!("reading {what}"), r)
+}
+
+fn attr(path: &Path, loc: &Group, name: &str, what: &str) -> Result<Attribute, H5mdError> {
+    loc.attr(name).map_err(|_| error(path, format_args!("missing attribute {what}")))
+}
+
+fn int_kind(d: &TypeDescriptor) -> bool {
+    matches!(d, TypeDescriptor::Integer(_) | TypeDescriptor::Unsigned(_))
+}
+
+/// Checks the H5MD 1.1 structure of `path` and summarises `/particles/all`:
+/// `/h5md` version 1.x, author name, creator name and version;
+/// `/particles/all/box` with `dimension` and `boundary` (and `edges` when
+/// periodic); every time-dependent element with `value`, integer `step` and
+/// (optional) `time`, all elements with the same number of frames,
+/// `value` and `time` at least as long as `step` (a longer one is an
+/// incomplete trailing frame of a killed writer) and `value`'s second
+/// dimension equal to the particle count.
+pub fn check_h5md(path: &Path) -> Result<H5mdSummary, H5mdError> {
+    let (file, clean) = open_for_reading(path)?;
+
+    let h5md = file.group("h5md").map_err(|_| error(path, "missing group /h5md"))?;
+    let v = attr(path, &h5md, "version", "/h5md version")?;
+    let d = h5(path, "reading /h5md version type", v.dtype().and_then(|t| t.to_descriptor()))?;
+    if !int_kind(&d) {
+        return Err(error(path, "/h5md version is not an integer array"));
+    }
+    let version = h5(path, "reading /h5md version", v.read_raw::<i32>())?;
+    if version.len() != 2 || version[0] != 1 {
+        return Err(error(path, format_args!("/h5md version is {version:?}, expected [1, x]")));
+    }
+    let author_g = h5md.group("author").map_err(|_| error(path, "missing group /h5md/author"))?;
+    let author = read_string_attr(path, &attr(path, &author_g, "name", "/h5md/author name")?, "/h5md/author name")?;
+    let creator_g = h5md.group("creator").map_err(|_| error(path, "missing group /h5md/creator"))?;
+    let cname =
+        read_string_attr(path, &attr(path, &creator_g, "name", "/h5md/creator name")?, "/h5md/creator name")?;
+    let cversion = read_string_attr(
+        path,
+        &attr(path, &creator_g, "version", "/h5md/creator version")?,
+        "/h5md/creator version",
+    )?;
+
+    let all = file.group("particles/all").map_err(|_| error(path, "missing group /particles/all"))?;
+    let bx = all.group("box").map_err(|_| error(path, "missing group /particles/all/box"))?;
+    let dim_a = attr(path, &bx, "dimension", "box dimension")?;
+    let dim = h5(path, "reading box dimension", dim_a.read_scalar::<i32>())?;
+    if !(1..=3).contains(&dim) {
+        return Err(error(path, format_args!("box dimension is {dim}")));
+    }
+    let boundary = read_strings(path, &attr(path, &bx, "boundary", "box boundary")?, "box boundary")?;
+    if boundary.len() != dim as usize {
+        return Err(error(path, format_args!("box boundary has {} entries for dimension {dim}", boundary.len())));
+    }
+    if let Some(b) = boundary.iter().find(|b| *b != "periodic" && *b != "none") {
+        return Err(error(path, format_args!("box boundary {b:?} is neither \"periodic\" nor \"none\"")));
+    }
+    let edges = match bx.dataset("edges") {
+        Ok(e) => {
+            let shape = e.shape();
+            let d = dim as usize;
+            if shape != [d] && shape != [d, d] {
+                return Err(error(path, format_args!("box edges has shape {shape:?}")));
+            }
+            h5(path, "reading box edges", e.read_raw::<f64>())?
+        }
+        Err(_) if bx.link_exists("edges") => {
+            return Err(error(path, "box edges is not a (time-independent) dataset"));
+        }
+        Err(_) => {
+            if boundary.iter().any(|b| b == "periodic") {
+                return Err(error(path, "periodic box without edges"));
+            }
+            Vec::new()
+        }
+    };
+
+    let mut elements = Vec::new();
+    let mut particles: Option<(usize, String)> = None;
+    let mut steps: Option<(Vec<i64>, String)> = None;
+    let mut times: Option<Vec<f64>> = None;
+    let names = h5(path, "listing /particles/all", all.member_names())?;
+    for name in names.iter().filter(|s| *s != "box") {
+        let n_here;
+        if let Ok(g) = all.group(name) {
+            let where_ = format!("/particles/all/{name}");
+            let value = g.dataset("value").map_err(|_| error(path, format_args!("{where_} has no value dataset")))?;
+            let step = g.dataset("step").map_err(|_| error(path, format_args!("{where_} has no step dataset")))?;
+            let sd = h5(path, "reading step type", step.dtype().and_then(|t| t.to_descriptor()))?;
+            if !int_kind(&sd) || step.ndim() != 1 {
+                return Err(error(path, format_args!("{where_}/step is not a 1-d integer dataset")));
+            }
+            let s = h5(path, &format!("reading {where_}/step"), step.read_raw::<i64>())?;
+            let frames = s.len();
+            let shape = value.shape();
+            if shape.len() < 2 {
+                return Err(error(path, format_args!("{where_}/value has shape {shape:?}, expected [frames, N, ...]")));
+            }
+            if shape[0] < frames {
+                return Err(error(path, format_args!("{where_}/value has {} frames but step has {frames}", shape[0])));
+            }
+            if let Ok(time) = g.dataset("time") {
+                if time.ndim() != 1 || time.size() < frames {
+                    return Err(error(path, format_args!("{where_}/time has {} entries but step has {frames}", time.size())));
+                }
+                let t = h5(path, &format!("reading {where_}/time"), time.read_slice_1d::<f64, _>(0..frames))?;
+                times.get_or_insert(t.to_vec());
+            }
+            match &steps {
+                None => steps = Some((s, name.clone())),
+                Some((s0, n0)) if s0.len() != frames => {
+                    return Err(error(
+                        path,
+                        format_args!("{where_} has {frames} frames but /particles/all/{n0} has {}", s0.len()),
+                    ))
+                }
+                _ => {}
+            }
+            n_here = shape[1];
+        } else if let Ok(ds) = all.dataset(name) {
+            // Time-independent element: [N, ...].
+            let shape = ds.shape();
+            if shape.is_empty() {
+                return Err(error(path, format_args!("/particles/all/{name} is a scalar")));
+            }
+            n_here = shape[0];
+        } else {
+            return Err(error(path, format_args!("/particles/all/{name} is neither a group nor a dataset")));
+        }
+        match &particles {
+            None => particles = Some((n_here, name.clone())),
+            Some((n0, name0)) if *n0 != n_here => {
+                return Err(error(
+                    path,
+                    format_args!("/particles/all/{name} has {n_here} particles but /particles/all/{name0} has {n0}"),
+                ))
+            }
+            _ => {}
+        }
+        elements.push(name.clone());
+    }
+    elements.sort();
+    let steps = steps.map(|s| s.0).unwrap_or_default();
+    Ok(H5mdSummary {
+        particles: particles.map_or(0, |p| p.0),
+        frames: steps.len(),
+        elements,
+        times: times.unwrap_or_default(),
+        steps,
+        edges,
+        creator: (cname, cversion),
+        author,
+        clean,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use hdf5::types::IntSize;
+
+    fn tmp(name: &str) -> PathBuf {
+        let dir = std::env::temp_dir().join(format!("gendpde-h5md-test-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        dir.join(name)
+    }
+
+    /// Deterministic test value of `field` for particle `i` in frame `f`.
+    fn val(field: H5mdField, f: usize, i: usize, c: usize) -> f64 {
+        match field.kind() {
+            Kind::F64 => (f * 1000 + i * 10 + c) as f64 + 0.25,
+            Kind::I32 => (f as f64) - (i * 3 + c) as f64,
+            Kind::I64 => (i + 1) as f64,
+        }
+    }
+
+    fn rows(field: H5mdField, f: usize, r: std::ops::Range<usize>) -> Vec<f64> {
+        let w = field.width();
+        r.flat_map(|i| (0..w).map(move |c| val(field, f, i, c))).collect()
+    }
+
+    fn write_frames(w: &mut H5mdWriter, first_frame: usize, count: usize, n: usize) {
+        let split = n / 2;
+        for f in first_frame..first_frame + count {
+            w.begin_frame(10 * f as u64, 0.5 * f as f64).unwrap();
+            for field in w.fields().to_vec() {
+                // Two row blocks, the second written first.
+                w.write_rows(field, split, &rows(field, f, split..n)).unwrap();
+                w.write_rows(field, 0, &rows(field, f, 0..split)).unwrap();
+            }
+            w.end_frame().unwrap();
+        }
+    }
+
+    fn descriptor(ds: &Dataset) -> TypeDescriptor {
+        ds.dtype().unwrap().to_descriptor().unwrap()
+    }
+
+    #[test]
+    fn parse_names() {
+        for f in H5mdField::ALL {
+            assert_eq!(H5mdField::parse(f.h5md_name()), Some(f));
+            assert_eq!(H5mdField::from_h5md_name(f.h5md_name()), Some(f));
+        }
+        assert_eq!(H5mdField::parse("x"), Some(H5mdField::Position));
+        assert_eq!(H5mdField::parse("v"), Some(H5mdField::Velocity));
+        assert_eq!(H5mdField::parse("p"), Some(H5mdField::Momentum));
+        assert_eq!(H5mdField::parse("type"), Some(H5mdField::Species));
+        assert_eq!(H5mdField::parse("u"), Some(H5mdField::InternalEnergy));
+        assert_eq!(H5mdField::parse("theta"), Some(H5mdField::Temperature));
+        assert_eq!(H5mdField::parse("n"), Some(H5mdField::Density));
+        assert_eq!(H5mdField::parse("xyz"), None);
+        assert_eq!(H5mdField::Image.width(), 3);
+        assert_eq!(H5mdField::Mass.width(), 1);
+    }
+
+    #[test]
+    fn create_write_read_back() {
+        let path = tmp("full.h5");
+        let n = 7;
+        let fields = H5mdField::ALL;
+        let mut w = H5mdWriter::create(&path, n, [10.0, 11.0, 12.5], &fields, "Tester", "0.1.0").unwrap();
+        assert_eq!(w.fields(), &fields);
+        write_frames(&mut w, 0, 3, n);
+        assert_eq!(w.frames(), 3);
+        drop(w);
+
+        let s = check_h5md(&path).unwrap();
+        assert_eq!(s.particles, n);
+        assert_eq!(s.frames, 3);
+        assert_eq!(s.steps, vec![0, 10, 20]);
+        assert_eq!(s.times, vec![0.0, 0.5, 1.0]);
+        assert_eq!(s.edges, vec![10.0, 11.0, 12.5]);
+        assert_eq!(s.author, "Tester");
+        assert_eq!(s.creator, ("gendpde".to_string(), "0.1.0".to_string()));
+        let mut names: Vec<String> = fields.iter().map(|f| f.h5md_name().to_string()).collect();
+        names.sort();
+        assert_eq!(s.elements, names);
+
+        // Direct read-back.
+        let file = File::open(&path).unwrap();
+        let h5md = file.group("h5md").unwrap();
+        assert_eq!(h5md.attr("version").unwrap().read_raw::<i32>().unwrap(), vec![1, 1]);
+        assert!(matches!(descriptor_attr(&h5md.attr("version").unwrap()), TypeDescriptor::Integer(IntSize::U4)));
+        let creator = file.group("h5md/creator").unwrap();
+        assert_eq!(creator.attr("name").unwrap().read_scalar::<VarLenUnicode>().unwrap().as_str(), "gendpde");
+        let bx = file.group("particles/all/box").unwrap();
+        assert_eq!(bx.attr("dimension").unwrap().read_scalar::<i32>().unwrap(), 3);
+        let b = bx.attr("boundary").unwrap().read_raw::<VarLenUnicode>().unwrap();
+        assert_eq!(b.iter().map(|s| s.as_str()).collect::<Vec<_>>(), ["periodic"; 3]);
+        assert_eq!(bx.dataset("edges").unwrap().read_raw::<f64>().unwrap(), vec![10.0, 11.0, 12.5]);
+
+        for field in fields {
+            let g = file.group(&format!("particles/all/{}", field.h5md_name())).unwrap();
+            let value = g.dataset("value").unwrap();
+            let expect_shape = if field.width() == 3 { vec![3, n, 3] } else { vec![3, n] };
+            assert_eq!(value.shape(), expect_shape, "{field}");
+            assert!(value.is_resizable());
+            assert!(value.is_chunked());
+            let step = g.dataset("step").unwrap();
+            let time = g.dataset("time").unwrap();
+            assert!(step.is_chunked() && time.is_chunked());
+            assert_eq!(step.read_raw::<i64>().unwrap(), vec![0, 10, 20]);
+            assert_eq!(time.read_raw::<f64>().unwrap(), vec![0.0, 0.5, 1.0]);
+            assert!(matches!(descriptor(&step), TypeDescriptor::Integer(IntSize::U8)));
+            let expected: Vec<f64> = (0..3).flat_map(|f| rows(field, f, 0..n)).collect();
+            let d = descriptor(&value);
+            match field.kind() {
+                Kind::F64 => {
+                    assert_eq!(d, TypeDescriptor::Float(hdf5::types::FloatSize::U8));
+                    assert_eq!(value.read_raw::<f64>().unwrap(), expected, "{field}");
+                }
+                Kind::I32 => {
+                    assert_eq!(d, TypeDescriptor::Integer(IntSize::U4), "{field}");
+                    let got: Vec<f64> = value.read_raw::<i32>().unwrap().into_iter().map(f64::from).collect();
+                    assert_eq!(got, expected, "{field}");
+                }
+                Kind::I64 => {
+                    assert_eq!(d, TypeDescriptor::Integer(IntSize::U8), "{field}");
+                    let got: Vec<f64> = value.read_raw::<i64>().unwrap().into_iter().map(|x| x as f64).collect();
+                    assert_eq!(got, expected, "{field}");
+                }
+            }
+        }
+        let _ = std::fs::remove_file(&path);
+    }
+
+    fn descriptor_attr(a: &Attribute) -> TypeDescriptor {
+        a.dtype().unwrap().to_descriptor().unwrap()
+    }
+
+    #[test]
+    fn append_adds_frames() {
+        let path = tmp("append.h5");
+        let n = 5;
+        let fields = [H5mdField::Position, H5mdField::Id, H5mdField::Temperature];
+        let mut w = H5mdWriter::create(&path, n, [1.0, 2.0, 3.0], &fields, "a", "v").unwrap();
+        write_frames(&mut w, 0, 2, n);
+        drop(w);
+        // Another field order is fine; the set matters.
+        let order = [H5mdField::Temperature, H5mdField::Position, H5mdField::Id];
+        let mut w = H5mdWriter::append(&path, n, &order).unwrap();
+        assert_eq!(w.frames(), 2);
+        write_frames(&mut w, 2, 2, n);
+        assert_eq!(w.frames(), 4);
+        drop(w);
+        let s = check_h5md(&path).unwrap();
+        assert_eq!(s.frames, 4);
+        assert_eq!(s.steps, vec![0, 10, 20, 30]);
+        let file = File::open(&path).unwrap();
+        let pos = file.dataset("particles/all/position/value").unwrap();
+        assert_eq!(pos.shape(), vec![4, n, 3]);
+        let expected: Vec<f64> = (0..4).flat_map(|f| rows(H5mdField::Position, f, 0..n)).collect();
+        assert_eq!(pos.read_raw::<f64>().unwrap(), expected);
+        let _ = std::fs::remove_file(&path);
+    }
+
+    #[test]
+    fn append_drops_incomplete_frame() {
+        let path = tmp("incomplete.h5");
+        let n = 4;
+        let fields = [H5mdField::Velocity, H5mdField::Mass];
+        let mut w = H5mdWriter::create(&path, n, [1.0; 3], &fields, "a", "v").unwrap();
+        write_frames(&mut w, 0, 2, n);
+        w.begin_frame(99, 9.9).unwrap();
+        w.write_rows(H5mdField::Mass, 0, &[1.0, 2.0]).unwrap();
+        drop(w); // no end_frame
+        let s = check_h5md(&path).unwrap();
+        assert_eq!(s.frames, 2);
+        let mut w = H5mdWriter::append(&path, n, &fields).unwrap();
+        assert_eq!(w.frames(), 2);
+        write_frames(&mut w, 2, 1, n);
+        drop(w);
+        let file = File::open(&path).unwrap();
+        assert_eq!(file.dataset("particles/all/mass/value").unwrap().shape(), vec![3, n]);
+        assert_eq!(check_h5md(&path).unwrap().steps, vec![0, 10, 20]);
+        let _ = std::fs::remove_file(&path);
+    }
+
+    #[test]
+    fn append_mismatch_is_error() {
+        let path = tmp("mismatch.h5");
+        let fields = [H5mdField::Position, H5mdField::Species];
+        let mut w = H5mdWriter::create(&path, 6, [1.0; 3], &fields, "a", "v").unwrap();
+        write_frames(&mut w, 0, 1, 6);
+        drop(w);
+        let e = H5mdWriter::append(&path, 5, &fields).unwrap_err();
+        assert!(e.0.contains("6 particles") && e.0.contains("mismatch.h5"), "{e}");
+        let e = H5mdWriter::append(&path, 6, &[H5mdField::Position]).unwrap_err();
+        assert!(e.0.contains("species"), "{e}");
+        let e = H5mdWriter::append(&path, 6, &[H5mdField::Position, H5mdField::Species, H5mdField::Mass]).unwrap_err();
+        assert!(e.0.contains("mass"), "{e}");
+        let e = H5mdWriter::append(&tmp("does-not-exist.h5"), 6, &fields).unwrap_err();
+        assert!(e.0.contains("does-not-exist.h5"), "{e}");
+        // The file is untouched by the failed attempts.
+        let mut w = H5mdWriter::append(&path, 6, &fields).unwrap();
+        write_frames(&mut w, 1, 1, 6);
+        drop(w);
+        assert_eq!(check_h5md(&path).unwrap().frames, 2);
+        let _ = std::fs::remove_file(&path);
+    }
+
+    #[test]
+    fn bad_writes_are_errors() {
+        let path = tmp("bad.h5");
+        let n = 4;
+        let fields = [H5mdField::Position, H5mdField::Species, H5mdField::Id];
+        assert!(H5mdWriter::create(&path, n, [1.0; 3], &[], "a", "v").is_err());
+        assert!(H5mdWriter::create(&path, n, [1.0; 3], &[H5mdField::Mass, H5mdField::Mass], "a", "v").is_err());
+        let mut w = H5mdWriter::create(&path, n, [1.0; 3], &fields, "a", "v").unwrap();
+        // Outside a frame.
+        assert!(w.write_rows(H5mdField::Position, 0, &[0.0; 3]).is_err());
+        assert!(w.end_frame().is_err());
+        w.begin_frame(1, 0.1).unwrap();
+        assert!(w.begin_frame(2, 0.2).is_err());
+        // Row range.
+        assert!(w.write_rows(H5mdField::Position, 4, &[0.0; 3]).is_err());
+        assert!(w.write_rows(H5mdField::Position, 3, &[0.0; 6]).is_err());
+        assert!(w.write_rows(H5mdField::Position, usize::MAX, &[0.0; 3]).is_err());
+        assert!(w.write_rows(H5mdField::Position, 4, &[]).is_ok());
+        // Data length not a multiple of the width.
+        let e = w.write_rows(H5mdField::Position, 0, &[0.0; 4]).unwrap_err();
+        assert!(e.0.contains("bad.h5"), "{e}");
+        // Field not in the file.
+        assert!(w.write_rows(H5mdField::Mass, 0, &[0.0]).is_err());
+        // Non-integral / out-of-range integer fields.
+        assert!(w.write_rows(H5mdField::Species, 0, &[0.5]).is_err());
+        assert!(w.write_rows(H5mdField::Species, 0, &[1e10]).is_err());
+        assert!(w.write_rows(H5mdField::Id, 0, &[f64::NAN]).is_err());
+        assert!(w.write_rows(H5mdField::Id, 0, &[1e19]).is_err());
+        w.write_rows(H5mdField::Id, 0, &[1.0, 2.0, 3.0, 4.0]).unwrap();
+        w.write_rows(H5mdField::Species, 0, &[-1.0, 0.0, 1.0, 2.0]).unwrap();
+        w.write_rows(H5mdField::Position, 0, &[0.5; 12]).unwrap();
+        w.end_frame().unwrap();
+        assert_eq!(w.frames(), 1);
+        drop(w);
+        assert_eq!(check_h5md(&path).unwrap().frames, 1);
+        let _ = std::fs::remove_file(&path);
+    }
+
+    #[test]
+    fn zero_particles() {
+        let path = tmp("empty.h5");
+        let fields = [H5mdField::Position, H5mdField::Mass];
+        let mut w = H5mdWriter::create(&path, 0, [2.0; 3], &fields, "a", "v").unwrap();
+        write_frames(&mut w, 0, 2, 0);
+        assert!(w.begin_frame(30, 1.0).is_ok());
+        assert!(w.write_rows(H5mdField::Mass, 0, &[1.0]).is_err());
+        w.end_frame().unwrap();
+        drop(w);
+        let s = check_h5md(&path).unwrap();
+        assert_eq!((s.particles, s.frames), (0, 3));
+        let file = File::open(&path).unwrap();
+        assert_eq!(file.dataset("particles/all/position/value").unwrap().shape(), vec![3, 0, 3]);
+        drop(file);
+        let mut w = H5mdWriter::append(&path, 0, &fields).unwrap();
+        write_frames(&mut w, 3, 1, 0);
+        drop(w);
+        assert_eq!(check_h5md(&path).unwrap().frames, 4);
+        let _ = std::fs::remove_file(&path);
+    }
+
+    /// Child half of `killed_writer_is_recoverable`: writes 3 frames, starts
+    /// a 4th and aborts (no destructors, like kill -9).
+    #[test]
+    #[ignore]
+    fn killed_writer_child() {
+        let Some(path) = std::env::var_os("GENDPDE_H5MD_KILL_CHILD") else { return };
+        let path = PathBuf::from(path);
+        let n = 50;
+        let fields = [H5mdField::Position, H5mdField::Id];
+        let mut w = H5mdWriter::create(&path, n, [3.0; 3], &fields, "a", "v").unwrap();
+        write_frames(&mut w, 0, 3, n);
+        w.begin_frame(30, 1.5).unwrap();
+        w.write_rows(H5mdField::Position, 0, &rows(H5mdField::Position, 3, 0..n)).unwrap();
+        std::process::abort();
+    }
+
+    #[test]
+    fn killed_writer_is_recoverable() {
+        let path = tmp("killed.h5");
+        let status = std::process::Command::new(std::env::current_exe().unwrap())
+            .args(["--exact", "h5md::tests::killed_writer_child", "--ignored", "--nocapture", "--test-threads=1"])
+            .env("GENDPDE_H5MD_KILL_CHILD", &path)
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::null())
+            .status()
+            .unwrap();
+        assert!(!status.success());
+        let s = check_h5md(&path).unwrap();
+        assert_eq!((s.frames, s.particles), (3, 50));
+        assert!(!s.clean, "a killed writer leaves the file marked open");
+        let fields = [H5mdField::Id, H5mdField::Position];
+        let mut w = H5mdWriter::append(&path, 50, &fields).unwrap();
+        assert_eq!(w.frames(), 3);
+        write_frames(&mut w, 3, 2, 50);
+        drop(w);
+        let s = check_h5md(&path).unwrap();
+        assert_eq!(s.steps, vec![0, 10, 20, 30, 40]);
+        assert!(s.clean);
+        let file = File::open(&path).unwrap();
+        let pos = file.dataset("particles/all/position/value").unwrap();
+        let expected: Vec<f64> = (0..5).flat_map(|f| rows(H5mdField::Position, f, 0..50)).collect();
+        assert_eq!(pos.read_raw::<f64>().unwrap(), expected);
+        drop((pos, file));
+        // repair on a clean file is harmless
+        repair_h5md(&path).unwrap();
+        assert!(check_h5md(&path).unwrap().clean);
+        let _ = std::fs::remove_file(&path);
+    }
+
+    #[test]
+    fn check_rejects_non_h5md() {
+        let path = tmp("plain.h5");
+        let f = File::create(&path).unwrap();
+        f.create_group("particles/all").unwrap();
+        drop(f);
+        let e = check_h5md(&path).unwrap_err();
+        assert!(e.0.contains("/h5md") && e.0.contains("plain.h5"), "{e}");
+        let e = H5mdWriter::append(&path, 1, &[H5mdField::Mass]).unwrap_err();
+        assert!(e.0.contains("plain.h5"), "{e}");
+        std::fs::write(&path, b"not hdf5").unwrap();
+        let e = check_h5md(&path).unwrap_err();
+        assert!(e.0.contains("plain.h5"), "{e}");
+        let e = H5mdWriter::append(&path, 1, &[H5mdField::Mass]).unwrap_err();
+        assert!(e.0.contains("plain.h5"), "{e}");
+        let _ = std::fs::remove_file(&path);
+    }
+}
