@@ -204,7 +204,10 @@ impl ParticleRows {
         let n = lens[0].1;
         if lens.iter().any(|&(_, l)| l != n) {
             let list: Vec<String> = lens.iter().map(|(c, l)| format!("{c} {l}")).collect();
-            return Err(format!("particle columns have unequal lengths ({})", list.join(", ")));
+            return Err(format!(
+                "particle columns have unequal lengths ({})",
+                list.join(", ")
+            ));
         }
         Ok(n)
     }
@@ -241,19 +244,28 @@ fn join_commands(path: &Path, commands: &[String]) -> Result<Vec<u8>, RestartErr
     let mut bytes = Vec::new();
     for c in commands {
         if c.contains('\0') {
-            return Err(error(path, format!("cannot store script command {c:?}: it contains a NUL character")));
+            return Err(error(
+                path,
+                format!("cannot store script command {c:?}: it contains a NUL character"),
+            ));
         }
         bytes.extend_from_slice(c.as_bytes());
         bytes.push(0);
     }
     if bytes.len() > MAX_COMMAND_BYTES {
-        return Err(error(path, format!("the script commands exceed {MAX_COMMAND_BYTES} bytes")));
+        return Err(error(
+            path,
+            format!("the script commands exceed {MAX_COMMAND_BYTES} bytes"),
+        ));
     }
     Ok(bytes)
 }
 
 fn write_attr<T: H5Type>(loc: &Location, name: &str, value: &T) -> hdf5::Result<()> {
-    loc.new_attr::<T>().shape(()).create(name)?.write_scalar(value)
+    loc.new_attr::<T>()
+        .shape(())
+        .create(name)?
+        .write_scalar(value)
 }
 
 /// Writes a restart file block by block; see the module documentation.
@@ -285,9 +297,14 @@ impl RestartWriter {
     /// so an interrupted write never replaces a good file).
     pub fn create(path: &Path, header: &RestartHeader) -> Result<Self, RestartError> {
         hdf5::silence_errors(true);
-        header.check().map_err(|e| error(path, format!("invalid header: {e}")))?;
+        header
+            .check()
+            .map_err(|e| error(path, format!("invalid header: {e}")))?;
         if let Some(t) = header.masses.iter().flatten().find(|m| m.is_nan()) {
-            return Err(error(path, format!("invalid header: a per-type mass of {t} cannot be stored")));
+            return Err(error(
+                path,
+                format!("invalid header: a per-type mass of {t} cannot be stored"),
+            ));
         }
         let tmp = temp_path(path);
         let h5 = |e: hdf5::Error| error(&tmp, e);
@@ -306,14 +323,24 @@ impl RestartWriter {
             last_tag: None,
             done: false,
         };
-        let natoms = usize::try_from(header.natoms)
-            .map_err(|_| error(path, format!("natoms = {} does not fit in memory indices", header.natoms)))?;
+        let natoms = usize::try_from(header.natoms).map_err(|_| {
+            error(
+                path,
+                format!("natoms = {} does not fit in memory indices", header.natoms),
+            )
+        })?;
 
         let format = FormatString::from_ascii(RESTART_FORMAT).map_err(|e| error(path, e))?;
         write_attr(&file, "format", &format).map_err(h5)?;
         write_attr(&file, "format_version", &RESTART_FORMAT_VERSION).map_err(h5)?;
         let version = VersionString::from_str(&header.creator_version).map_err(|e| {
-            error(path, format!("cannot store creator_version {:?}: {e}", header.creator_version))
+            error(
+                path,
+                format!(
+                    "cannot store creator_version {:?}: {e}",
+                    header.creator_version
+                ),
+            )
         })?;
         write_attr(&file, "creator_version", &version).map_err(h5)?;
         write_attr(&file, "step", &header.step).map_err(h5)?;
@@ -328,36 +355,97 @@ impl RestartWriter {
         }
         if let Some(c) = header.cell_counts {
             let c = c.map(|x| x as u64);
-            file.new_attr_builder().with_data(&c[..]).create("cell_counts").map_err(h5)?;
+            file.new_attr_builder()
+                .with_data(&c[..])
+                .create("cell_counts")
+                .map_err(h5)?;
         }
 
         let bx = file.create_group("box").map_err(h5)?;
-        bx.new_dataset_builder().with_data(&header.lo[..]).create("lo").map_err(h5)?;
-        bx.new_dataset_builder().with_data(&header.hi[..]).create("hi").map_err(h5)?;
+        bx.new_dataset_builder()
+            .with_data(&header.lo[..])
+            .create("lo")
+            .map_err(h5)?;
+        bx.new_dataset_builder()
+            .with_data(&header.hi[..])
+            .create("hi")
+            .map_err(h5)?;
 
-        let masses: Vec<f64> = header.masses.iter().map(|m| m.unwrap_or(f64::NAN)).collect();
+        let masses: Vec<f64> = header
+            .masses
+            .iter()
+            .map(|m| m.unwrap_or(f64::NAN))
+            .collect();
         let types = file.create_group("types").map_err(h5)?;
-        types.new_dataset_builder().with_data(&masses[..]).create("mass").map_err(h5)?;
+        types
+            .new_dataset_builder()
+            .with_data(&masses[..])
+            .create("mass")
+            .map_err(h5)?;
 
         let commands = join_commands(path, &header.commands)?;
         let script = file.create_group("script").map_err(h5)?;
-        let cd = script.new_dataset::<u8>().shape(commands.len()).create("commands").map_err(h5)?;
+        let cd = script
+            .new_dataset::<u8>()
+            .shape(commands.len())
+            .create("commands")
+            .map_err(h5)?;
         if !commands.is_empty() {
             cd.write_raw(&commands[..]).map_err(h5)?;
         }
 
         let pg = file.create_group("particles").map_err(h5)?;
         let cols = Columns {
-            tag: pg.new_dataset::<u64>().shape(natoms).create("tag").map_err(h5)?,
-            kind: pg.new_dataset::<u32>().shape(natoms).create("type").map_err(h5)?,
-            mass: pg.new_dataset::<f64>().shape(natoms).create("mass").map_err(h5)?,
-            r: pg.new_dataset::<f64>().shape((natoms, 3)).create("r").map_err(h5)?,
-            p: pg.new_dataset::<f64>().shape((natoms, 3)).create("p").map_err(h5)?,
-            u: pg.new_dataset::<f64>().shape(natoms).create("u").map_err(h5)?,
-            theta: pg.new_dataset::<f64>().shape(natoms).create("theta").map_err(h5)?,
-            image: pg.new_dataset::<i32>().shape((natoms, 3)).create("image").map_err(h5)?,
-            cell: pg.new_dataset::<i32>().shape((natoms, 3)).create("cell").map_err(h5)?,
-            r_at_build: pg.new_dataset::<f64>().shape((natoms, 3)).create("r_at_build").map_err(h5)?,
+            tag: pg
+                .new_dataset::<u64>()
+                .shape(natoms)
+                .create("tag")
+                .map_err(h5)?,
+            kind: pg
+                .new_dataset::<u32>()
+                .shape(natoms)
+                .create("type")
+                .map_err(h5)?,
+            mass: pg
+                .new_dataset::<f64>()
+                .shape(natoms)
+                .create("mass")
+                .map_err(h5)?,
+            r: pg
+                .new_dataset::<f64>()
+                .shape((natoms, 3))
+                .create("r")
+                .map_err(h5)?,
+            p: pg
+                .new_dataset::<f64>()
+                .shape((natoms, 3))
+                .create("p")
+                .map_err(h5)?,
+            u: pg
+                .new_dataset::<f64>()
+                .shape(natoms)
+                .create("u")
+                .map_err(h5)?,
+            theta: pg
+                .new_dataset::<f64>()
+                .shape(natoms)
+                .create("theta")
+                .map_err(h5)?,
+            image: pg
+                .new_dataset::<i32>()
+                .shape((natoms, 3))
+                .create("image")
+                .map_err(h5)?,
+            cell: pg
+                .new_dataset::<i32>()
+                .shape((natoms, 3))
+                .create("cell")
+                .map_err(h5)?,
+            r_at_build: pg
+                .new_dataset::<f64>()
+                .shape((natoms, 3))
+                .create("r_at_build")
+                .map_err(h5)?,
         };
         writer.inner = Some((file, cols));
         Ok(writer)
@@ -369,7 +457,10 @@ impl RestartWriter {
         let path = self.path.clone();
         let n = rows.check().map_err(|e| error(&path, e))?;
         let Some((_, cols)) = &self.inner else {
-            return Err(error(&path, "an earlier write failed; the restart cannot be completed"));
+            return Err(error(
+                &path,
+                "an earlier write failed; the restart cannot be completed",
+            ));
         };
         if self.written + n as u64 > self.natoms {
             return Err(error(
@@ -385,11 +476,17 @@ impl RestartWriter {
             if last.is_some_and(|l| t <= l) {
                 return Err(error(
                     &path,
-                    format!("particle tags must be strictly increasing, got {t} after {}", last.unwrap_or(0)),
+                    format!(
+                        "particle tags must be strictly increasing, got {t} after {}",
+                        last.unwrap_or(0)
+                    ),
                 ));
             }
             if t > self.max_tag {
-                return Err(error(&path, format!("particle tag {t} exceeds max_tag = {}", self.max_tag)));
+                return Err(error(
+                    &path,
+                    format!("particle tag {t} exceeds max_tag = {}", self.max_tag),
+                ));
             }
             last = Some(t);
         }
@@ -402,19 +499,27 @@ impl RestartWriter {
             cols.tag.write_slice(&rows.tag[..], a..b)?;
             cols.kind.write_slice(&rows.kind[..], a..b)?;
             cols.mass.write_slice(&rows.mass[..], a..b)?;
-            cols.r.write_slice::<_, f64, _, _>(&rows.r[..], (a..b, ..))?;
-            cols.p.write_slice::<_, f64, _, _>(&rows.p[..], (a..b, ..))?;
+            cols.r
+                .write_slice::<_, f64, _, _>(&rows.r[..], (a..b, ..))?;
+            cols.p
+                .write_slice::<_, f64, _, _>(&rows.p[..], (a..b, ..))?;
             cols.u.write_slice(&rows.u[..], a..b)?;
             cols.theta.write_slice(&rows.theta[..], a..b)?;
-            cols.image.write_slice::<_, i32, _, _>(&rows.image[..], (a..b, ..))?;
-            cols.cell.write_slice::<_, i32, _, _>(&rows.cell[..], (a..b, ..))?;
-            cols.r_at_build.write_slice::<_, f64, _, _>(&rows.r_at_build[..], (a..b, ..))?;
+            cols.image
+                .write_slice::<_, i32, _, _>(&rows.image[..], (a..b, ..))?;
+            cols.cell
+                .write_slice::<_, i32, _, _>(&rows.cell[..], (a..b, ..))?;
+            cols.r_at_build
+                .write_slice::<_, f64, _, _>(&rows.r_at_build[..], (a..b, ..))?;
             Ok(())
         })();
         if let Err(e) = result {
             // Part of the block may be on disk; refuse to go on.
             self.inner = None;
-            return Err(error(&self.tmp, format!("writing particle rows {a}..{b}: {e}")));
+            return Err(error(
+                &self.tmp,
+                format!("writing particle rows {a}..{b}: {e}"),
+            ));
         }
         self.written += n as u64;
         self.last_tag = last;
@@ -425,23 +530,35 @@ impl RestartWriter {
     /// `path` atomically.
     pub fn finish(mut self) -> Result<(), RestartError> {
         let Some((file, cols)) = self.inner.take() else {
-            return Err(error(&self.path, "an earlier write failed; the restart was not written"));
+            return Err(error(
+                &self.path,
+                "an earlier write failed; the restart was not written",
+            ));
         };
         if self.written != self.natoms {
             return Err(error(
                 &self.path,
-                format!("only {} of natoms = {} particle rows were written", self.written, self.natoms),
+                format!(
+                    "only {} of natoms = {} particle rows were written",
+                    self.written, self.natoms
+                ),
             ));
         }
         drop(cols);
         let tmp = self.tmp.clone();
-        file.flush().map_err(|e| error(&tmp, format!("flushing: {e}")))?;
-        file.close().map_err(|e| error(&tmp, format!("closing: {e}")))?;
+        file.flush()
+            .map_err(|e| error(&tmp, format!("flushing: {e}")))?;
+        file.close()
+            .map_err(|e| error(&tmp, format!("closing: {e}")))?;
         fs::File::open(&tmp)
             .and_then(|f| f.sync_all())
             .map_err(|e| error(&tmp, format!("syncing to disk: {e}")))?;
-        fs::rename(&tmp, &self.path)
-            .map_err(|e| error(&self.path, format!("renaming {} into place: {e}", tmp.display())))?;
+        fs::rename(&tmp, &self.path).map_err(|e| {
+            error(
+                &self.path,
+                format!("renaming {} into place: {e}", tmp.display()),
+            )
+        })?;
         self.done = true;
         // Make the rename itself durable (best effort: not every platform
         // lets a directory be opened and synced).
@@ -510,7 +627,9 @@ fn describe(dtype: hdf5::Result<hdf5::Datatype>) -> String {
 }
 
 fn has_type<T: H5Type>(dtype: hdf5::Result<hdf5::Datatype>) -> bool {
-    dtype.and_then(|d| d.to_descriptor()).is_ok_and(|t| t == T::type_descriptor())
+    dtype
+        .and_then(|d| d.to_descriptor())
+        .is_ok_and(|t| t == T::type_descriptor())
 }
 
 /// Validation context for one file being opened.
@@ -525,13 +644,23 @@ impl Check<'_> {
     }
 
     fn attr(&self, name: &str) -> Result<hdf5::Attribute, RestartError> {
-        if !self.file.attr_names().is_ok_and(|n| n.iter().any(|a| a == name)) {
+        if !self
+            .file
+            .attr_names()
+            .is_ok_and(|n| n.iter().any(|a| a == name))
+        {
             return Err(self.err(format!("missing root attribute '{name}'")));
         }
-        self.file.attr(name).map_err(|e| self.err(format!("cannot open root attribute '{name}': {e}")))
+        self.file
+            .attr(name)
+            .map_err(|e| self.err(format!("cannot open root attribute '{name}': {e}")))
     }
 
-    fn typed_attr<T: H5Type>(&self, name: &str, shape: &[usize]) -> Result<hdf5::Attribute, RestartError> {
+    fn typed_attr<T: H5Type>(
+        &self,
+        name: &str,
+        shape: &[usize],
+    ) -> Result<hdf5::Attribute, RestartError> {
         let a = self.attr(name)?;
         let want = type_name(&T::type_descriptor());
         if !has_type::<T>(a.dtype()) {
@@ -562,7 +691,11 @@ impl Check<'_> {
     }
 
     fn optional_scalar<T: H5Type>(&self, name: &str) -> Result<Option<T>, RestartError> {
-        if self.file.attr_names().is_ok_and(|n| n.iter().any(|a| a == name)) {
+        if self
+            .file
+            .attr_names()
+            .is_ok_and(|n| n.iter().any(|a| a == name))
+        {
             self.scalar(name).map(Some)
         } else {
             Ok(None)
@@ -570,7 +703,11 @@ impl Check<'_> {
     }
 
     /// Opens dataset `name`, checking its element type and, if given, its shape.
-    fn dataset<T: H5Type>(&self, name: &str, shape: Option<&[usize]>) -> Result<Dataset, RestartError> {
+    fn dataset<T: H5Type>(
+        &self,
+        name: &str,
+        shape: Option<&[usize]>,
+    ) -> Result<Dataset, RestartError> {
         // Check each path component, so that a missing group is reported as
         // what it is rather than as an HDF5 error stack.
         let mut prefix = String::new();
@@ -578,10 +715,15 @@ impl Check<'_> {
             prefix.push('/');
             prefix.push_str(part);
             if !self.file.link_exists(&prefix) {
-                return Err(self.err(format!("missing dataset '{name}' ('{prefix}' does not exist)")));
+                return Err(self.err(format!(
+                    "missing dataset '{name}' ('{prefix}' does not exist)"
+                )));
             }
         }
-        let d = self.file.dataset(name).map_err(|e| self.err(format!("cannot open dataset '{name}': {e}")))?;
+        let d = self
+            .file
+            .dataset(name)
+            .map_err(|e| self.err(format!("cannot open dataset '{name}': {e}")))?;
         if !has_type::<T>(d.dtype()) {
             return Err(self.err(format!(
                 "dataset '{name}' should be of type {}, found {}",
@@ -604,13 +746,15 @@ impl Check<'_> {
         if d.size() == 0 {
             return Ok(Vec::new());
         }
-        d.read_raw::<T>().map_err(|e| self.err(format!("cannot read dataset '{name}': {e}")))
+        d.read_raw::<T>()
+            .map_err(|e| self.err(format!("cannot read dataset '{name}': {e}")))
     }
 
     fn vector3(&self, name: &str) -> Result<[f64; 3], RestartError> {
         let d = self.dataset::<f64>(name, Some(&[3]))?;
         let v = self.read_all::<f64>(name, &d)?;
-        v.try_into().map_err(|_| self.err(format!("dataset '{name}' should hold 3 values")))
+        v.try_into()
+            .map_err(|_| self.err(format!("dataset '{name}' should hold 3 values")))
     }
 }
 
@@ -630,12 +774,16 @@ impl RestartReader {
             return Err(error(path, "is not a regular file"));
         }
         if meta.len() == 0 {
-            return Err(error(path, "is empty (0 bytes); expected an HDF5 gendpde restart file"));
+            return Err(error(
+                path,
+                "is empty (0 bytes); expected an HDF5 gendpde restart file",
+            ));
         }
         let mut sig = [0u8; 8];
         {
             use std::io::Read as _;
-            let mut f = fs::File::open(path).map_err(|e| error(path, format!("cannot be read: {e}")))?;
+            let mut f =
+                fs::File::open(path).map_err(|e| error(path, format!("cannot be read: {e}")))?;
             let mut got = 0;
             while got < sig.len() {
                 match f.read(&mut sig[got..]) {
@@ -653,7 +801,10 @@ impl RestartReader {
             }
         }
         let file = File::open(path).map_err(|e| {
-            error(path, format!("cannot be opened as HDF5 (truncated or corrupt?): {e}"))
+            error(
+                path,
+                format!("cannot be opened as HDF5 (truncated or corrupt?): {e}"),
+            )
         })?;
         let c = Check { path, file: &file };
 
@@ -685,11 +836,15 @@ impl RestartReader {
             )));
         }
         if version < 1 {
-            return Err(c.err(format!("unsupported format_version {version} (expected {RESTART_FORMAT_VERSION})")));
+            return Err(c.err(format!(
+                "unsupported format_version {version} (expected {RESTART_FORMAT_VERSION})"
+            )));
         }
 
-        let creator_version =
-            c.utf8("creator_version", c.scalar::<VersionString>("creator_version")?.as_bytes())?;
+        let creator_version = c.utf8(
+            "creator_version",
+            c.scalar::<VersionString>("creator_version")?.as_bytes(),
+        )?;
         let step = c.scalar::<u64>("step")?;
         let time = c.scalar::<f64>("time")?;
         let dt = c.scalar::<f64>("dt")?;
@@ -698,22 +853,34 @@ impl RestartReader {
         let ntypes = c.scalar::<u64>("ntypes")?;
         let last_build = c.scalar::<u64>("last_build")?;
         let energy0 = c.optional_scalar::<f64>("energy0")?;
-        let cell_counts = if c.file.attr_names().is_ok_and(|n| n.iter().any(|a| a == "cell_counts")) {
+        let cell_counts = if c
+            .file
+            .attr_names()
+            .is_ok_and(|n| n.iter().any(|a| a == "cell_counts"))
+        {
             let a = c.typed_attr::<u64>("cell_counts", &[3])?;
-            let v = a.read_raw::<u64>().map_err(|e| c.err(format!("cannot read root attribute 'cell_counts': {e}")))?;
+            let v = a
+                .read_raw::<u64>()
+                .map_err(|e| c.err(format!("cannot read root attribute 'cell_counts': {e}")))?;
             let mut out = [0usize; 3];
             for (o, &x) in out.iter_mut().zip(&v) {
-                *o = usize::try_from(x).map_err(|_| c.err(format!("cell_counts {v:?} out of range")))?;
+                *o = usize::try_from(x)
+                    .map_err(|_| c.err(format!("cell_counts {v:?} out of range")))?;
             }
             if v.len() != 3 {
-                return Err(c.err(format!("root attribute 'cell_counts' should hold 3 values, found {}", v.len())));
+                return Err(c.err(format!(
+                    "root attribute 'cell_counts' should hold 3 values, found {}",
+                    v.len()
+                )));
             }
             Some(out)
         } else {
             None
         };
         if ntypes > MAX_RESTART_TYPES {
-            return Err(c.err(format!("ntypes = {ntypes} exceeds the limit of {MAX_RESTART_TYPES}")));
+            return Err(c.err(format!(
+                "ntypes = {ntypes} exceeds the limit of {MAX_RESTART_TYPES}"
+            )));
         }
         let ntypes = ntypes as usize;
         let n = usize::try_from(natoms)
@@ -777,8 +944,15 @@ impl RestartReader {
             commands,
             creator_version,
         };
-        header.check().map_err(|e| c.err(format!("inconsistent header: {e}")))?;
-        Ok(RestartReader { path: path.to_path_buf(), header, cols, _file: file })
+        header
+            .check()
+            .map_err(|e| c.err(format!("inconsistent header: {e}")))?;
+        Ok(RestartReader {
+            path: path.to_path_buf(),
+            header,
+            cols,
+            _file: file,
+        })
     }
 
     pub fn header(&self) -> &RestartHeader {
@@ -787,7 +961,12 @@ impl RestartReader {
 
     /// Reads rows [start, start + len) (clipped to natoms) into `rows`
     /// (cleared first).
-    pub fn read_rows(&self, start: u64, len: u64, rows: &mut ParticleRows) -> Result<(), RestartError> {
+    pub fn read_rows(
+        &self,
+        start: u64,
+        len: u64,
+        rows: &mut ParticleRows,
+    ) -> Result<(), RestartError> {
         rows.clear();
         let natoms = self.header.natoms;
         let a = start.min(natoms);
@@ -799,12 +978,19 @@ impl RestartReader {
         let (a, b) = (a as usize, b as usize);
         let n = b - a;
         let err = |name: &str, e: hdf5::Error| {
-            error(&self.path, format!("reading rows {a}..{b} of dataset 'particles/{name}': {e}"))
+            error(
+                &self.path,
+                format!("reading rows {a}..{b} of dataset 'particles/{name}': {e}"),
+            )
         };
         fn one<T: H5Type + Clone>(d: &Dataset, a: usize, b: usize) -> hdf5::Result<Vec<T>> {
             Ok(d.read_slice_1d::<T, _>(a..b)?.iter().cloned().collect())
         }
-        fn three<T: H5Type + Copy + Default>(d: &Dataset, a: usize, b: usize) -> hdf5::Result<Vec<[T; 3]>> {
+        fn three<T: H5Type + Copy + Default>(
+            d: &Dataset,
+            a: usize,
+            b: usize,
+        ) -> hdf5::Result<Vec<[T; 3]>> {
             let arr = d.read_slice_2d::<T, _>((a..b, ..))?;
             if arr.shape() != [b - a, 3] {
                 return Err(format!("got shape {:?}, expected [{}, 3]", arr.shape(), b - a).into());
@@ -866,7 +1052,10 @@ mod tests {
 
     impl Lcg {
         fn next(&mut self) -> u64 {
-            self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            self.0 = self
+                .0
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             self.0 >> 11
         }
         fn below(&mut self, n: u64) -> u64 {
@@ -896,7 +1085,7 @@ mod tests {
             lo: [-5.5, -0.0, 1e-300],
             hi: [5.5, 10.0 / 3.0, 2.0],
             masses: vec![Some(1.0 / 3.0), None, Some(f64::from_bits(1))],
-            energy0: Some(-1234.567_890_123_456_7),
+            energy0: Some(-1_234.567_890_123_456_7),
             last_build: 123_456_789_000,
             cell_counts: Some([7, 3, 11]),
             commands: vec![
@@ -1008,7 +1197,10 @@ mod tests {
         assert_eq!(a.step, b.step);
         assert_eq!(a.time.to_bits(), b.time.to_bits());
         assert_eq!(a.dt.to_bits(), b.dt.to_bits());
-        assert_eq!((a.natoms, a.max_tag, a.ntypes), (b.natoms, b.max_tag, b.ntypes));
+        assert_eq!(
+            (a.natoms, a.max_tag, a.ntypes),
+            (b.natoms, b.max_tag, b.ntypes)
+        );
         assert_eq!(a.lo.map(f64::to_bits), b.lo.map(f64::to_bits));
         assert_eq!(a.hi.map(f64::to_bits), b.hi.map(f64::to_bits));
         assert_eq!(opt(&a.masses), opt(&b.masses));
@@ -1034,14 +1226,20 @@ mod tests {
         match RestartReader::open(path) {
             Ok(_) => panic!("{} opened although it should not", path.display()),
             Err(e) => {
-                assert!(e.0.contains(&path.display().to_string()), "error does not name the file: {e}");
+                assert!(
+                    e.0.contains(&path.display().to_string()),
+                    "error does not name the file: {e}"
+                );
                 e.0
             }
         }
     }
 
     fn assert_contains(msg: &str, want: &str) {
-        assert!(msg.contains(want), "expected {want:?} in error message {msg:?}");
+        assert!(
+            msg.contains(want),
+            "expected {want:?} in error message {msg:?}"
+        );
     }
 
     #[test]
@@ -1055,7 +1253,13 @@ mod tests {
 
         let r = RestartReader::open(&path).unwrap();
         assert_header_bit_exact(r.header(), &h);
-        assert_eq!(r.header(), &RestartHeader { masses: r.header().masses.clone(), ..h.clone() });
+        assert_eq!(
+            r.header(),
+            &RestartHeader {
+                masses: r.header().masses.clone(),
+                ..h.clone()
+            }
+        );
 
         // Read back in blocks unrelated to the written ones, the last one
         // running past natoms (clipped).
@@ -1102,7 +1306,12 @@ mod tests {
         assert!(rows.is_empty());
 
         // Some(NaN) for energy0 stays distinct from None.
-        let h2 = RestartHeader { energy0: Some(f64::NAN), ntypes: 0, masses: vec![], ..h };
+        let h2 = RestartHeader {
+            energy0: Some(f64::NAN),
+            ntypes: 0,
+            masses: vec![],
+            ..h
+        };
         write_restart(&path, &h2, &ParticleRows::default(), &[]);
         let r = RestartReader::open(&path).unwrap();
         assert!(r.header().energy0.is_some_and(f64::is_nan));
@@ -1170,10 +1379,19 @@ mod tests {
         assert_contains(&w.write_rows(&uneven).unwrap_err().0, "unequal lengths");
         w.write_rows(&slice_rows(&all, 0, 5)).unwrap();
         // Going backwards in tag order.
-        assert_contains(&w.write_rows(&slice_rows(&all, 4, 6)).unwrap_err().0, "strictly increasing");
+        assert_contains(
+            &w.write_rows(&slice_rows(&all, 4, 6)).unwrap_err().0,
+            "strictly increasing",
+        );
         // Too many rows.
         let mut more = slice_rows(&all, 5, 10);
-        append_rows(&mut more, &ParticleRows { tag: vec![1000], ..slice_rows(&all, 0, 1) });
+        append_rows(
+            &mut more,
+            &ParticleRows {
+                tag: vec![1000],
+                ..slice_rows(&all, 0, 1)
+            },
+        );
         assert_contains(&w.write_rows(&more).unwrap_err().0, "exceed natoms = 10");
         // A tag above max_tag.
         let mut big = slice_rows(&all, 5, 6);
@@ -1187,14 +1405,39 @@ mod tests {
         r.read_rows(0, 10, &mut rows).unwrap();
         assert_rows_bit_exact(&rows, &all);
 
-        let bad = RestartHeader { masses: vec![Some(1.0)], ..header(10) };
-        assert_contains(&RestartWriter::create(&path, &bad).unwrap_err().0, "expected 3 per-type masses");
-        let bad = RestartHeader { lo: [0.0; 3], hi: [1.0, 0.0, 1.0], ..header(10) };
-        assert_contains(&RestartWriter::create(&path, &bad).unwrap_err().0, "lo < hi");
-        let bad = RestartHeader { masses: vec![None, Some(f64::NAN), None], ..header(10) };
-        assert_contains(&RestartWriter::create(&path, &bad).unwrap_err().0, "cannot be stored");
-        let bad = RestartHeader { commands: vec!["a\0b".into()], ..header(10) };
-        assert_contains(&RestartWriter::create(&path, &bad).unwrap_err().0, "script command");
+        let bad = RestartHeader {
+            masses: vec![Some(1.0)],
+            ..header(10)
+        };
+        assert_contains(
+            &RestartWriter::create(&path, &bad).unwrap_err().0,
+            "expected 3 per-type masses",
+        );
+        let bad = RestartHeader {
+            lo: [0.0; 3],
+            hi: [1.0, 0.0, 1.0],
+            ..header(10)
+        };
+        assert_contains(
+            &RestartWriter::create(&path, &bad).unwrap_err().0,
+            "lo < hi",
+        );
+        let bad = RestartHeader {
+            masses: vec![None, Some(f64::NAN), None],
+            ..header(10)
+        };
+        assert_contains(
+            &RestartWriter::create(&path, &bad).unwrap_err().0,
+            "cannot be stored",
+        );
+        let bad = RestartHeader {
+            commands: vec!["a\0b".into()],
+            ..header(10)
+        };
+        assert_contains(
+            &RestartWriter::create(&path, &bad).unwrap_err().0,
+            "script command",
+        );
         assert!(!temp_path(&path).exists());
         // The good file is still there.
         RestartReader::open(&path).unwrap();
@@ -1248,9 +1491,15 @@ mod tests {
         let plain = dir.join("plain.h5");
         {
             let f = File::create(&plain).unwrap();
-            f.new_dataset_builder().with_data(&[1.0f64, 2.0][..]).create("x").unwrap();
+            f.new_dataset_builder()
+                .with_data(&[1.0f64, 2.0][..])
+                .create("x")
+                .unwrap();
         }
-        assert_contains(&open_err(&plain), "is an HDF5 file but not a gendpde restart");
+        assert_contains(
+            &open_err(&plain),
+            "is an HDF5 file but not a gendpde restart",
+        );
 
         let other = dir.join("other.h5");
         {
@@ -1264,7 +1513,10 @@ mod tests {
             let f = File::create(&wrong_type).unwrap();
             write_attr(&f, "format", &1.5f64).unwrap();
         }
-        assert_contains(&open_err(&wrong_type), "is not a gendpde restart: root attribute 'format' is a f64");
+        assert_contains(
+            &open_err(&wrong_type),
+            "is not a gendpde restart: root attribute 'format' is a f64",
+        );
     }
 
     /// Writes a valid 100-particle restart, then lets `edit` alter it.
@@ -1287,39 +1539,65 @@ mod tests {
             g.unlink("u").unwrap();
             g.new_dataset::<f64>().shape(99).create("u").unwrap();
         });
-        assert_contains(&open_err(&p), "dataset 'particles/u' should have shape [100], found [99]");
+        assert_contains(
+            &open_err(&p),
+            "dataset 'particles/u' should have shape [100], found [99]",
+        );
 
         let p = crafted(&dir, "short-r.h5", |f| {
             let g = f.group("particles").unwrap();
             g.unlink("r").unwrap();
             g.new_dataset::<f64>().shape((50, 3)).create("r").unwrap();
         });
-        assert_contains(&open_err(&p), "dataset 'particles/r' should have shape [100, 3], found [50, 3]");
+        assert_contains(
+            &open_err(&p),
+            "dataset 'particles/r' should have shape [100, 3], found [50, 3]",
+        );
 
-        let p = crafted(&dir, "no-tag.h5", |f| f.group("particles").unwrap().unlink("tag").unwrap());
+        let p = crafted(&dir, "no-tag.h5", |f| {
+            f.group("particles").unwrap().unlink("tag").unwrap()
+        });
         assert_contains(&open_err(&p), "missing dataset 'particles/tag'");
 
         let p = crafted(&dir, "no-particles.h5", |f| f.unlink("particles").unwrap());
-        assert_contains(&open_err(&p), "missing dataset 'particles/tag' ('/particles' does not exist)");
+        assert_contains(
+            &open_err(&p),
+            "missing dataset 'particles/tag' ('/particles' does not exist)",
+        );
 
         let p = crafted(&dir, "float-tags.h5", |f| {
             let g = f.group("particles").unwrap();
             g.unlink("tag").unwrap();
             g.new_dataset::<f64>().shape(100).create("tag").unwrap();
         });
-        assert_contains(&open_err(&p), "dataset 'particles/tag' should be of type u64, found f64");
+        assert_contains(
+            &open_err(&p),
+            "dataset 'particles/tag' should be of type u64, found f64",
+        );
 
         let p = crafted(&dir, "masses.h5", |f| {
             let g = f.group("types").unwrap();
             g.unlink("mass").unwrap();
-            g.new_dataset_builder().with_data(&[1.0f64, 2.0][..]).create("mass").unwrap();
+            g.new_dataset_builder()
+                .with_data(&[1.0f64, 2.0][..])
+                .create("mass")
+                .unwrap();
         });
-        assert_contains(&open_err(&p), "dataset 'types/mass' should have shape [3], found [2]");
+        assert_contains(
+            &open_err(&p),
+            "dataset 'types/mass' should have shape [3], found [2]",
+        );
 
         let p = crafted(&dir, "newer.h5", |f| {
-            f.attr("format_version").unwrap().write_scalar(&2u32).unwrap();
+            f.attr("format_version")
+                .unwrap()
+                .write_scalar(&2u32)
+                .unwrap();
         });
-        assert_contains(&open_err(&p), "format_version 2 is newer than this gendpde supports");
+        assert_contains(
+            &open_err(&p),
+            "format_version 2 is newer than this gendpde supports",
+        );
 
         let p = crafted(&dir, "no-step.h5", |f| f.delete_attr("step").unwrap());
         assert_contains(&open_err(&p), "missing root attribute 'step'");
@@ -1328,16 +1606,28 @@ mod tests {
             f.delete_attr("step").unwrap();
             write_attr(f, "step", &5.0f64).unwrap();
         });
-        assert_contains(&open_err(&p), "root attribute 'step' should be of type u64, found f64");
+        assert_contains(
+            &open_err(&p),
+            "root attribute 'step' should be of type u64, found f64",
+        );
 
         let p = crafted(&dir, "cells.h5", |f| {
             f.delete_attr("cell_counts").unwrap();
-            f.new_attr_builder().with_data(&[1u64, 2][..]).create("cell_counts").unwrap();
+            f.new_attr_builder()
+                .with_data(&[1u64, 2][..])
+                .create("cell_counts")
+                .unwrap();
         });
-        assert_contains(&open_err(&p), "root attribute 'cell_counts' should have shape [3], found [2]");
+        assert_contains(
+            &open_err(&p),
+            "root attribute 'cell_counts' should have shape [3], found [2]",
+        );
 
         let p = crafted(&dir, "box.h5", |f| {
-            f.dataset("box/hi").unwrap().write_raw(&[1.0f64, -1.0, 1.0][..]).unwrap();
+            f.dataset("box/hi")
+                .unwrap()
+                .write_raw(&[1.0f64, -1.0, 1.0][..])
+                .unwrap();
         });
         assert_contains(&open_err(&p), "inconsistent header: box bounds");
     }
@@ -1350,27 +1640,25 @@ mod tests {
         let all = particles(40, 8);
         write_restart(&path, &header(40), &all, &[17, 40]);
         let good = fs::read(&path).unwrap();
-        if std::env::var_os("RESTART_FUZZ_DEBUG").is_some() { fs::write("/tmp/good-restart.h5", &good).unwrap(); }
         let bad = dir.join("bad.h5");
         let mut g = Lcg(0x5eed);
         let (mut opened, mut identical) = (0, 0);
-        let nvar: u64 = std::env::var("RESTART_FUZZ_VARIANTS").ok().and_then(|v| v.parse().ok()).unwrap_or(200);
-        if let Some(seed) = std::env::var("RESTART_FUZZ_SEED").ok().and_then(|v| v.parse().ok()) { g = Lcg(seed); }
+        let nvar = 200;
         for variant in 0..nvar {
             let mut bytes = good.clone();
             let flips = 1 + g.below(4);
             for _ in 0..flips {
                 // Half the flips land in the first 4 KiB (superblock, root
                 // group, attributes), the rest anywhere.
-                let span = if variant % 2 == 0 { bytes.len().min(4096) } else { bytes.len() };
+                let span = if variant % 2 == 0 {
+                    bytes.len().min(4096)
+                } else {
+                    bytes.len()
+                };
                 let at = g.below(span as u64) as usize;
                 bytes[at] ^= 1 << g.below(8);
             }
             fs::write(&bad, &bytes).unwrap();
-            if std::env::var_os("RESTART_FUZZ_DEBUG").is_some() {
-                eprintln!("variant {variant}");
-                fs::write(format!("/tmp/fuzz-{variant}.h5"), &bytes).unwrap();
-            }
             if let Ok(r) = RestartReader::open(&bad) {
                 opened += 1;
                 let mut rows = ParticleRows::default();
@@ -1392,38 +1680,8 @@ mod tests {
                 }
             }
         }
-        eprintln!("flipped-byte variants: {opened} of {nvar} opened, {identical} read back unchanged");
-    }
-}
-
-#[cfg(test)]
-mod exhaustive_tmp {
-    use super::*;
-    #[test]
-    #[ignore]
-    fn exhaustive_byte_flips() {
-        let dir = std::env::temp_dir().join("gendpde-exh");
-        let _ = fs::create_dir_all(&dir);
-        let path = dir.join("r.h5");
-        let good = fs::read("/tmp/good-restart.h5").unwrap();
-        let stride: usize = std::env::var("STRIDE").ok().and_then(|v| v.parse().ok()).unwrap_or(1);
-        let mut opened = 0;
-        for at in (0..good.len()).step_by(stride) {
-            for mask in [0xffu8, 0x01, 0x80] {
-                let mut b = good.clone();
-                b[at] ^= mask;
-                fs::write(&path, &b).unwrap();
-                if let Ok(r) = RestartReader::open(&path) {
-                    opened += 1;
-                    let mut rows = ParticleRows::default();
-                    let mut s = 0;
-                    while s < r.header().natoms.min(1000) {
-                        if r.read_rows(s, 16, &mut rows).is_err() { break; }
-                        s += 16;
-                    }
-                }
-            }
-        }
-        eprintln!("exhaustive: {opened} opened of {}", good.len() * 3);
+        eprintln!(
+            "flipped-byte variants: {opened} of {nvar} opened, {identical} read back unchanged"
+        );
     }
 }
