@@ -10,26 +10,27 @@
 //!
 //! Attributes on the root group (all scalars unless noted):
 //!
-//! | name              | type        | meaning                                   |
-//! |-------------------|-------------|-------------------------------------------|
-//! | `format`          | UTF-8 string| always `gendpde-restart`                  |
-//! | `format_version`  | u32         | 1                                         |
-//! | `creator_version` | UTF-8 string| version of the program that wrote it      |
-//! | `step`            | u64         | current step                              |
-//! | `time`            | f64         | simulated time                            |
-//! | `dt`              | f64         | timestep                                  |
-//! | `natoms`          | u64         | number of particle rows                   |
-//! | `max_tag`         | u64         | largest tag ever assigned                 |
-//! | `ntypes`          | u64         | number of particle types                  |
-//! | `last_build`      | u64         | step of the last neighbour-list build     |
-//! | `energy0`         | f64         | only present when `energy0` is `Some`     |
-//! | `cell_counts`     | u64 `[3]`   | only present when `cell_counts` is `Some` |
+//! | name              | type                      | meaning                                   |
+//! |-------------------|---------------------------|-------------------------------------------|
+//! | `format`          | 32-byte ASCII string      | always `gendpde-restart`                  |
+//! | `format_version`  | u32                       | 1                                         |
+//! | `creator_version` | 256-byte UTF-8 string     | version of the program that wrote it      |
+//! | `step`            | u64                       | current step                              |
+//! | `time`            | f64                       | simulated time                            |
+//! | `dt`              | f64                       | timestep                                  |
+//! | `natoms`          | u64                       | number of particle rows                   |
+//! | `max_tag`         | u64                       | largest tag ever assigned                 |
+//! | `ntypes`          | u64                       | number of particle types                  |
+//! | `last_build`      | u64                       | step of the last neighbour-list build     |
+//! | `energy0`         | f64                       | only present when `energy0` is `Some`     |
+//! | `cell_counts`     | u64 `[3]`                 | only present when `cell_counts` is `Some` |
 //!
 //! Datasets:
 //!
 //! * `/box/lo`, `/box/hi`: f64 `[3]`;
 //! * `/types/mass`: f64 `[ntypes]`, NaN for a type without a mass;
-//! * `/script/commands`: variable-length UTF-8 strings `[ncommands]`;
+//! * `/script/commands`: u8 `[nbytes]`, the UTF-8 text of each command
+//!   followed by a NUL byte (commands may contain newlines: `"""` quotes);
 //! * `/particles/{tag (u64), type (u32), mass (f64), u (f64), theta (f64)}`:
 //!   `[natoms]`, and `/particles/{r, p, r_at_build (f64), image, cell (i32)}`:
 //!   `[natoms, 3]`, rows in increasing tag order.
@@ -40,6 +41,9 @@
 //! so `Some(NaN)` and `None` stay distinct; only a per-type mass of
 //! `Some(NaN)` is refused (NaN is the "unset" marker there).
 //!
+//! No variable-length data is used: HDF5 keeps it in the global heap, which
+//! has no checksum, and libhdf5 1.10 crashes (SIGSEGV in `H5HG_read`) on a
+//! corrupted one. Strings are fixed-length or plain bytes instead.
 //! Files are written with the HDF5 1.8+ object format, whose metadata
 //! (superblock, object headers, link and attribute storage) carries
 //! checksums, so most corruption is detected by the library on open instead
@@ -308,11 +312,8 @@ impl RestartWriter {
         }
         let tmp = temp_path(path);
         let h5 = |e: hdf5::Error| error(&tmp, e);
-        let file = File::with_options()
-            .with_fapl(|fapl| fapl.libver_v18())
-            .create(&tmp)
-            .map_err(h5)?;
-        // From here on, dropping `writer` on an error removes the temporary file.
+        // Declared before `file`, so that on an early return the file is closed
+        // first and then `writer`'s drop removes it.
         let mut writer = RestartWriter {
             path: path.to_path_buf(),
             tmp: tmp.clone(),
@@ -323,6 +324,10 @@ impl RestartWriter {
             last_tag: None,
             done: false,
         };
+        let file = File::with_options()
+            .with_fapl(|fapl| fapl.libver_v18())
+            .create(&tmp)
+            .map_err(|e| error(&tmp, format!("cannot be created: {e}")))?;
         let natoms = usize::try_from(header.natoms).map_err(|_| {
             error(
                 path,
@@ -1439,6 +1444,9 @@ mod tests {
             "script command",
         );
         assert!(!temp_path(&path).exists());
+        let e =
+            RestartWriter::create(&dir.join("no/such/dir/restart.h5"), &header(10)).unwrap_err();
+        assert_contains(&e.0, "no/such/dir/restart.h5.tmp: cannot be created");
         // The good file is still there.
         RestartReader::open(&path).unwrap();
     }
