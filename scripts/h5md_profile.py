@@ -15,9 +15,18 @@ import h5py
 import numpy as np
 
 
+def open_h5md(path):
+    """Opens the file; a file whose writer was killed is still marked open for writing
+    and opens in SWMR-read mode (or run `h5clear -s -i` on it)."""
+    try:
+        return h5py.File(path, "r")
+    except OSError:
+        return h5py.File(path, "r", swmr=True)
+
+
 def load(path, frame):
     """Positions, theta (None when not dumped), box edges, step and time of one frame."""
-    with h5py.File(path, "r") as f:
+    with open_h5md(path) as f:
         if "h5md" not in f or "particles/all" not in f:
             sys.exit(f"{path}: not an H5MD file (no /h5md or /particles/all)")
         part = f["particles/all"]

@@ -25,7 +25,7 @@
 //! committed in [`H5mdWriter::end_frame`] by (1) writing `time` and flushing
 //! (values and time reach the OS), then (2) extending `step` and flushing.
 //! Readers count frames by the length of `step`, so a value or time entry
-//! beyond it is an incomplete frame that [`H5mdWriter::append`] drops.
+//! beyond it is an incomplete frame that [`H5mdWriter::append`] overwrites.
 //! A file whose writer was killed keeps HDF5's "open for writing" superblock
 //! flag; [`H5mdWriter::append`] and [`check_h5md`] clear/tolerate it (the
 //! equivalent of `h5clear -s`).
@@ -179,6 +179,8 @@ extern "C" {
 
 /// `H5F_ACC_RDWR`.
 const H5F_ACC_RDWR: u32 = 0x0001;
+/// `H5F_ACC_SWMR_WRITE`.
+const H5F_ACC_SWMR_WRITE: u32 = 0x0020;
 
 struct Element {
     field: H5mdField,
@@ -227,8 +229,16 @@ fn vlen(path: &Path, s: &str) -> Result<VarLenUnicode, H5mdError> {
 
 fn write_str_attr(path: &Path, loc: &Group, name: &str, value: &str) -> Result<(), H5mdError> {
     let v = vlen(path, value)?;
-    let attr = h5(path, &format!("creating attribute {name}"), loc.new_attr::<VarLenUnicode>().create(name))?;
-    h5(path, &format!("writing attribute {name}"), attr.write_scalar(&v))
+    let attr = h5(
+        path,
+        &format!("creating attribute {name}"),
+        loc.new_attr::<VarLenUnicode>().create(name),
+    )?;
+    h5(
+        path,
+        &format!("writing attribute {name}"),
+        attr.write_scalar(&v),
+    )
 }
 
 fn value_dtype_name(kind: Kind) -> &'static str {
@@ -256,6 +266,37 @@ fn writer_options() -> hdf5::FileBuilder {
     b
 }
 
+/// Opens `path` read/write in SWMR-write mode with the writer's settings.
+fn open_swmr_rw(path: &Path) -> Result<File, H5mdError> {
+    let cpath = std::ffi::CString::new(path.as_os_str().as_encoded_bytes())
+        .map_err(|_| error(path, "file name contains a NUL byte"))?;
+    let fapl = h5(
+        path,
+        "creating file access list",
+        hdf5::plist::FileAccessBuilder::new()
+            .libver_bounds(LibraryVersion::V110, LibraryVersion::latest())
+            .chunk_cache(CHUNK_CACHE_SLOTS, CHUNK_CACHE_BYTES, 1.0)
+            .finish(),
+    )?;
+    hdf5::sync::sync(|| {
+        // SAFETY: valid NUL-terminated name and property list; the returned
+        // identifier is new (reference count 1) and handed to the hdf5 crate,
+        // which closes it when the File is dropped.
+        unsafe {
+            let id = H5Fopen(cpath.as_ptr(), H5F_ACC_RDWR | H5F_ACC_SWMR_WRITE, fapl.id());
+            if id < 0 {
+                let why = hdf5::Error::query()
+                    .map_or_else(|_| "unknown HDF5 error".to_string(), |e| e.to_string());
+                return Err(error(
+                    path,
+                    format_args!("cannot open in SWMR-write mode: {why}"),
+                ));
+            }
+            hdf5::from_id::<File>(id).map_err(|e| error(path, e))
+        }
+    })
+}
+
 /// Repairs a file whose writer was killed, like `h5clear -s -i 1M`:
 /// clears the superblock "open for writing" flags (without which HDF5
 /// refuses to open the file except in SWMR-read mode) and raises the
@@ -266,22 +307,32 @@ pub fn repair_h5md(path: &Path) -> Result<(), H5mdError> {
     silence();
     let cpath = std::ffi::CString::new(path.as_os_str().as_encoded_bytes())
         .map_err(|_| error(path, "file name contains a NUL byte"))?;
-    let fapl = h5(path, "creating file access list", hdf5::plist::FileAccess::try_new())?;
+    let fapl = h5(
+        path,
+        "creating file access list",
+        hdf5::plist::FileAccess::try_new(),
+    )?;
     hdf5::sync::sync(|| {
         let on: u8 = 1; // hbool_t
-        // SAFETY: both properties exist in every file-access list of HDF5
-        // >= 1.10 with the size of hbool_t (1 byte, checked in the tests by
-        // their effect); the pointers are valid for the duration of the
-        // calls, and the hdf5 crate's global lock is held as for its own calls.
+                        // SAFETY: both properties exist in every file-access list of HDF5
+                        // >= 1.10 with the size of hbool_t (1 byte, checked in the tests by
+                        // their effect); the pointers are valid for the duration of the
+                        // calls, and the hdf5 crate's global lock is held as for its own calls.
         unsafe {
             for prop in [CLEAR_STATUS_FLAGS, SKIP_EOF_CHECK] {
                 if H5Pset(fapl.id(), prop.as_ptr().cast(), (&on as *const u8).cast()) < 0 {
-                    return Err(error(path, "cannot set the repair properties (HDF5 older than 1.10?)"));
+                    return Err(error(
+                        path,
+                        "cannot set the repair properties (HDF5 older than 1.10?)",
+                    ));
                 }
             }
             let id = H5Fopen(cpath.as_ptr(), H5F_ACC_RDWR, fapl.id());
             if id < 0 {
-                return Err(error(path, "cannot open for repair (not an HDF5 file, or still open?)"));
+                return Err(error(
+                    path,
+                    "cannot open for repair (not an HDF5 file, or still open?)",
+                ));
             }
             let grown = H5Fincrement_filesize(id, REPAIR_EOA_INCREMENT);
             if H5Fclose(id) < 0 || grown < 0 {
@@ -307,15 +358,20 @@ impl H5mdWriter {
         // Build the file under a temporary name and rename it into place
         // once it is complete and in SWMR mode, so a process killed during
         // create leaves no half-built (unreadable) file at `path`.
-        let name = path.file_name().ok_or_else(|| error(path, "not a file name"))?;
+        let name = path
+            .file_name()
+            .ok_or_else(|| error(path, "not a file name"))?;
         let mut tmp_name = std::ffi::OsString::from(".");
         tmp_name.push(name);
         tmp_name.push(format!(".tmp{}", std::process::id()));
         let tmp = path.with_file_name(tmp_name);
-        let result = Self::create_at(path, &tmp, n, edges, fields, author, creator_version).and_then(|w| {
-            std::fs::rename(&tmp, path).map_err(|e| error(path, format_args!("cannot rename {}: {e}", tmp.display())))?;
-            Ok(w)
-        });
+        let result = Self::create_at(path, &tmp, n, edges, fields, author, creator_version)
+            .and_then(|w| {
+                std::fs::rename(&tmp, path).map_err(|e| {
+                    error(path, format_args!("cannot rename {}: {e}", tmp.display()))
+                })?;
+                Ok(w)
+            });
         if result.is_err() {
             let _ = std::fs::remove_file(&tmp);
         }
@@ -342,7 +398,11 @@ impl H5mdWriter {
         let mut shared: Option<String> = None;
         for &field in fields {
             let name = field.h5md_name();
-            let g = h5(path, &format!("creating element {name}"), all.create_group(name))?;
+            let g = h5(
+                path,
+                &format!("creating element {name}"),
+                all.create_group(name),
+            )?;
             create_value(path, &g, field, n)?;
             match &shared {
                 None => {
@@ -351,56 +411,98 @@ impl H5mdWriter {
                     shared = Some(format!("/particles/all/{name}"));
                 }
                 Some(first) => {
-                    h5(path, &format!("linking {name}/step"), g.link_hard(&format!("{first}/step"), "step"))?;
-                    h5(path, &format!("linking {name}/time"), g.link_hard(&format!("{first}/time"), "time"))?;
+                    h5(
+                        path,
+                        &format!("linking {name}/step"),
+                        g.link_hard(&format!("{first}/step"), "step"),
+                    )?;
+                    h5(
+                        path,
+                        &format!("linking {name}/time"),
+                        g.link_hard(&format!("{first}/time"), "time"),
+                    )?;
                 }
             }
         }
         drop(all);
-        Self::start_swmr(path, file, n, fields, 0)
-    }
-
-    /// Switches `file` (with no object open) to SWMR-write mode and opens
-    /// the element datasets.  HDF5 1.10 fails to start SWMR mode when
-    /// objects are open ("ID already in use"), hence the reopening.
-    fn start_swmr(path: &Path, file: File, n: usize, fields: &[H5mdField], frames: usize) -> Result<Self, H5mdError> {
         h5(path, "flushing", file.flush())?;
         h5(path, "starting SWMR write mode", file.start_swmr())?;
+        Self::with_elements(path, file, n, fields, 0)
+    }
+
+    /// Opens the element datasets of `file` (in SWMR-write mode).  HDF5
+    /// 1.10 fails to start SWMR mode while objects are open ("ID already in
+    /// use"), hence `create` closes and reopens them.
+    fn with_elements(
+        path: &Path,
+        file: File,
+        n: usize,
+        fields: &[H5mdField],
+        frames: usize,
+    ) -> Result<Self, H5mdError> {
         let mut elements = Vec::with_capacity(fields.len());
         for &field in fields {
             let name = field.h5md_name();
             let open = |what: &str| {
-                h5(path, &format!("opening {name}/{what}"), file.dataset(&format!("particles/all/{name}/{what}")))
+                h5(
+                    path,
+                    &format!("opening {name}/{what}"),
+                    file.dataset(&format!("particles/all/{name}/{what}")),
+                )
             };
-            elements.push(Element { field, value: open("value")?, step: open("step")?, time: open("time")? });
+            elements.push(Element {
+                field,
+                value: open("value")?,
+                step: open("step")?,
+                time: open("time")?,
+            });
         }
-        Ok(Self { path: path.to_path_buf(), elements, fields: fields.to_vec(), file, n, frames, current: None })
+        Ok(Self {
+            path: path.to_path_buf(),
+            elements,
+            fields: fields.to_vec(),
+            file,
+            n,
+            frames,
+            current: None,
+        })
     }
 
     /// Opens an existing file written by [`H5mdWriter::create`] to append
     /// frames (a run continued from a restart); `n` and the set of `fields`
     /// must match the file.  A trailing incomplete frame (writer killed
-    /// before `end_frame` finished) is dropped.
+    /// before `end_frame` finished) is overwritten by the next frame.  A file
+    /// left marked "open" by a killed writer is repaired first
+    /// ([`repair_h5md`]).  The file is opened directly in SWMR-write mode.
     pub fn append(path: &Path, n: usize, fields: &[H5mdField]) -> Result<Self, H5mdError> {
         silence();
         check_fields(path, fields)?;
         if !path.exists() {
             return Err(error(path, "cannot append: file does not exist"));
         }
-        let file = match writer_options().open_rw(path) {
+        // Open directly in SWMR-write mode (never plain read/write, whose
+        // metadata writes are not crash-safe).
+        let file = match open_swmr_rw(path) {
             Ok(f) => f,
             Err(first) => {
                 // Most likely a writer was killed and left the superblock
                 // marked "open for writing"; repair and retry.
                 if repair_h5md(path).is_err() {
-                    return Err(error(path, format_args!("cannot open for appending: {first}")));
+                    return Err(error(
+                        path,
+                        format_args!("cannot open for appending: {}", first.0),
+                    ));
                 }
-                h5(path, "cannot open for appending", writer_options().open_rw(path))?
+                open_swmr_rw(path)
+                    .map_err(|e| error(path, format_args!("cannot open for appending: {}", e.0)))?
             }
         };
-        let all = file
-            .group("particles/all")
-            .map_err(|_| error(path, "not an H5MD file written by gendpde: no /particles/all group"))?;
+        let all = file.group("particles/all").map_err(|_| {
+            error(
+                path,
+                "not an H5MD file written by gendpde: no /particles/all group",
+            )
+        })?;
 
         // Compare the element sets.
         let names = h5(path, "listing /particles/all", all.member_names())?;
@@ -410,12 +512,22 @@ impl H5mdWriter {
                 Some(f) => {
                     in_file.insert(f);
                 }
-                None => return Err(error(path, format_args!("unknown element /particles/all/{name}"))),
+                None => {
+                    return Err(error(
+                        path,
+                        format_args!("unknown element /particles/all/{name}"),
+                    ))
+                }
             }
         }
         let wanted: BTreeSet<H5mdField> = fields.iter().copied().collect();
         if in_file != wanted {
-            let list = |s: &BTreeSet<H5mdField>| s.iter().map(|f| f.h5md_name()).collect::<Vec<_>>().join(" ");
+            let list = |s: &BTreeSet<H5mdField>| {
+                s.iter()
+                    .map(|f| f.h5md_name())
+                    .collect::<Vec<_>>()
+                    .join(" ")
+            };
             let missing: BTreeSet<_> = wanted.difference(&in_file).copied().collect();
             let extra: BTreeSet<_> = in_file.difference(&wanted).copied().collect();
             return Err(error(
@@ -441,48 +553,61 @@ impl H5mdWriter {
             let shape = value.shape();
             let expect_ndim = if field.width() == 3 { 3 } else { 2 };
             if shape.len() != expect_ndim || (expect_ndim == 3 && shape[2] != 3) {
-                return Err(error(path, format_args!("{name}/value has shape {shape:?}, not [frames, N{}]",
-                    if expect_ndim == 3 { ", 3" } else { "" })));
+                return Err(error(
+                    path,
+                    format_args!(
+                        "{name}/value has shape {shape:?}, not [frames, N{}]",
+                        if expect_ndim == 3 { ", 3" } else { "" }
+                    ),
+                ));
             }
             if shape[1] != n {
                 return Err(error(
                     path,
-                    format_args!("cannot append: the file holds {} particles but the run has {n}", shape[1]),
+                    format_args!(
+                        "cannot append: the file holds {} particles but the run has {n}",
+                        shape[1]
+                    ),
                 ));
             }
             let kind = dtype_kind(path, &value, name)?;
             if kind != Some(field.kind()) {
-                return Err(error(path, format_args!("{name}/value is not {}", value_dtype_name(field.kind()))));
+                return Err(error(
+                    path,
+                    format_args!("{name}/value is not {}", value_dtype_name(field.kind())),
+                ));
             }
             let len = step.size();
             match frames {
                 None => frames = Some(len),
                 Some(f) if f != len => {
-                    return Err(error(path, format_args!("{name}/step has {len} frames but another element has {f}")))
+                    return Err(error(
+                        path,
+                        format_args!("{name}/step has {len} frames but another element has {f}"),
+                    ))
                 }
                 _ => {}
             }
             if shape[0] < len || time.size() < len {
-                return Err(error(path, format_args!("{name}: value or time is shorter than step")));
+                return Err(error(
+                    path,
+                    format_args!("{name}: value or time is shorter than step"),
+                ));
             }
-            elements.push(Element { field, value, step, time });
+            elements.push(Element {
+                field,
+                value,
+                step,
+                time,
+            });
         }
         let frames = frames.unwrap_or(0);
-        // Drop an incomplete trailing frame.
-        for el in &elements {
-            let name = el.field.h5md_name();
-            if el.value.shape()[0] > frames {
-                let mut shape = el.value.shape();
-                shape[0] = frames;
-                h5(path, &format!("truncating {name}/value"), el.value.resize(shape))?;
-            }
-            if el.time.size() > frames {
-                h5(path, &format!("truncating {name}/time"), el.time.resize(frames))?;
-            }
-        }
+        // A trailing incomplete frame (value/time longer than step) is left
+        // in place: begin_frame keeps the length and the frame's data is
+        // overwritten.  (Shrinking datasets is avoided in SWMR mode.)
         drop(elements);
         drop(all);
-        Self::start_swmr(path, file, n, fields, frames)
+        Self::with_elements(path, file, n, fields, frames)
     }
 
     /// The fields written, in the order given to `create`/`append`.
@@ -508,14 +633,21 @@ impl H5mdWriter {
     /// Starts a frame: grows every value dataset by one frame.
     pub fn begin_frame(&mut self, step: u64, time: f64) -> Result<(), H5mdError> {
         if let Some((s, _)) = self.current {
-            return Err(self.err(format_args!("begin_frame({step}) while frame of step {s} is not ended")));
+            return Err(self.err(format_args!(
+                "begin_frame({step}) while frame of step {s} is not ended"
+            )));
         }
-        i64::try_from(step).map_err(|_| self.err(format_args!("step {step} does not fit in int64")))?;
+        i64::try_from(step)
+            .map_err(|_| self.err(format_args!("step {step} does not fit in int64")))?;
         let frame = self.frames;
         for el in &self.elements {
             let mut shape = el.value.shape();
             shape[0] = frame + 1;
-            h5(&self.path, &format!("extending {}/value", el.field), el.value.resize(shape))?;
+            h5(
+                &self.path,
+                &format!("extending {}/value", el.field),
+                el.value.resize(shape),
+            )?;
         }
         self.current = Some((step, time));
         Ok(())
@@ -524,9 +656,16 @@ impl H5mdWriter {
     /// Writes rows `first_row..first_row+len` of `field` in the current
     /// frame; `data` holds `len * field.width()` values (integer fields are
     /// converted and must hold integral values in range).
-    pub fn write_rows(&mut self, field: H5mdField, first_row: usize, data: &[f64]) -> Result<(), H5mdError> {
+    pub fn write_rows(
+        &mut self,
+        field: H5mdField,
+        first_row: usize,
+        data: &[f64],
+    ) -> Result<(), H5mdError> {
         if self.current.is_none() {
-            return Err(self.err(format_args!("write_rows({field}) outside a frame (call begin_frame first)")));
+            return Err(self.err(format_args!(
+                "write_rows({field}) outside a frame (call begin_frame first)"
+            )));
         }
         let el = self
             .elements
@@ -534,7 +673,7 @@ impl H5mdWriter {
             .find(|e| e.field == field)
             .ok_or_else(|| self.err(format_args!("field {field} is not written to this file")))?;
         let width = field.width();
-        if data.len() % width != 0 {
+        if !data.chunks_exact(width).remainder().is_empty() {
             return Err(self.err(format_args!(
                 "write_rows({field}): {} values is not a multiple of the width {width}",
                 data.len()
@@ -555,19 +694,26 @@ impl H5mdWriter {
         let rows = first_row..first_row + len;
         let what = format!("writing {field} rows {}..{}", rows.start, rows.end);
         let r = match (field.kind(), width) {
-            (Kind::F64, 3) => el.value.write_slice::<_, f64, _, _>(as_triples(data, Ok::<f64, H5mdError>)?.as_slice(), (frame, rows, ..)),
+            (Kind::F64, 3) => el.value.write_slice::<_, f64, _, _>(
+                as_triples(data, Ok::<f64, H5mdError>)?.as_slice(),
+                (frame, rows, ..),
+            ),
             (Kind::F64, _) => el.value.write_slice(data, (frame, rows)),
             (Kind::I32, 3) => {
-                let v = as_triples(data, |x| to_int::<i32>(x).ok_or(x)).map_err(|x| self.bad_int(field, x))?;
-                el.value.write_slice::<_, i32, _, _>(v.as_slice(), (frame, rows, ..))
+                let v = as_triples(data, |x| to_int::<i32>(x).ok_or(x))
+                    .map_err(|x| self.bad_int(field, x))?;
+                el.value
+                    .write_slice::<_, i32, _, _>(v.as_slice(), (frame, rows, ..))
             }
             (Kind::I32, _) => {
                 let v = convert(data, to_int::<i32>).map_err(|x| self.bad_int(field, x))?;
                 el.value.write_slice(v.as_slice(), (frame, rows))
             }
             (Kind::I64, 3) => {
-                let v = as_triples(data, |x| to_int::<i64>(x).ok_or(x)).map_err(|x| self.bad_int(field, x))?;
-                el.value.write_slice::<_, i64, _, _>(v.as_slice(), (frame, rows, ..))
+                let v = as_triples(data, |x| to_int::<i64>(x).ok_or(x))
+                    .map_err(|x| self.bad_int(field, x))?;
+                el.value
+                    .write_slice::<_, i64, _, _>(v.as_slice(), (frame, rows, ..))
             }
             (Kind::I64, _) => {
                 let v = convert(data, to_int::<i64>).map_err(|x| self.bad_int(field, x))?;
@@ -591,12 +737,20 @@ impl H5mdWriter {
         // same dataset again through another element is idempotent.
         for el in &self.elements {
             h5(&path, "extending time", el.time.resize(frame + 1))?;
-            h5(&path, "writing time", el.time.write_slice(&[time][..], frame..frame + 1))?;
+            h5(
+                &path,
+                "writing time",
+                el.time.write_slice(&[time][..], frame..frame + 1),
+            )?;
         }
         h5(&path, "flushing", self.file.flush())?;
         for el in &self.elements {
             h5(&path, "extending step", el.step.resize(frame + 1))?;
-            h5(&path, "writing step", el.step.write_slice(&[step as i64][..], frame..frame + 1))?;
+            h5(
+                &path,
+                "writing step",
+                el.step.write_slice(&[step as i64][..], frame..frame + 1),
+            )?;
         }
         h5(&path, "flushing", self.file.flush())?;
         self.frames += 1;
@@ -609,37 +763,69 @@ impl H5mdWriter {
     }
 
     fn bad_int(&self, field: H5mdField, x: f64) -> H5mdError {
-        self.err(format_args!("write_rows({field}): value {x} is not a valid {}", value_dtype_name(field.kind())))
+        self.err(format_args!(
+            "write_rows({field}): value {x} is not a valid {}",
+            value_dtype_name(field.kind())
+        ))
     }
 }
 
 /// Writes `/h5md` and `/particles/all/box`.  A separate function so every
 /// attribute handle is closed before SWMR mode starts (HDF5 refuses to start
 /// it with open attributes).
-fn write_metadata(path: &Path, file: &File, edges: [f64; 3], author: &str, creator_version: &str) -> Result<(), H5mdError> {
-        // /h5md
-        let h5md = h5(path, "creating /h5md", file.create_group("h5md"))?;
-        let version = h5(path, "creating /h5md version", h5md.new_attr::<i32>().shape(2).create("version"))?;
-        h5(path, "writing /h5md version", version.write_raw(&[1i32, 1]))?;
-        let g = h5(path, "creating /h5md/author", h5md.create_group("author"))?;
-        write_str_attr(path, &g, "name", author)?;
-        let g = h5(path, "creating /h5md/creator", h5md.create_group("creator"))?;
-        write_str_attr(path, &g, "name", "gendpde")?;
-        write_str_attr(path, &g, "version", creator_version)?;
+fn write_metadata(
+    path: &Path,
+    file: &File,
+    edges: [f64; 3],
+    author: &str,
+    creator_version: &str,
+) -> Result<(), H5mdError> {
+    // /h5md
+    let h5md = h5(path, "creating /h5md", file.create_group("h5md"))?;
+    let version = h5(
+        path,
+        "creating /h5md version",
+        h5md.new_attr::<i32>().shape(2).create("version"),
+    )?;
+    h5(path, "writing /h5md version", version.write_raw(&[1i32, 1]))?;
+    let g = h5(path, "creating /h5md/author", h5md.create_group("author"))?;
+    write_str_attr(path, &g, "name", author)?;
+    let g = h5(path, "creating /h5md/creator", h5md.create_group("creator"))?;
+    write_str_attr(path, &g, "name", "gendpde")?;
+    write_str_attr(path, &g, "version", creator_version)?;
 
-        // /particles/all/box
-        let all = h5(path, "creating /particles/all", file.create_group("particles/all"))?;
-        let bx = h5(path, "creating box", all.create_group("box"))?;
-        let dim = h5(path, "creating box dimension", bx.new_attr::<i32>().create("dimension"))?;
-        h5(path, "writing box dimension", dim.write_scalar(&3i32))?;
-        let periodic = vlen(path, "periodic")?;
-        let boundary =
-            h5(path, "creating box boundary", bx.new_attr::<VarLenUnicode>().shape(3).create("boundary"))?;
-        h5(path, "writing box boundary", boundary.write_raw(&[periodic.clone(), periodic.clone(), periodic]))?;
-        let e = h5(path, "creating box edges", bx.new_dataset::<f64>().shape(3).create("edges"))?;
-        h5(path, "writing box edges", e.write_raw(&edges))?;
+    // /particles/all/box
+    let all = h5(
+        path,
+        "creating /particles/all",
+        file.create_group("particles/all"),
+    )?;
+    let bx = h5(path, "creating box", all.create_group("box"))?;
+    let dim = h5(
+        path,
+        "creating box dimension",
+        bx.new_attr::<i32>().create("dimension"),
+    )?;
+    h5(path, "writing box dimension", dim.write_scalar(&3i32))?;
+    let periodic = vlen(path, "periodic")?;
+    let boundary = h5(
+        path,
+        "creating box boundary",
+        bx.new_attr::<VarLenUnicode>().shape(3).create("boundary"),
+    )?;
+    h5(
+        path,
+        "writing box boundary",
+        boundary.write_raw(&[periodic.clone(), periodic.clone(), periodic]),
+    )?;
+    let e = h5(
+        path,
+        "creating box edges",
+        bx.new_dataset::<f64>().shape(3).create("edges"),
+    )?;
+    h5(path, "writing box edges", e.write_raw(&edges))?;
 
-        Ok(())
+    Ok(())
 }
 
 fn check_fields(path: &Path, fields: &[H5mdField]) -> Result<(), H5mdError> {
@@ -660,7 +846,11 @@ fn create_value(path: &Path, g: &Group, field: H5mdField, n: usize) -> Result<Da
     let rows = (CHUNK_BYTES / (8 * width)).clamp(1, n.max(1));
     // A fixed particle axis of length 0 cannot hold a chunk of 1 row, so an
     // empty system gets an unlimited particle axis.
-    let particle_axis = if n == 0 { Extent::new(0, None) } else { Extent::fixed(n) };
+    let particle_axis = if n == 0 {
+        Extent::new(0, None)
+    } else {
+        Extent::fixed(n)
+    };
     let mut extents = vec![Extent::new(0, None), particle_axis];
     let mut chunk = vec![1, rows];
     if width == 3 {
@@ -673,16 +863,30 @@ fn create_value(path: &Path, g: &Group, field: H5mdField, n: usize) -> Result<Da
         Kind::I64 => g.new_dataset::<i64>(),
     };
     let what = format!("creating {}/value", field.h5md_name());
-    h5(path, &what, b.chunk(chunk).shape(SimpleExtents::from_vec(extents)).create("value"))
+    h5(
+        path,
+        &what,
+        b.chunk(chunk)
+            .shape(SimpleExtents::from_vec(extents))
+            .create("value"),
+    )
 }
 
 fn create_series<T: H5Type>(path: &Path, g: &Group, name: &str) -> Result<Dataset, H5mdError> {
-    h5(path, &format!("creating {name}"), g.new_dataset::<T>().chunk(STEP_CHUNK).shape(0..).create(name))
+    h5(
+        path,
+        &format!("creating {name}"),
+        g.new_dataset::<T>()
+            .chunk(STEP_CHUNK)
+            .shape(0..)
+            .create(name),
+    )
 }
 
 fn to_int<T: TryFrom<i64>>(x: f64) -> Option<T> {
-    // 2^63 as f64; values at or above it do not fit in i64.
-    if x.fract() != 0.0 || !x.is_finite() || x >= 9.223_372_036_854_775_808e18 || x < -9.223_372_036_854_775_808e18 {
+    // i64::MAX as f64 rounds to 2^63, the first value that does not fit.
+    let limit = i64::MAX as f64;
+    if !x.is_finite() || x.fract() != 0.0 || !(-limit..limit).contains(&x) {
         return None;
     }
     T::try_from(x as i64).ok()
@@ -693,12 +897,22 @@ fn convert<T>(data: &[f64], f: fn(f64) -> Option<T>) -> Result<Vec<T>, f64> {
 }
 
 fn as_triples<T: Copy, E>(data: &[f64], f: impl Fn(f64) -> Result<T, E>) -> Result<Vec<[T; 3]>, E> {
-    data.chunks_exact(3).map(|c| Ok([f(c[0])?, f(c[1])?, f(c[2])?])).collect()
+    data.chunks_exact(3)
+        .map(|c| Ok([f(c[0])?, f(c[1])?, f(c[2])?]))
+        .collect()
 }
 
 fn dtype_kind(path: &Path, ds: &Dataset, name: &str) -> Result<Option<Kind>, H5mdError> {
-    let dt = h5(path, &format!("reading the type of {name}/value"), ds.dtype())?;
-    let d = h5(path, &format!("reading the type of {name}/value"), dt.to_descriptor())?;
+    let dt = h5(
+        path,
+        &format!("reading the type of {name}/value"),
+        ds.dtype(),
+    )?;
+    let d = h5(
+        path,
+        &format!("reading the type of {name}/value"),
+        dt.to_descriptor(),
+    )?;
     use hdf5::types::{FloatSize, IntSize};
     Ok(match d {
         TypeDescriptor::Float(FloatSize::U8) => Some(Kind::F64),
@@ -759,23 +973,37 @@ fn read_string_attr(path: &Path, attr: &Attribute, what: &str) -> Result<String,
 /// Reads a string (array) attribute stored fixed- or variable-length.
 fn read_strings(path: &Path, attr: &Attribute, what: &str) -> Result<Vec<String>, H5mdError> {
     let dt = h5(path, &format!("reading the type of {what}"), attr.dtype())?;
-    let d = h5(path, &format!("reading the type of {what}"), dt.to_descriptor())?;
+    let d = h5(
+        path,
+        &format!("reading the type of {what}"),
+        dt.to_descriptor(),
+    )?;
     let r = match d {
-        TypeDescriptor::VarLenUnicode => attr.read_raw::<VarLenUnicode>().map(|v| v.iter().map(|s| s.to_string()).collect()),
-        TypeDescriptor::VarLenAscii => attr.read_raw::<VarLenAscii>().map(|v| v.iter().map(|s| s.to_string()).collect()),
-        TypeDescriptor::FixedAscii(_) => {
-            attr.read_raw::<FixedAscii<1024>>().map(|v| v.iter().map(|s| s.to_string()).collect())
+        TypeDescriptor::VarLenUnicode => attr
+            .read_raw::<VarLenUnicode>()
+            .map(|v| v.iter().map(|s| s.to_string()).collect()),
+        TypeDescriptor::VarLenAscii => attr
+            .read_raw::<VarLenAscii>()
+            .map(|v| v.iter().map(|s| s.to_string()).collect()),
+        TypeDescriptor::FixedAscii(_) => attr
+            .read_raw::<FixedAscii<1024>>()
+            .map(|v| v.iter().map(|s| s.to_string()).collect()),
+        TypeDescriptor::FixedUnicode(_) => attr
+            .read_raw::<FixedUnicode<1024>>()
+            .map(|v| v.iter().map(|s| s.to_string()).collect()),
+        other => {
+            return Err(error(
+                path,
+                format_args!("{what} is not a string but {other}"),
+            ))
         }
-        TypeDescriptor::FixedUnicode(_) => {
-            attr.read_raw::<FixedUnicode<1024>>().map(|v| v.iter().map(|s| s.to_string()).collect())
-        }
-        other => return Err(error(path, format_args!("{what} is not a string but {other}"))),
     };
     h5(path, &format!("reading {what}"), r)
 }
 
 fn attr(path: &Path, loc: &Group, name: &str, what: &str) -> Result<Attribute, H5mdError> {
-    loc.attr(name).map_err(|_| error(path, format_args!("missing attribute {what}")))
+    loc.attr(name)
+        .map_err(|_| error(path, format_args!("missing attribute {what}")))
 }
 
 fn int_kind(d: &TypeDescriptor) -> bool {
@@ -793,40 +1021,77 @@ fn int_kind(d: &TypeDescriptor) -> bool {
 pub fn check_h5md(path: &Path) -> Result<H5mdSummary, H5mdError> {
     let (file, clean) = open_for_reading(path)?;
 
-    let h5md = file.group("h5md").map_err(|_| error(path, "missing group /h5md"))?;
+    let h5md = file
+        .group("h5md")
+        .map_err(|_| error(path, "missing group /h5md"))?;
     let v = attr(path, &h5md, "version", "/h5md version")?;
-    let d = h5(path, "reading /h5md version type", v.dtype().and_then(|t| t.to_descriptor()))?;
+    let d = h5(
+        path,
+        "reading /h5md version type",
+        v.dtype().and_then(|t| t.to_descriptor()),
+    )?;
     if !int_kind(&d) {
         return Err(error(path, "/h5md version is not an integer array"));
     }
     let version = h5(path, "reading /h5md version", v.read_raw::<i32>())?;
     if version.len() != 2 || version[0] != 1 {
-        return Err(error(path, format_args!("/h5md version is {version:?}, expected [1, x]")));
+        return Err(error(
+            path,
+            format_args!("/h5md version is {version:?}, expected [1, x]"),
+        ));
     }
-    let author_g = h5md.group("author").map_err(|_| error(path, "missing group /h5md/author"))?;
-    let author = read_string_attr(path, &attr(path, &author_g, "name", "/h5md/author name")?, "/h5md/author name")?;
-    let creator_g = h5md.group("creator").map_err(|_| error(path, "missing group /h5md/creator"))?;
-    let cname =
-        read_string_attr(path, &attr(path, &creator_g, "name", "/h5md/creator name")?, "/h5md/creator name")?;
+    let author_g = h5md
+        .group("author")
+        .map_err(|_| error(path, "missing group /h5md/author"))?;
+    let author = read_string_attr(
+        path,
+        &attr(path, &author_g, "name", "/h5md/author name")?,
+        "/h5md/author name",
+    )?;
+    let creator_g = h5md
+        .group("creator")
+        .map_err(|_| error(path, "missing group /h5md/creator"))?;
+    let cname = read_string_attr(
+        path,
+        &attr(path, &creator_g, "name", "/h5md/creator name")?,
+        "/h5md/creator name",
+    )?;
     let cversion = read_string_attr(
         path,
         &attr(path, &creator_g, "version", "/h5md/creator version")?,
         "/h5md/creator version",
     )?;
 
-    let all = file.group("particles/all").map_err(|_| error(path, "missing group /particles/all"))?;
-    let bx = all.group("box").map_err(|_| error(path, "missing group /particles/all/box"))?;
+    let all = file
+        .group("particles/all")
+        .map_err(|_| error(path, "missing group /particles/all"))?;
+    let bx = all
+        .group("box")
+        .map_err(|_| error(path, "missing group /particles/all/box"))?;
     let dim_a = attr(path, &bx, "dimension", "box dimension")?;
     let dim = h5(path, "reading box dimension", dim_a.read_scalar::<i32>())?;
     if !(1..=3).contains(&dim) {
         return Err(error(path, format_args!("box dimension is {dim}")));
     }
-    let boundary = read_strings(path, &attr(path, &bx, "boundary", "box boundary")?, "box boundary")?;
+    let boundary = read_strings(
+        path,
+        &attr(path, &bx, "boundary", "box boundary")?,
+        "box boundary",
+    )?;
     if boundary.len() != dim as usize {
-        return Err(error(path, format_args!("box boundary has {} entries for dimension {dim}", boundary.len())));
+        return Err(error(
+            path,
+            format_args!(
+                "box boundary has {} entries for dimension {dim}",
+                boundary.len()
+            ),
+        ));
     }
     if let Some(b) = boundary.iter().find(|b| *b != "periodic" && *b != "none") {
-        return Err(error(path, format_args!("box boundary {b:?} is neither \"periodic\" nor \"none\"")));
+        return Err(error(
+            path,
+            format_args!("box boundary {b:?} is neither \"periodic\" nor \"none\""),
+        ));
     }
     let edges = match bx.dataset("edges") {
         Ok(e) => {
@@ -857,26 +1122,60 @@ pub fn check_h5md(path: &Path) -> Result<H5mdSummary, H5mdError> {
         let n_here;
         if let Ok(g) = all.group(name) {
             let where_ = format!("/particles/all/{name}");
-            let value = g.dataset("value").map_err(|_| error(path, format_args!("{where_} has no value dataset")))?;
-            let step = g.dataset("step").map_err(|_| error(path, format_args!("{where_} has no step dataset")))?;
-            let sd = h5(path, "reading step type", step.dtype().and_then(|t| t.to_descriptor()))?;
+            let value = g
+                .dataset("value")
+                .map_err(|_| error(path, format_args!("{where_} has no value dataset")))?;
+            let step = g
+                .dataset("step")
+                .map_err(|_| error(path, format_args!("{where_} has no step dataset")))?;
+            let sd = h5(
+                path,
+                "reading step type",
+                step.dtype().and_then(|t| t.to_descriptor()),
+            )?;
             if !int_kind(&sd) || step.ndim() != 1 {
-                return Err(error(path, format_args!("{where_}/step is not a 1-d integer dataset")));
+                return Err(error(
+                    path,
+                    format_args!("{where_}/step is not a 1-d integer dataset"),
+                ));
             }
-            let s = h5(path, &format!("reading {where_}/step"), step.read_raw::<i64>())?;
+            let s = h5(
+                path,
+                &format!("reading {where_}/step"),
+                step.read_raw::<i64>(),
+            )?;
             let frames = s.len();
             let shape = value.shape();
             if shape.len() < 2 {
-                return Err(error(path, format_args!("{where_}/value has shape {shape:?}, expected [frames, N, ...]")));
+                return Err(error(
+                    path,
+                    format_args!("{where_}/value has shape {shape:?}, expected [frames, N, ...]"),
+                ));
             }
             if shape[0] < frames {
-                return Err(error(path, format_args!("{where_}/value has {} frames but step has {frames}", shape[0])));
+                return Err(error(
+                    path,
+                    format_args!(
+                        "{where_}/value has {} frames but step has {frames}",
+                        shape[0]
+                    ),
+                ));
             }
             if let Ok(time) = g.dataset("time") {
                 if time.ndim() != 1 || time.size() < frames {
-                    return Err(error(path, format_args!("{where_}/time has {} entries but step has {frames}", time.size())));
+                    return Err(error(
+                        path,
+                        format_args!(
+                            "{where_}/time has {} entries but step has {frames}",
+                            time.size()
+                        ),
+                    ));
                 }
-                let t = h5(path, &format!("reading {where_}/time"), time.read_slice_1d::<f64, _>(0..frames))?;
+                let t = h5(
+                    path,
+                    &format!("reading {where_}/time"),
+                    time.read_slice_1d::<f64, _>(0..frames),
+                )?;
                 times.get_or_insert(t.to_vec());
             }
             match &steps {
@@ -884,7 +1183,10 @@ pub fn check_h5md(path: &Path) -> Result<H5mdSummary, H5mdError> {
                 Some((s0, n0)) if s0.len() != frames => {
                     return Err(error(
                         path,
-                        format_args!("{where_} has {frames} frames but /particles/all/{n0} has {}", s0.len()),
+                        format_args!(
+                            "{where_} has {frames} frames but /particles/all/{n0} has {}",
+                            s0.len()
+                        ),
                     ))
                 }
                 _ => {}
@@ -894,11 +1196,17 @@ pub fn check_h5md(path: &Path) -> Result<H5mdSummary, H5mdError> {
             // Time-independent element: [N, ...].
             let shape = ds.shape();
             if shape.is_empty() {
-                return Err(error(path, format_args!("/particles/all/{name} is a scalar")));
+                return Err(error(
+                    path,
+                    format_args!("/particles/all/{name} is a scalar"),
+                ));
             }
             n_here = shape[0];
         } else {
-            return Err(error(path, format_args!("/particles/all/{name} is neither a group nor a dataset")));
+            return Err(error(
+                path,
+                format_args!("/particles/all/{name} is neither a group nor a dataset"),
+            ));
         }
         match &particles {
             None => particles = Some((n_here, name.clone())),
@@ -949,7 +1257,8 @@ mod tests {
 
     fn rows(field: H5mdField, f: usize, r: std::ops::Range<usize>) -> Vec<f64> {
         let w = field.width();
-        r.flat_map(|i| (0..w).map(move |c| val(field, f, i, c))).collect()
+        r.flat_map(|i| (0..w).map(move |c| val(field, f, i, c)))
+            .collect()
     }
 
     fn write_frames(w: &mut H5mdWriter, first_frame: usize, count: usize, n: usize) {
@@ -958,7 +1267,8 @@ mod tests {
             w.begin_frame(10 * f as u64, 0.5 * f as f64).unwrap();
             for field in w.fields().to_vec() {
                 // Two row blocks, the second written first.
-                w.write_rows(field, split, &rows(field, f, split..n)).unwrap();
+                w.write_rows(field, split, &rows(field, f, split..n))
+                    .unwrap();
                 w.write_rows(field, 0, &rows(field, f, 0..split)).unwrap();
             }
             w.end_frame().unwrap();
@@ -992,7 +1302,8 @@ mod tests {
         let path = tmp("full.h5");
         let n = 7;
         let fields = H5mdField::ALL;
-        let mut w = H5mdWriter::create(&path, n, [10.0, 11.0, 12.5], &fields, "Tester", "0.1.0").unwrap();
+        let mut w =
+            H5mdWriter::create(&path, n, [10.0, 11.0, 12.5], &fields, "Tester", "0.1.0").unwrap();
         assert_eq!(w.fields(), &fields);
         write_frames(&mut w, 0, 3, n);
         assert_eq!(w.frames(), 3);
@@ -1013,20 +1324,53 @@ mod tests {
         // Direct read-back.
         let file = File::open(&path).unwrap();
         let h5md = file.group("h5md").unwrap();
-        assert_eq!(h5md.attr("version").unwrap().read_raw::<i32>().unwrap(), vec![1, 1]);
-        assert!(matches!(descriptor_attr(&h5md.attr("version").unwrap()), TypeDescriptor::Integer(IntSize::U4)));
+        assert_eq!(
+            h5md.attr("version").unwrap().read_raw::<i32>().unwrap(),
+            vec![1, 1]
+        );
+        assert!(matches!(
+            descriptor_attr(&h5md.attr("version").unwrap()),
+            TypeDescriptor::Integer(IntSize::U4)
+        ));
         let creator = file.group("h5md/creator").unwrap();
-        assert_eq!(creator.attr("name").unwrap().read_scalar::<VarLenUnicode>().unwrap().as_str(), "gendpde");
+        assert_eq!(
+            creator
+                .attr("name")
+                .unwrap()
+                .read_scalar::<VarLenUnicode>()
+                .unwrap()
+                .as_str(),
+            "gendpde"
+        );
         let bx = file.group("particles/all/box").unwrap();
-        assert_eq!(bx.attr("dimension").unwrap().read_scalar::<i32>().unwrap(), 3);
-        let b = bx.attr("boundary").unwrap().read_raw::<VarLenUnicode>().unwrap();
-        assert_eq!(b.iter().map(|s| s.as_str()).collect::<Vec<_>>(), ["periodic"; 3]);
-        assert_eq!(bx.dataset("edges").unwrap().read_raw::<f64>().unwrap(), vec![10.0, 11.0, 12.5]);
+        assert_eq!(
+            bx.attr("dimension").unwrap().read_scalar::<i32>().unwrap(),
+            3
+        );
+        let b = bx
+            .attr("boundary")
+            .unwrap()
+            .read_raw::<VarLenUnicode>()
+            .unwrap();
+        assert_eq!(
+            b.iter().map(|s| s.as_str()).collect::<Vec<_>>(),
+            ["periodic"; 3]
+        );
+        assert_eq!(
+            bx.dataset("edges").unwrap().read_raw::<f64>().unwrap(),
+            vec![10.0, 11.0, 12.5]
+        );
 
         for field in fields {
-            let g = file.group(&format!("particles/all/{}", field.h5md_name())).unwrap();
+            let g = file
+                .group(&format!("particles/all/{}", field.h5md_name()))
+                .unwrap();
             let value = g.dataset("value").unwrap();
-            let expect_shape = if field.width() == 3 { vec![3, n, 3] } else { vec![3, n] };
+            let expect_shape = if field.width() == 3 {
+                vec![3, n, 3]
+            } else {
+                vec![3, n]
+            };
             assert_eq!(value.shape(), expect_shape, "{field}");
             assert!(value.is_resizable());
             assert!(value.is_chunked());
@@ -1035,7 +1379,10 @@ mod tests {
             assert!(step.is_chunked() && time.is_chunked());
             assert_eq!(step.read_raw::<i64>().unwrap(), vec![0, 10, 20]);
             assert_eq!(time.read_raw::<f64>().unwrap(), vec![0.0, 0.5, 1.0]);
-            assert!(matches!(descriptor(&step), TypeDescriptor::Integer(IntSize::U8)));
+            assert!(matches!(
+                descriptor(&step),
+                TypeDescriptor::Integer(IntSize::U8)
+            ));
             let expected: Vec<f64> = (0..3).flat_map(|f| rows(field, f, 0..n)).collect();
             let d = descriptor(&value);
             match field.kind() {
@@ -1045,12 +1392,22 @@ mod tests {
                 }
                 Kind::I32 => {
                     assert_eq!(d, TypeDescriptor::Integer(IntSize::U4), "{field}");
-                    let got: Vec<f64> = value.read_raw::<i32>().unwrap().into_iter().map(f64::from).collect();
+                    let got: Vec<f64> = value
+                        .read_raw::<i32>()
+                        .unwrap()
+                        .into_iter()
+                        .map(f64::from)
+                        .collect();
                     assert_eq!(got, expected, "{field}");
                 }
                 Kind::I64 => {
                     assert_eq!(d, TypeDescriptor::Integer(IntSize::U8), "{field}");
-                    let got: Vec<f64> = value.read_raw::<i64>().unwrap().into_iter().map(|x| x as f64).collect();
+                    let got: Vec<f64> = value
+                        .read_raw::<i64>()
+                        .unwrap()
+                        .into_iter()
+                        .map(|x| x as f64)
+                        .collect();
                     assert_eq!(got, expected, "{field}");
                 }
             }
@@ -1083,13 +1440,15 @@ mod tests {
         let file = File::open(&path).unwrap();
         let pos = file.dataset("particles/all/position/value").unwrap();
         assert_eq!(pos.shape(), vec![4, n, 3]);
-        let expected: Vec<f64> = (0..4).flat_map(|f| rows(H5mdField::Position, f, 0..n)).collect();
+        let expected: Vec<f64> = (0..4)
+            .flat_map(|f| rows(H5mdField::Position, f, 0..n))
+            .collect();
         assert_eq!(pos.read_raw::<f64>().unwrap(), expected);
         let _ = std::fs::remove_file(&path);
     }
 
     #[test]
-    fn append_drops_incomplete_frame() {
+    fn append_overwrites_incomplete_frame() {
         let path = tmp("incomplete.h5");
         let n = 4;
         let fields = [H5mdField::Velocity, H5mdField::Mass];
@@ -1100,12 +1459,19 @@ mod tests {
         drop(w); // no end_frame
         let s = check_h5md(&path).unwrap();
         assert_eq!(s.frames, 2);
+        let w = H5mdWriter::append(&path, n, &fields).unwrap();
+        assert_eq!(w.frames(), 2);
+        drop(w);
+        assert_eq!(check_h5md(&path).unwrap().frames, 2);
         let mut w = H5mdWriter::append(&path, n, &fields).unwrap();
         assert_eq!(w.frames(), 2);
         write_frames(&mut w, 2, 1, n);
         drop(w);
         let file = File::open(&path).unwrap();
-        assert_eq!(file.dataset("particles/all/mass/value").unwrap().shape(), vec![3, n]);
+        assert_eq!(
+            file.dataset("particles/all/mass/value").unwrap().shape(),
+            vec![3, n]
+        );
         assert_eq!(check_h5md(&path).unwrap().steps, vec![0, 10, 20]);
         let _ = std::fs::remove_file(&path);
     }
@@ -1118,10 +1484,18 @@ mod tests {
         write_frames(&mut w, 0, 1, 6);
         drop(w);
         let e = H5mdWriter::append(&path, 5, &fields).unwrap_err();
-        assert!(e.0.contains("6 particles") && e.0.contains("mismatch.h5"), "{e}");
+        assert!(
+            e.0.contains("6 particles") && e.0.contains("mismatch.h5"),
+            "{e}"
+        );
         let e = H5mdWriter::append(&path, 6, &[H5mdField::Position]).unwrap_err();
         assert!(e.0.contains("species"), "{e}");
-        let e = H5mdWriter::append(&path, 6, &[H5mdField::Position, H5mdField::Species, H5mdField::Mass]).unwrap_err();
+        let e = H5mdWriter::append(
+            &path,
+            6,
+            &[H5mdField::Position, H5mdField::Species, H5mdField::Mass],
+        )
+        .unwrap_err();
         assert!(e.0.contains("mass"), "{e}");
         let e = H5mdWriter::append(&tmp("does-not-exist.h5"), 6, &fields).unwrap_err();
         assert!(e.0.contains("does-not-exist.h5"), "{e}");
@@ -1139,7 +1513,15 @@ mod tests {
         let n = 4;
         let fields = [H5mdField::Position, H5mdField::Species, H5mdField::Id];
         assert!(H5mdWriter::create(&path, n, [1.0; 3], &[], "a", "v").is_err());
-        assert!(H5mdWriter::create(&path, n, [1.0; 3], &[H5mdField::Mass, H5mdField::Mass], "a", "v").is_err());
+        assert!(H5mdWriter::create(
+            &path,
+            n,
+            [1.0; 3],
+            &[H5mdField::Mass, H5mdField::Mass],
+            "a",
+            "v"
+        )
+        .is_err());
         let mut w = H5mdWriter::create(&path, n, [1.0; 3], &fields, "a", "v").unwrap();
         // Outside a frame.
         assert!(w.write_rows(H5mdField::Position, 0, &[0.0; 3]).is_err());
@@ -1149,7 +1531,9 @@ mod tests {
         // Row range.
         assert!(w.write_rows(H5mdField::Position, 4, &[0.0; 3]).is_err());
         assert!(w.write_rows(H5mdField::Position, 3, &[0.0; 6]).is_err());
-        assert!(w.write_rows(H5mdField::Position, usize::MAX, &[0.0; 3]).is_err());
+        assert!(w
+            .write_rows(H5mdField::Position, usize::MAX, &[0.0; 3])
+            .is_err());
         assert!(w.write_rows(H5mdField::Position, 4, &[]).is_ok());
         // Data length not a multiple of the width.
         let e = w.write_rows(H5mdField::Position, 0, &[0.0; 4]).unwrap_err();
@@ -1161,8 +1545,10 @@ mod tests {
         assert!(w.write_rows(H5mdField::Species, 0, &[1e10]).is_err());
         assert!(w.write_rows(H5mdField::Id, 0, &[f64::NAN]).is_err());
         assert!(w.write_rows(H5mdField::Id, 0, &[1e19]).is_err());
-        w.write_rows(H5mdField::Id, 0, &[1.0, 2.0, 3.0, 4.0]).unwrap();
-        w.write_rows(H5mdField::Species, 0, &[-1.0, 0.0, 1.0, 2.0]).unwrap();
+        w.write_rows(H5mdField::Id, 0, &[1.0, 2.0, 3.0, 4.0])
+            .unwrap();
+        w.write_rows(H5mdField::Species, 0, &[-1.0, 0.0, 1.0, 2.0])
+            .unwrap();
         w.write_rows(H5mdField::Position, 0, &[0.5; 12]).unwrap();
         w.end_frame().unwrap();
         assert_eq!(w.frames(), 1);
@@ -1184,7 +1570,12 @@ mod tests {
         let s = check_h5md(&path).unwrap();
         assert_eq!((s.particles, s.frames), (0, 3));
         let file = File::open(&path).unwrap();
-        assert_eq!(file.dataset("particles/all/position/value").unwrap().shape(), vec![3, 0, 3]);
+        assert_eq!(
+            file.dataset("particles/all/position/value")
+                .unwrap()
+                .shape(),
+            vec![3, 0, 3]
+        );
         drop(file);
         let mut w = H5mdWriter::append(&path, 0, &fields).unwrap();
         write_frames(&mut w, 3, 1, 0);
@@ -1198,14 +1589,17 @@ mod tests {
     #[test]
     #[ignore]
     fn killed_writer_child() {
-        let Some(path) = std::env::var_os("GENDPDE_H5MD_KILL_CHILD") else { return };
+        let Some(path) = std::env::var_os("GENDPDE_H5MD_KILL_CHILD") else {
+            return;
+        };
         let path = PathBuf::from(path);
         let n = 50;
         let fields = [H5mdField::Position, H5mdField::Id];
         let mut w = H5mdWriter::create(&path, n, [3.0; 3], &fields, "a", "v").unwrap();
         write_frames(&mut w, 0, 3, n);
         w.begin_frame(30, 1.5).unwrap();
-        w.write_rows(H5mdField::Position, 0, &rows(H5mdField::Position, 3, 0..n)).unwrap();
+        w.write_rows(H5mdField::Position, 0, &rows(H5mdField::Position, 3, 0..n))
+            .unwrap();
         std::process::abort();
     }
 
@@ -1213,7 +1607,13 @@ mod tests {
     fn killed_writer_is_recoverable() {
         let path = tmp("killed.h5");
         let status = std::process::Command::new(std::env::current_exe().unwrap())
-            .args(["--exact", "h5md::tests::killed_writer_child", "--ignored", "--nocapture", "--test-threads=1"])
+            .args([
+                "--exact",
+                "h5md::tests::killed_writer_child",
+                "--ignored",
+                "--nocapture",
+                "--test-threads=1",
+            ])
             .env("GENDPDE_H5MD_KILL_CHILD", &path)
             .stdout(std::process::Stdio::null())
             .stderr(std::process::Stdio::null())
@@ -1233,7 +1633,9 @@ mod tests {
         assert!(s.clean);
         let file = File::open(&path).unwrap();
         let pos = file.dataset("particles/all/position/value").unwrap();
-        let expected: Vec<f64> = (0..5).flat_map(|f| rows(H5mdField::Position, f, 0..50)).collect();
+        let expected: Vec<f64> = (0..5)
+            .flat_map(|f| rows(H5mdField::Position, f, 0..50))
+            .collect();
         assert_eq!(pos.read_raw::<f64>().unwrap(), expected);
         drop((pos, file));
         // repair on a clean file is harmless

@@ -3,13 +3,14 @@
 //! a cubic solve instead of the inner model's own (possibly iterative) evaluation.
 //!
 //! Grid ([`TableGrid`]). Nodes theta_i = theta_min (theta_max/theta_min)^{i/(N_theta - 1)},
-//! uniform in ln theta (the cell is found from ln theta), and n_j = n_min + j dn, uniform in
-//! n. At every node the table holds u, C_V = du/dtheta, du/dn|_theta and d^2u/dtheta dn, and
-//! pi/n^2 with its three derivatives d/dtheta, d/dn and d^2/dtheta dn. u, C_V and pi/n^2 come
-//! from the inner EOS; the other derivatives from five-point finite differences of the inner
-//! EOS with a step of 1/100 of the adjacent node spacing (central inside the grid, one-sided
-//! at its edges, so the inner EOS is only evaluated inside the table). Their error enters
-//! the interpolants multiplied by a node spacing: about 1e-13 relative.
+//! uniform in ln theta (the cell is found through a bucket table, without a logarithm),
+//! and n_j = n_min + j dn, uniform in n. At every node the table holds u, C_V = du/dtheta,
+//! du/dn|_theta and d^2u/dtheta dn, and pi/n^2 with its three derivatives d/dtheta, d/dn
+//! and d^2/dtheta dn. u, C_V and pi/n^2 come from the inner EOS; the other derivatives from
+//! five-point finite differences of the inner EOS with a step of 1/100 of the adjacent node
+//! spacing (central inside the grid, one-sided at its edges, so the inner EOS is only
+//! evaluated inside the table). Their error enters the interpolants multiplied by a node
+//! spacing: about 1e-13 relative.
 //!
 //! Interpolation. In cell [theta_i, theta_i+1] x [n_j, n_j+1] with local coordinates
 //! t = (theta - theta_i)/(theta_i+1 - theta_i) and s = (n - n_j)/dn (t is linear in theta,
@@ -30,9 +31,10 @@
 //! sufficient, not necessary; a smooth u with C_V > 0 meets it once the grid resolves C_V,
 //! otherwise the constructor fails with [`TableError::NotMonotone`] naming the cell.
 //!
-//! theta(u, n) inverts the interpolated u: the cell holding u at density n is found from
-//! the guess (its cell, a neighbour, or a galloping then bisection search over the node
-//! values of u at this n), then a Newton iteration bracketed in [0, 1] solves the cubic in t.
+//! theta(u, n) inverts the interpolated u: the cell holding u at density n is the guess's
+//! cell or is found by a galloping search from it (then bisection) over the node values of
+//! the interpolated u at this n, then a Newton iteration bracketed in [0, 1] solves the
+//! cubic in t (two iterations from the previous theta of a particle after a pair update).
 //! It is consistent with [`Eos::u`] to round-off: theta(u(t, n), n) = t within a few ulps
 //! (tests: 1e-12 relative), so energies round trip exactly through the table.
 //!
@@ -47,8 +49,15 @@
 //! the table), for states inside the table (None outside). `kb`, `density_dependent` and
 //! `max_density` are the inner model's.
 //!
-//! Accuracy is measured with [`Tabulated::max_error`]; for the Kolafa-Nezbeda LJ fluid
-//! (C_V = 60) on theta in [0.5, 5], n in [0.05, 0.85], see the tests of this file.
+//! Accuracy is measured with [`Tabulated::max_error`]. Kolafa-Nezbeda LJ fluid, C_V = 60,
+//! theta in [0.5, 5], n in [0.05, 0.85] (largest relative errors between the nodes; the
+//! worst u, C_V and theta(u) errors sit at theta_min, the worst pi/n^2 near n_max):
+//!
+//! | nodes     | u       | pi/n^2  | C_V     | theta(u) |
+//! |-----------|---------|---------|---------|----------|
+//! | 31 x 33   | 2.0e-6  | 9.8e-5  | 5.0e-5  | 1.3e-6   |
+//! | 61 x 65   | 1.3e-7  | 7.5e-6  | 6.5e-6  | 8.8e-8   |
+//! | 121 x 129 | 8.4e-9  | 5.7e-7  | 8.4e-7  | 5.6e-9   |
 
 use super::{Eos, EosError, EosState, ISOLATED_DENSITY};
 use std::fmt;
@@ -138,7 +147,8 @@ pub struct TableErrors {
 
 impl fmt::Display for TableErrors {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let rows = [("u", &self.u), ("pi/n^2", &self.pn2), ("C_V", &self.cv), ("theta(u)", &self.theta)];
+        let rows =
+            [("u", &self.u), ("pi/n^2", &self.pn2), ("C_V", &self.cv), ("theta(u)", &self.theta)];
         write!(f, "max relative error over {} states:", self.samples)?;
         for (name, e) in rows {
             write!(f, " {name} {:.2e} at ({:.4}, {:.4});", e.rel, e.theta, e.n)?;
@@ -169,6 +179,18 @@ struct Loc {
 }
 
 /// An [`Eos`] evaluated through bicubic Hermite tables (see the module documentation).
+///
+/// ```
+/// use gendpde_potentials::{Eos, LennardJones, TableGrid, Tabulated};
+/// let grid = TableGrid { theta: (0.5, 5.0, 61), n: (0.05, 0.85, 65) };
+/// let table = Tabulated::new(LennardJones::new(60.0), grid)?;
+/// let err = table.max_error(4); // against the analytic model, between the nodes
+/// assert!(err.u.rel < 1e-6 && err.theta.rel < 1e-6, "{err}");
+/// let u = table.u(1.3, 0.4);
+/// assert!((table.theta(u, 0.4, 1.0) - 1.3).abs() < 1e-14); // exact round trip
+/// assert!(table.theta(u, 0.9, 1.0).is_nan() && table.check(1.3, 0.9).is_err());
+/// # Ok::<(), gendpde_potentials::TableError>(())
+/// ```
 #[derive(Clone, PartialEq)]
 pub struct Tabulated<E: Eos> {
     inner: E,
@@ -179,8 +201,11 @@ pub struct Tabulated<E: Eos> {
     thetas: Vec<f64>,
     /// 1 / (theta_i+1 - theta_i).
     inv_h: Vec<f64>,
-    ln_tmin: f64,
-    inv_dx: f64,
+    /// Cell lookup without a logarithm: bucket k covers theta_min + [k, k + 1) / inv_w
+    /// and holds the cell of its left edge; buckets are at most as wide as the narrowest
+    /// (first) cell unless their number is capped, so theta lies in that cell or the next.
+    bucket: Vec<u32>,
+    inv_w: f64,
     dn: f64,
     inv_dn: f64,
     /// u patches, cell (i, j) at j (nt - 1) + i.
@@ -201,11 +226,12 @@ impl<E: Eos + fmt::Debug> fmt::Debug for Tabulated<E> {
 const FD_STEP: f64 = 1e-2;
 /// Largest number of nodes of a table.
 const MAX_NODES: usize = 1 << 22;
+/// Largest number of theta lookup buckets (more only for wide theta ranges).
+const MAX_BUCKETS: f64 = (1 << 14) as f64;
 /// Tolerance of the inner model's own round trip theta(u(theta, n), n) at the nodes.
 const INNER_TOL: f64 = 1e-6;
-/// Newton stops after a step below this (in t in [0, 1]): the quadratic convergence
-/// makes the returned t exact to round-off.
-const NEWTON_TOL: f64 = 1e-10;
+/// Error in t (in [0, 1]) below which the Newton solve stops, 1/10 ulp of 1.
+const NEWTON_TOL: f64 = 1e-17;
 const MAX_ITER: usize = 100;
 
 /// Hermite-to-power basis: p(t) = sum_k t^k (M [f(0), f(1), f'(0), f'(1)])_k.
@@ -278,7 +304,11 @@ fn slope(c: &[f64; 4], t: f64) -> f64 {
     (3.0 * c[3] * t + 2.0 * c[2]) * t + c[1]
 }
 
-fn check_range(name: &str, (lo, hi, count): (f64, f64, usize), lo_min: f64) -> Result<(), TableError> {
+fn check_range(
+    name: &str,
+    (lo, hi, count): (f64, f64, usize),
+    lo_min: f64,
+) -> Result<(), TableError> {
     if !(lo.is_finite() && hi.is_finite() && lo >= lo_min && hi > lo && count >= 2) {
         let need = if lo_min > 0.0 { "0 < min < max" } else { "0 <= min < max" };
         return Err(TableError::Grid(format!(
@@ -303,8 +333,7 @@ impl<E: Eos> Tabulated<E> {
             )));
         }
         let dx = (tmax / tmin).ln() / (nt - 1) as f64;
-        let mut thetas: Vec<f64> =
-            (0..nt).map(|i| tmin * (dx * i as f64).exp()).collect();
+        let mut thetas: Vec<f64> = (0..nt).map(|i| tmin * (dx * i as f64).exp()).collect();
         thetas[0] = tmin;
         thetas[nt - 1] = tmax;
         let dn = (nmax - nmin) / (nn - 1) as f64;
@@ -335,7 +364,8 @@ impl<E: Eos> Tabulated<E> {
                     return Err(fail(format!("C_V = {cv:e} is not positive")));
                 }
                 let back = inner.theta(u, n, theta);
-                if !((back - theta).abs() <= INNER_TOL * theta) {
+                let recovered = (back - theta).abs() <= INNER_TOL * theta; // false for NaN
+                if !recovered {
                     return Err(fail(format!(
                         "the EOS gives theta(u = {u:e}, n) = {back:e}: the node lies outside \
                          its domain"
@@ -376,7 +406,8 @@ impl<E: Eos> Tabulated<E> {
                 };
                 let fu = herm(&nu);
                 let bez = sandwich(&B, &fu);
-                if (0..3).any(|k| (0..4).any(|l| !(bez[k + 1][l] > bez[k][l]))) {
+                let rising = |k: usize, l: usize| bez[k + 1][l] > bez[k][l];
+                if !(0..3).all(|k| (0..4).all(|l| rising(k, l))) {
                     return Err(TableError::NotMonotone {
                         theta: (thetas[i], thetas[i + 1]),
                         n: (ns[j], ns[j + 1]),
@@ -394,6 +425,18 @@ impl<E: Eos> Tabulated<E> {
             }
         }
         let inv_h = thetas.windows(2).map(|w| 1.0 / (w[1] - w[0])).collect();
+        let count = ((tmax - tmin) / (thetas[1] - thetas[0])).ceil().min(MAX_BUCKETS) as usize;
+        let inv_w = count as f64 / (tmax - tmin);
+        let mut cell = 0;
+        let bucket = (0..=count)
+            .map(|k| {
+                let edge = tmin + k as f64 / inv_w;
+                while cell + 1 < m && thetas[cell + 1] <= edge {
+                    cell += 1;
+                }
+                cell as u32
+            })
+            .collect();
         Ok(Self {
             inner,
             grid,
@@ -401,8 +444,8 @@ impl<E: Eos> Tabulated<E> {
             nn,
             thetas,
             inv_h,
-            ln_tmin: tmin.ln(),
-            inv_dx: 1.0 / dx,
+            bucket,
+            inv_w,
             dn,
             inv_dn: 1.0 / dn,
             pu,
@@ -449,10 +492,8 @@ impl<E: Eos> Tabulated<E> {
         if let Some((l, _)) = self.solve(u, n, guess) {
             return Ok(self.theta_at(l.i, l.t));
         }
-        let u_range = self.cell_n(n).map(|(j, s)| {
-            let top = cubic(&self.pu[j * (self.nt - 1) + self.nt - 2], s);
-            (self.node_u(0, j, s), value(&top, 1.0))
-        });
+        let u_range =
+            self.cell_n(n).map(|(j, s)| (self.node_u(0, j, s), self.node_u(self.nt - 1, j, s)));
         Err(TableError::EnergyOutOfRange { u, n, u_range, n_range: self.n_range() })
     }
 
@@ -508,11 +549,13 @@ impl<E: Eos> Tabulated<E> {
     #[inline(always)]
     fn cell_theta(&self, theta: f64) -> (usize, f64) {
         let m = self.nt - 1;
-        let mut i = (((theta.ln() - self.ln_tmin) * self.inv_dx).max(0.0) as usize).min(m - 1);
-        // the node array decides at ln round-off
-        if theta < self.thetas[i] && i > 0 {
+        let k = (((theta - self.grid.theta.0) * self.inv_w) as usize).min(self.bucket.len() - 1);
+        let mut i = self.bucket[k] as usize;
+        // the node array decides (round-off at bucket edges, capped bucket count)
+        while theta < self.thetas[i] && i > 0 {
             i -= 1;
-        } else if theta > self.thetas[i + 1] && i + 1 < m {
+        }
+        while theta > self.thetas[i + 1] && i + 1 < m {
             i += 1;
         }
         (i, ((theta - self.thetas[i]) * self.inv_h[i]).clamp(0.0, 1.0))
@@ -629,7 +672,8 @@ impl<E: Eos> Tabulated<E> {
 }
 
 /// Root in [0, 1] of the increasing cubic c(t) = u with c(0) < u < c(1): Newton,
-/// bisection whenever a step leaves the bracket.
+/// bisection whenever a step leaves the bracket. A Newton step dt is the last one when
+/// the error it leaves, c''/(2 c') dt^2 (quadratic convergence), is below NEWTON_TOL.
 #[inline]
 fn newton(c: &[f64; 4], u: f64, mut t: f64) -> f64 {
     let (mut lo, mut hi) = (0.0, 1.0);
@@ -643,14 +687,21 @@ fn newton(c: &[f64; 4], u: f64, mut t: f64) -> f64 {
         } else {
             hi = t;
         }
-        let mut next = t - r / slope(c, t);
-        if !(next >= lo && next <= hi) {
-            next = 0.5 * (lo + hi);
+        let d1 = slope(c, t);
+        let dt = r / d1;
+        let next = t - dt;
+        if next >= lo && next <= hi {
+            let d2 = 6.0 * c[3] * t + 2.0 * c[2];
+            if (d2 * dt * dt).abs() <= 2.0 * NEWTON_TOL * d1 {
+                return next;
+            }
+            t = next;
+        } else {
+            t = 0.5 * (lo + hi);
+            if hi - lo <= f64::EPSILON {
+                return t;
+            }
         }
-        if (next - t).abs() <= NEWTON_TOL || hi - lo <= f64::EPSILON {
-            return next;
-        }
-        t = next;
     }
     t
 }
@@ -713,7 +764,8 @@ impl<E: Eos> Eos for Tabulated<E> {
             return Err(EosError::NonPositiveTheta { u, n, theta: f64::NAN });
         };
         let theta = self.theta_at(l.i, l.t);
-        let pn2 = if isolated { 0.0 } else { value(&cubic(&self.pp[self.cell(l.i, l.j)], l.s), l.t) };
+        let pn2 =
+            if isolated { 0.0 } else { value(&cubic(&self.pp[self.cell(l.i, l.j)], l.s), l.t) };
         Ok(EosState { theta, pn2, cv: slope(&c, l.t) * self.inv_h[l.i] })
     }
 }
@@ -727,6 +779,7 @@ mod tests {
         (a - b).abs() / b.abs()
     }
 
+    #[allow(clippy::approx_constant)] // b = 1.4142 of the paper, not sqrt(2)
     fn vdw() -> LinearTheta {
         LinearTheta::vdw_excess(60.0, 2.4682, 1.4142)
     }
@@ -783,7 +836,7 @@ mod tests {
         // at the density nodes pi/n^2 is linear in theta and exact at any theta
         for &(theta, _) in &states(&t, 200) {
             for j in [0, 10, 26] {
-                let n = 0.65 * j as f64 / 26.0;
+                let n = (0.65 * j as f64 / 26.0).min(0.65);
                 let (a, b) = (t.pn2(theta, n), m.pn2(theta, n));
                 assert!((a - b).abs() < 1e-13 * b.abs().max(1.0), "({theta}, {n}): {a} vs {b}");
                 assert!(rel(t.u(theta, n), m.u(theta, n)) < 1e-14);
@@ -807,9 +860,16 @@ mod tests {
         }
         for w in errors.windows(2) {
             let ratio = |f: fn(&TableErrors) -> f64| f(&w[0]) / f(&w[1]);
-            let (ru, rp, rc, rt) =
-                (ratio(|e| e.u.rel), ratio(|e| e.pn2.rel), ratio(|e| e.cv.rel), ratio(|e| e.theta.rel));
-            eprintln!("halving the spacing divides the errors by u {ru:.1}, pi/n^2 {rp:.1}, C_V {rc:.1}, theta {rt:.1}");
+            let (ru, rp, rc, rt) = (
+                ratio(|e| e.u.rel),
+                ratio(|e| e.pn2.rel),
+                ratio(|e| e.cv.rel),
+                ratio(|e| e.theta.rel),
+            );
+            eprintln!(
+                "halving the spacing divides the errors by u {ru:.1}, pi/n^2 {rp:.1}, \
+                 C_V {rc:.1}, theta {rt:.1}"
+            );
             // O(h^4) for the interpolants and for theta(u), O(h^3) for C_V = du/dtheta
             assert!(ru > 12.0 && rp > 12.0 && rt > 12.0, "{ru} {rp} {rt}");
             assert!(rc > 6.0, "{rc}");
@@ -839,7 +899,10 @@ mod tests {
                 }
                 let st = t.state(u, n, theta).unwrap();
                 assert!(rel(st.theta, theta) < 1e-12);
-                assert!(rel(st.pn2, t.pn2(theta, n)) < 1e-12 || (st.pn2 - t.pn2(theta, n)).abs() < 1e-13);
+                assert!(
+                    rel(st.pn2, t.pn2(theta, n)) < 1e-12
+                        || (st.pn2 - t.pn2(theta, n)).abs() < 1e-13
+                );
                 assert!(rel(st.cv, t.cv(theta, n)) < 1e-12);
             }
             eprintln!("worst round-trip error of theta(u(theta, n), n): {worst:.2e}");
@@ -875,8 +938,12 @@ mod tests {
     fn states_outside_the_table_are_errors() {
         let t = lj_table(16, 17);
         let n = 0.5;
-        for (theta, nn) in [(0.4, n), (5.1, n), (1.0, 0.9), (1.0, 0.01), (f64::NAN, n), (1.0, f64::NAN)] {
-            assert!(t.u(theta, nn).is_nan() && t.pn2(theta, nn).is_nan() && t.cv(theta, nn).is_nan());
+        for (theta, nn) in
+            [(0.4, n), (5.1, n), (1.0, 0.9), (1.0, 0.01), (f64::NAN, n), (1.0, f64::NAN)]
+        {
+            assert!(
+                t.u(theta, nn).is_nan() && t.pn2(theta, nn).is_nan() && t.cv(theta, nn).is_nan()
+            );
             let e = t.check(theta, nn).unwrap_err();
             let msg = e.to_string();
             eprintln!("{msg}");
@@ -934,13 +1001,17 @@ mod tests {
             assert!(matches!(e, TableError::Grid(_)));
         }
         // LJ outside its domain (packing fraction > 0.9 at theta = 0.02, n = 1.2)
-        let e = Tabulated::new(m(), TableGrid { theta: (0.02, 2.0, 5), n: (0.0, 1.2, 5) }).unwrap_err();
+        let e =
+            Tabulated::new(m(), TableGrid { theta: (0.02, 2.0, 5), n: (0.0, 1.2, 5) }).unwrap_err();
         eprintln!("{e}");
         assert!(matches!(e, TableError::Inner { theta, .. } if theta == 0.02), "{e}");
         assert!(e.to_string().contains("node theta = 2e-2, n = 8.99"), "{e}");
         // the ideal gas has ln n: n = 0 fails, naming the node
-        let e = Tabulated::new(LinearTheta::ideal(5.0), TableGrid { theta: (0.5, 5.0, 5), n: (0.0, 1.0, 5) })
-            .unwrap_err();
+        let e = Tabulated::new(
+            LinearTheta::ideal(5.0),
+            TableGrid { theta: (0.5, 5.0, 5), n: (0.0, 1.0, 5) },
+        )
+        .unwrap_err();
         eprintln!("{e}");
         assert!(matches!(e, TableError::Inner { n, .. } if n == 0.0));
     }
