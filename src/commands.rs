@@ -88,10 +88,36 @@ impl Interpreter {
         let mut a = Args::new(cmd);
         let sim = &mut self.sim;
         match cmd.name.as_str() {
-            "units" => match a.word("a unit style")? {
-                "lj" => a.done()?,
-                u => return Err(a.err(format!("units {u}: only lj is supported")).into()),
-            },
+            "units" => {
+                let w = a.word("a unit style (lj or metal)")?;
+                let units = crate::units::Units::parse(w).ok_or_else(|| a.err(format!("units {w}: known are lj and metal")))?;
+                a.done()?;
+                if sim.system.is_some() && units != sim.units {
+                    return Err(a.err("units must come before the box is created").into());
+                }
+                if units != sim.units {
+                    sim.units = units;
+                    sim.dt = units.default_dt;
+                    sim.skin = units.default_skin;
+                    sim.thermo.norm = units.default_norm;
+                }
+            }
+            "comm_modify" | "newton" => {
+                // LAMMPS communication settings: gendpde always exchanges what its styles
+                // need (ghost velocities included) and uses full lists; accepted for
+                // compatibility.
+            }
+            "compute" => {
+                let id = a.word("a compute ID")?.to_string();
+                let group = a.word("a group")?;
+                let style = a.word("a compute style (dpd)")?;
+                a.done()?;
+                if group != "all" || style != "dpd" {
+                    return Err(a.err(format!("compute {style} on group {group}: only 'compute ID all dpd' is supported")).into());
+                }
+                sim.computes.retain(|c| *c != id);
+                sim.computes.push(id);
+            }
             "dimension" => match a.word("the dimension")? {
                 "3" => a.done()?,
                 d => return Err(a.err(format!("dimension {d}: only 3 is supported")).into()),
@@ -109,7 +135,8 @@ impl Interpreter {
                 sim.atom_style = match a.word("an atom style")? {
                     "atomic" => AtomStyle::Atomic,
                     "dpd" | "gendpde" => AtomStyle::Dpd,
-                    s => return Err(a.err(format!("unknown atom style '{s}'; known: atomic, dpd, gendpde")).into()),
+                    "mdpd" => AtomStyle::Mdpd,
+                    s => return Err(a.err(format!("unknown atom style '{s}'; known: atomic, dpd, gendpde, mdpd")).into()),
                 };
                 a.done()?;
             }
@@ -189,12 +216,11 @@ impl Interpreter {
             }
             "pair_coeff" => {
                 let pair = sim.pair.as_mut().ok_or_else(|| a.err("pair_coeff before pair_style"))?;
-                pair.coeff = Some(styles::parse_pair_coeff(cmd, pair, sim.ntypes)?);
-                sim.pair_text.truncate(1);
+                styles::parse_pair_coeff(cmd, pair, sim.ntypes)?;
                 sim.pair_text.push(echo(cmd));
             }
             "fix" => {
-                let fix = styles::parse_fix(cmd)?;
+                let fix = styles::parse_fix(cmd, sim.units.kb)?;
                 match sim.fixes.iter_mut().find(|f| f.id == fix.id) {
                     Some(old) if std::mem::discriminant(&old.style) != std::mem::discriminant(&fix.style) => {
                         return Err(a.err(format!("fix ID '{}' is in use by another style (unfix it first)", fix.id)).into());
@@ -287,6 +313,9 @@ fn resolve(sim: &Sim, name: &str) -> Option<f64> {
         energy0: sim.energy0,
         elapsed: 0,
         cpu: 0.0,
+        units: sim.units,
+        pe_is_pair: sim.pe_is_pair(),
+        computes: &sim.computes,
     };
     ctx.keyword(name)
 }
@@ -382,7 +411,7 @@ fn create_atoms(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     };
     a.done()?;
     let lattice = sim.lattice.as_ref().ok_or_else(|| a.err("create_atoms needs a lattice command first"))?;
-    let mass = sim.masses[kind - 1].unwrap_or(f64::NAN);
+    let mass = sim.masses[kind - 1].map_or(f64::NAN, |m| m * sim.units.mvv2e);
     let points = lattice.points(lo, hi);
     if sim.max_tag + points.len() as u64 > u32::MAX as u64 {
         return Err(a.err(format!("more than {} particles: particle IDs must fit in 32 bits", u32::MAX)));
@@ -427,11 +456,12 @@ fn mass(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     for t in types.clone() {
         sim.masses[t - 1] = Some(m);
     }
+    let internal = m * sim.units.mvv2e;
     if let Some(sys) = &mut sim.system {
         let s = &mut sys.store;
         for i in 0..s.nlocal {
             if types.contains(&(s.kind[i] as usize)) {
-                s.mass[i] = m;
+                s.mass[i] = internal;
             }
         }
     }
@@ -512,10 +542,10 @@ fn thermo_style(sim: &mut Sim, vars: &Variables, a: &mut Args) -> Result<(), Scr
     let mut keys = Vec::new();
     while a.remaining() > 0 {
         let k = a.word("a keyword")?;
-        let known = crate::thermo::heading(k) != k || k.starts_with("v_");
+        let known = crate::thermo::heading(k) != k || k.starts_with("v_") || k.starts_with("c_");
         if !known {
             return Err(a.err(format!(
-                "unknown thermo keyword '{k}'; known: step elapsed time dt cpu atoms temp tint press pe ke etotal edrift vol density lx ly lz pxtot pytot pztot v_NAME"
+                "unknown thermo keyword '{k}'; known: step elapsed time dt cpu atoms temp tint press pe ke etotal edrift vol density lx ly lz pxtot pytot pztot v_NAME c_ID[k]"
             )));
         }
         if let Some(name) = k.strip_prefix("v_") {

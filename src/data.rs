@@ -27,7 +27,7 @@ pub fn read(sim: &mut Sim, a: &mut Args, transport: Box<dyn Transport>) -> Resul
         if !sys.comm.keeps(&sys.domain, at.r) {
             continue;
         }
-        let mass = data.masses[at.kind as usize - 1].unwrap_or(f64::NAN);
+        let mass = data.masses[at.kind as usize - 1].map_or(f64::NAN, |m| m * sim.units.mvv2e);
         sys.store.push(at.tag, at.kind, mass, at.r);
         let i = sys.store.nlocal - 1;
         sys.store.image[i] = at.image;

@@ -14,6 +14,8 @@ pub mod run;
 pub mod sim;
 pub mod styles;
 pub mod thermo;
+pub mod units;
+mod pairwise;
 mod velocity;
 
 pub use commands::{AppError, Interpreter, Mode};

@@ -12,7 +12,7 @@ use std::time::Instant;
 pub fn prepare(it: &mut Interpreter, cmd: &Command) -> Result<Box<dyn Physics>, AppError> {
     let err = |m: String| AppError::Script(ScriptError::at(cmd, m));
     let sim = &mut it.sim;
-    let physics = styles::build_physics(cmd, sim.pair.as_ref(), &sim.fixes, sim.dt, sim.skin, sim.rebuild.clone())?;
+    let physics = styles::build_physics(cmd, sim.pair.as_ref(), &sim.fixes, sim.dt, sim.skin, sim.rebuild.clone(), sim.units.kb)?;
     let sys = sim.system.as_mut().ok_or_else(|| err("run before create_box".into()))?;
     if sys.store.nlocal == 0 {
         return Err(err("the box holds no particles (create_atoms)".into()));
@@ -64,6 +64,9 @@ pub fn run(it: &mut Interpreter, cmd: &Command, nsteps: u64) -> Result<(), AppEr
             energy0: Some(energy0),
             elapsed: sys.step - start_step,
             cpu: clock.elapsed().as_secs_f64(),
+            units: sim.units,
+            pe_is_pair: sim.pe_is_pair(),
+            computes: &sim.computes,
         };
         let resolve = |name: &str| ctx.keyword(name);
         let mut values = Vec::with_capacity(keys.len());

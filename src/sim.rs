@@ -2,7 +2,8 @@
 
 use crate::h5md_out::H5mdDump;
 use crate::lattice::{Block, Lattice};
-use crate::styles::{Fix, PairGendpde};
+use crate::styles::{Fix, PairStyle};
+use crate::units::Units;
 use crate::thermo::ThermoConfig;
 use gendpde_integrators::{RebuildPolicy, System};
 use gendpde_io::AtomStyle;
@@ -16,7 +17,8 @@ pub struct Sim {
     /// Mass of each type (index type - 1).
     pub masses: Vec<Option<f64>>,
     pub system: Option<System>,
-    pub pair: Option<PairGendpde>,
+    pub units: Units,
+    pub pair: Option<PairStyle>,
     pub fixes: Vec<Fix>,
     pub dt: f64,
     pub skin: f64,
@@ -36,6 +38,8 @@ pub struct Sim {
     pub checkpoint: Option<(u64, String)>,
     /// `dump ... h5md` outputs.
     pub dumps: Vec<H5mdDump>,
+    /// `compute ID all dpd` IDs (thermo `c_ID[1..5]`).
+    pub computes: Vec<String>,
 }
 
 impl Default for Sim {
@@ -47,6 +51,7 @@ impl Default for Sim {
             ntypes: 0,
             masses: Vec::new(),
             system: None,
+            units: Units::LJ,
             pair: None,
             fixes: Vec::new(),
             dt: 0.005,
@@ -60,15 +65,21 @@ impl Default for Sim {
             pair_text: Vec::new(),
             checkpoint: None,
             dumps: Vec::new(),
+            computes: Vec::new(),
         }
     }
 }
 
 impl Sim {
+    /// Whether thermo `pe` is a pair energy (LAMMPS's pairwise styles).
+    pub fn pe_is_pair(&self) -> bool {
+        matches!(self.pair, Some(PairStyle::Pairwise(_)))
+    }
+
     /// Commands that re-create the styles and run settings, for a restart file. Values
     /// print in round-trip form.
     pub fn style_commands(&self) -> Vec<String> {
-        let mut c = vec![format!("atom_style {}", self.atom_style.name())];
+        let mut c = vec![format!("units {}", self.units.name), format!("atom_style {}", self.atom_style.name())];
         c.extend(self.pair_text.iter().cloned());
         c.extend(self.fixes.iter().map(|f| f.text.clone()));
         c.push(format!("timestep {:?}", self.dt));

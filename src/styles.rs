@@ -17,6 +17,14 @@ pub struct PairGendpde {
     pub coeff: Option<PairCoeff>,
 }
 
+/// The pair style in force.
+#[derive(Clone, Debug, PartialEq)]
+pub enum PairStyle {
+    Gendpde(PairGendpde),
+    /// LAMMPS's pairwise DPD styles (src/pairwise.rs).
+    Pairwise(crate::pairwise::Pairwise),
+}
+
 /// Dissipation parameters of `pair_coeff`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PairCoeff {
@@ -78,6 +86,10 @@ pub enum FixStyle {
     Shardlow { heat: HeatModel },
     /// `fix heat/reservoir T KAPPA SEED [heat original|fourier]`.
     Reservoir { temperature: f64, kappa: f64, seed: u64, heat: Option<HeatModel> },
+    /// `fix nve` (LAMMPS's pairwise styles).
+    Nve,
+    /// `fix mvv/dpd [LAMBDA]` (pair mdpd).
+    Mvv { lambda: f64 },
 }
 
 #[derive(Clone, Debug)]
@@ -88,14 +100,18 @@ pub struct Fix {
     pub text: String,
 }
 
-pub const FIX_STYLES: &str = "eos/vdw, eos/lj, eos/ideal, eos/cv, eos/density, eos/linear, nve/gendpde, shardlow, heat/reservoir";
+pub const FIX_STYLES: &str = "eos/vdw, eos/lj, eos/ideal, eos/cv, eos/density, eos/linear, nve/gendpde, shardlow, heat/reservoir, nve, mvv/dpd";
 
-pub fn parse_pair_style(cmd: &Command) -> Result<PairGendpde, ScriptError> {
+pub fn parse_pair_style(cmd: &Command) -> Result<PairStyle, ScriptError> {
     let mut a = Args::new(cmd);
-    match a.word("a pair style (gendpde)")? {
-        "gendpde" => {}
-        other => return Err(a.err(format!("unknown pair style '{other}'; known: gendpde"))),
+    match a.word("a pair style")? {
+        "gendpde" => parse_gendpde(&mut a).map(PairStyle::Gendpde),
+        other => crate::pairwise::parse_style(other, &mut a).map(PairStyle::Pairwise),
     }
+}
+
+/// `pair_style gendpde CUTOFF SEED [weight W]`.
+fn parse_gendpde(a: &mut Args) -> Result<PairGendpde, ScriptError> {
     let cutoff = a.positive("the density cutoff")?;
     let seed = a.u64("the random seed")?;
     if seed == 0 {
@@ -115,7 +131,18 @@ pub fn parse_pair_style(cmd: &Command) -> Result<PairGendpde, ScriptError> {
     Ok(PairGendpde { cutoff, seed, weight, coeff: None })
 }
 
-pub fn parse_pair_coeff(cmd: &Command, pair: &PairGendpde, ntypes: usize) -> Result<PairCoeff, ScriptError> {
+/// `pair_coeff` for the pair style in force.
+pub fn parse_pair_coeff(cmd: &Command, pair: &mut PairStyle, ntypes: usize) -> Result<(), ScriptError> {
+    match pair {
+        PairStyle::Gendpde(p) => {
+            p.coeff = Some(parse_gendpde_coeff(cmd, p, ntypes)?);
+            Ok(())
+        }
+        PairStyle::Pairwise(p) => crate::pairwise::parse_coeff(p, cmd, ntypes),
+    }
+}
+
+fn parse_gendpde_coeff(cmd: &Command, pair: &PairGendpde, ntypes: usize) -> Result<PairCoeff, ScriptError> {
     let mut a = Args::new(cmd);
     let ti = a.types(ntypes)?;
     let tj = a.types(ntypes)?;
@@ -130,8 +157,8 @@ pub fn parse_pair_coeff(cmd: &Command, pair: &PairGendpde, ntypes: usize) -> Res
     Ok(PairCoeff { gamma, kappa, rc_friction, rc_heat })
 }
 
-/// `fix ID GROUP STYLE args...`.
-pub fn parse_fix(cmd: &Command) -> Result<Fix, ScriptError> {
+/// `fix ID GROUP STYLE args...`; `kb` is Boltzmann's constant of the units.
+pub fn parse_fix(cmd: &Command, kb: f64) -> Result<Fix, ScriptError> {
     let mut a = Args::new(cmd);
     let id = a.word("a fix ID")?.to_string();
     let group = a.word("a group")?;
@@ -140,8 +167,10 @@ pub fn parse_fix(cmd: &Command) -> Result<Fix, ScriptError> {
     }
     let style_name = a.word("a fix style")?;
     let style = match style_name {
-        s if s.starts_with("eos/") => FixStyle::Eos(parse_eos(s, &mut a)?),
+        s if s.starts_with("eos/") => FixStyle::Eos(parse_eos(s, &mut a, kb)?),
         "nve/gendpde" => FixStyle::Verlet,
+        "nve" => FixStyle::Nve,
+        "mvv/dpd" => FixStyle::Mvv { lambda: if a.remaining() > 0 { a.positive("lambda")? } else { 0.5 } },
         "shardlow" => FixStyle::Shardlow { heat: heat_keyword(&mut a)?.unwrap_or(HeatModel::Original) },
         "heat/reservoir" => {
             let temperature = a.positive("the reservoir temperature")?;
@@ -169,10 +198,10 @@ fn heat_keyword(a: &mut Args) -> Result<Option<HeatModel>, ScriptError> {
 
 /// The EOS fixes: `eos/vdw CV A B [excess|full] [cap F]`, `eos/lj CV`, `eos/ideal CV`, `eos/cv CV`,
 /// `eos/density CV c1 [c2 ...]`, `eos/linear CV Q R B [c1 ...]`.
-pub fn parse_eos(style: &str, a: &mut Args) -> Result<EosModel, ScriptError> {
+pub fn parse_eos(style: &str, a: &mut Args, kb: f64) -> Result<EosModel, ScriptError> {
     let cv = a.positive("the heat capacity C_V")?;
-    if cv <= 1.0 {
-        return Err(a.err(format!("C_V = {cv} must exceed k_B = 1 (the dressed temperature of eq 23 diverges at C_V = k_B)")));
+    if cv <= kb {
+        return Err(a.err(format!("C_V = {cv} must exceed k_B = {kb} (the dressed temperature of eq 23 diverges at C_V = k_B)")));
     }
     let mut eos = match style {
         "eos/vdw" => {
@@ -195,6 +224,7 @@ pub fn parse_eos(style: &str, a: &mut Args) -> Result<EosModel, ScriptError> {
             }
             e
         }
+        "eos/lj" if kb != 1.0 => return Err(a.err("eos/lj is in reduced Lennard-Jones units: use units lj")),
         "eos/lj" => return Ok(EosModel::Lj(LennardJones::new(cv))),
         "eos/ideal" => LinearTheta::ideal(cv),
         "eos/cv" => LinearTheta::cv_only(cv),
@@ -208,6 +238,7 @@ pub fn parse_eos(style: &str, a: &mut Args) -> Result<EosModel, ScriptError> {
         other => return Err(a.err(format!("unknown EOS fix '{other}'; known: {FIX_STYLES}"))),
     };
     eos.cv = cv;
+    eos.kb = kb;
     Ok(EosModel::Linear(eos))
 }
 
@@ -222,14 +253,24 @@ fn coefficients(a: &mut Args) -> Result<Vec<f64>, ScriptError> {
 /// Assembles the dynamics of a `run` from the pair style and the fixes.
 pub fn build_physics(
     cmd: &Command,
-    pair: Option<&PairGendpde>,
+    pair: Option<&PairStyle>,
     fixes: &[Fix],
     dt: f64,
     skin: f64,
     rebuild: RebuildPolicy,
+    kb: f64,
 ) -> Result<Box<dyn Physics>, ScriptError> {
     let err = |m: String| ScriptError::at(cmd, m);
-    let pair = pair.ok_or_else(|| err("no pair style is defined (pair_style gendpde)".into()))?;
+    let pair = match pair.ok_or_else(|| err("no pair style is defined (pair_style)".into()))? {
+        PairStyle::Gendpde(p) => p,
+        PairStyle::Pairwise(p) => {
+            let settings = Settings { dt, skin, rebuild, verlet: false, dissipation: None, reservoir: None };
+            return crate::pairwise::build(cmd, p, fixes, settings, kb);
+        }
+    };
+    if fixes.iter().any(|f| matches!(f.style, FixStyle::Nve | FixStyle::Mvv { .. })) {
+        return Err(err("pair gendpde integrates with fix nve/gendpde (fix nve and mvv/dpd belong to LAMMPS's pairwise styles)".into()));
+    }
     let eos: Vec<&EosModel> = fixes.iter().filter_map(|f| if let FixStyle::Eos(e) = &f.style { Some(e) } else { None }).collect();
     let eos = match eos.as_slice() {
         [e] => (*e).clone(),

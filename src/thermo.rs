@@ -2,11 +2,14 @@
 //!
 //! temp = sum p^2/m / (3N - 3) k_B; tint = mean theta; press = the virial pressure of
 //! the conservative force (eq 52; dissipative and random forces are not included);
-//! pe = sum u (the internal energy holds the EOS's configurational energy);
+//! pe = sum u for GenDPDE (the internal energy holds the EOS's configurational energy),
+//! the pair energy for LAMMPS's pairwise styles (whose u = uCond + uMech is reported by
+//! compute dpd, c_ID[1..5]);
 //! ke = sum p^2/2m; etotal = pe + ke; edrift = (E - E0)/|E0| since the first setup;
 //! pxtot, pytot, pztot = total momentum. Sums are decomposition-independent (exact_sums).
 //! With `thermo_modify norm yes` (the lj default) pe, ke and etotal are per particle.
 
+use crate::units::Units;
 use gendpde_engine::exact_sums;
 use gendpde_integrators::System;
 use gendpde_io::format_printf;
@@ -40,16 +43,23 @@ pub struct Observables {
     pub volume: f64,
     /// Total momentum.
     pub momentum: [f64; 3],
+    /// Pair energy of pairwise styles.
+    pub epair: f64,
+    /// sum uCond (classic DPDE) and sum 1/theta.
+    pub u_cond: f64,
+    pub inv_theta: f64,
 }
 
 impl Observables {
     /// Sums over all particles of all ranks, independent of the decomposition.
     pub fn measure(sys: &System) -> Self {
         let s = &sys.store;
+        let opt = |v: &Vec<f64>, i: usize| v.get(i).copied().unwrap_or(0.0);
         let rows = (0..s.nlocal).map(|i| {
             let p = s.p[i];
-            let virial = if s.virial.is_empty() { 0.0 } else { s.virial[i] };
-            [1.0, (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]) / s.mass[i], s.u[i], s.theta[i], s.mass[i], virial, p[0], p[1], p[2]]
+            let p2 = p[0] * p[0] + p[1] * p[1] + p[2] * p[2];
+            let (u_cond, epair) = (opt(&s.u_cond, i), opt(&s.epair, i));
+            [1.0, p2 / s.mass[i], s.u[i], s.theta[i], s.mass[i], opt(&s.virial, i), p[0], p[1], p[2], epair, u_cond, 1.0 / s.theta[i]]
         });
         let sums = exact_sums(sys.comm.transport(), rows);
         Self {
@@ -62,11 +72,15 @@ impl Observables {
             mass: sums[4],
             volume: sys.domain.volume(),
             momentum: [sums[6], sums[7], sums[8]],
+            epair: sums[9],
+            u_cond: sums[10],
+            inv_theta: sums[11],
         }
     }
 
+    /// Total energy: K + sum u + pair energy (the last is zero for GenDPDE).
     pub fn energy(&self) -> f64 {
-        self.ke + self.u
+        self.ke + self.u + self.epair
     }
 
     pub fn temperature(&self, kb: f64) -> f64 {
@@ -88,6 +102,11 @@ pub struct ThermoContext<'a> {
     pub energy0: Option<f64>,
     pub elapsed: u64,
     pub cpu: f64,
+    pub units: Units,
+    /// `pe` is the pair energy (LAMMPS's pairwise styles) instead of sum u (GenDPDE).
+    pub pe_is_pair: bool,
+    /// IDs of `compute dpd`.
+    pub computes: &'a [String],
 }
 
 impl ThermoContext<'_> {
@@ -103,24 +122,47 @@ impl ThermoContext<'_> {
             "dt" => self.dt,
             "cpu" => self.cpu,
             "atoms" => o.atoms,
-            "temp" => o.temperature(1.0),
+            "temp" => o.temperature(self.units.kb),
             "tint" => if o.atoms > 0.0 { o.theta / o.atoms } else { 0.0 },
             "press" => o.pressure(),
-            "pe" => per(o.u),
+            "pe" => per(self.potential()),
             "ke" => per(o.ke),
-            "etotal" => per(o.energy()),
+            "etotal" => per(self.potential() + o.ke),
             "edrift" => match self.energy0 {
                 Some(e0) if e0 != 0.0 => (o.energy() - e0) / e0.abs(),
                 _ => 0.0,
             },
             "vol" => o.volume,
-            "density" => o.mass / o.volume,
+            "density" => o.mass / self.units.mvv2e / o.volume,
             "lx" => l[0],
             "ly" => l[1],
             "lz" => l[2],
             "pxtot" => o.momentum[0],
             "pytot" => o.momentum[1],
             "pztot" => o.momentum[2],
+            _ => return self.compute(name),
+        })
+    }
+
+    fn potential(&self) -> f64 {
+        if self.pe_is_pair { self.obs.epair } else { self.obs.u }
+    }
+
+    /// `c_ID[k]` of a `compute dpd`: sum uCond, sum uMech, sum uChem (0), the
+    /// harmonic-mean particle temperature N / sum(1/theta), N (as LAMMPS's compute dpd).
+    fn compute(&self, name: &str) -> Option<f64> {
+        let rest = name.strip_prefix("c_")?;
+        let (id, k) = rest.strip_suffix(']')?.split_once('[')?;
+        if !self.computes.iter().any(|c| c == id) {
+            return None;
+        }
+        let o = &self.obs;
+        Some(match k {
+            "1" => o.u_cond,
+            "2" => o.u - o.u_cond,
+            "3" => 0.0,
+            "4" => o.atoms / o.inv_theta,
+            "5" => o.atoms,
             _ => return None,
         })
     }

@@ -46,6 +46,7 @@ pub fn velocity(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
             k => return Err(a.err(format!("unknown keyword '{k}'; known: dist, mom, rot, loop"))),
         }
     }
+    let sim_kb = sim.units.kb;
     let sys = sim.system.as_mut().ok_or_else(|| a.err("velocity before create_box"))?;
     let s = &mut sys.store;
     if let Some(i) = (0..s.nlocal).find(|&i| !s.mass[i].is_finite()) {
@@ -79,7 +80,7 @@ pub fn velocity(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     }
     let [mv2, count] = exact_sums(t_, (0..n).map(|i| [s.mass[i] * (v[i][0] * v[i][0] + v[i][1] * v[i][1] + v[i][2] * v[i][2]), 1.0]));
     let dof = 3.0 * count - 3.0;
-    let scale = if mv2 > 0.0 && dof > 0.0 { (t * dof / mv2).sqrt() } else { 0.0 };
+    let scale = if mv2 > 0.0 && dof > 0.0 { (t * sim_kb * dof / mv2).sqrt() } else { 0.0 };
     for i in 0..n {
         s.p[i] = [0, 1, 2].map(|k| s.mass[i] * v[i][k] * scale);
     }

@@ -12,6 +12,12 @@ impl Fields {
     pub const DENSITY: Self = Self(16);
     pub const PRESSURE: Self = Self(32);
     pub const INV_TAU: Self = Self(64);
+    /// The conductive part of u (LAMMPS atom_style dpd's uCond).
+    pub const U_COND: Self = Self(128);
+    /// Per-particle pair energy of pairwise styles (not exchanged).
+    pub const PAIR_ENERGY: Self = Self(256);
+    /// The MDPD density of pairwise many-body styles, as LAMMPS's mdpd/rhosum sums it.
+    pub const RHO: Self = Self(512);
 
     pub const fn union(self, other: Self) -> Self {
         Self(self.0 | other.0)

@@ -27,6 +27,8 @@ pub struct Particles {
     pub cell: Vec<[i32; 3]>,
     /// Position at the last rebuild (owned particles), for the skin criterion.
     pub r_build: Vec<Vec3>,
+    /// Half-step momentum estimate of the modified velocity Verlet (owned particles).
+    pub vest: Vec<Vec3>,
     /// Conservative force.
     pub f: Vec<Vec3>,
     /// Local density n (eq 2); empty for pairwise scenes.
@@ -35,8 +37,14 @@ pub struct Particles {
     pub pn2: Vec<f64>,
     /// 1/tau (eq 19); only for the original heat-flow model.
     pub inv_tau: Vec<f64>,
-    /// Per-particle virial sum_j F_ij r_ij^2 / 2 of owned particles (many-body scenes).
+    /// Per-particle virial sum_j F_ij r_ij^2 / 2 of owned particles.
     pub virial: Vec<f64>,
+    /// Conductive part of u (classic DPDE, LAMMPS's uCond; uMech = u - uCond).
+    pub u_cond: Vec<f64>,
+    /// Half the pair energy of each pair a particle is in (pairwise styles).
+    pub epair: Vec<f64>,
+    /// MDPD density rho_i = sum_j m_j W(r_ij) (LAMMPS mdpd/rhosum).
+    pub rho: Vec<f64>,
     enabled: Option<Fields>,
 }
 
@@ -68,6 +76,7 @@ impl Particles {
         self.image.push([0; 3]);
         self.cell.push([0; 3]);
         self.r_build.push(r);
+        self.vest.push([0.0; 3]);
         self.nlocal += 1;
         self.resize_derived(self.len());
     }
@@ -99,6 +108,7 @@ impl Particles {
         self.image.truncate(len);
         self.cell.truncate(len);
         self.r_build.truncate(len);
+        self.vest.truncate(len);
         self.resize_derived(len);
     }
 
@@ -106,10 +116,14 @@ impl Particles {
         self.f.resize(len, [0.0; 3]);
         let on = |f| self.enabled.is_some_and(|e| e.contains(f));
         let (dens, pres, tau) = (on(Fields::DENSITY), on(Fields::PRESSURE), on(Fields::INV_TAU));
+        let (cond, epair, rho) = (on(Fields::U_COND), on(Fields::PAIR_ENERGY), on(Fields::RHO));
         self.n.resize(if dens { len } else { 0 }, 0.0);
         self.pn2.resize(if pres { len } else { 0 }, 0.0);
-        self.virial.resize(if pres { len } else { 0 }, 0.0);
+        self.virial.resize(if pres || epair { len } else { 0 }, 0.0);
         self.inv_tau.resize(if tau { len } else { 0 }, 0.0);
+        self.u_cond.resize(if cond { len } else { 0 }, 0.0);
+        self.epair.resize(if epair { len } else { 0 }, 0.0);
+        self.rho.resize(if rho { len } else { 0 }, 0.0);
     }
 }
 
@@ -125,10 +139,12 @@ impl Particles {
         buf.extend(self.image[i].iter().map(|&x| x as f64));
         buf.extend(self.cell[i].iter().map(|&x| x as f64));
         buf.extend_from_slice(&self.r_build[i]);
+        buf.push(self.u_cond.get(i).copied().unwrap_or(0.0));
+        buf.extend_from_slice(&self.vest[i]);
     }
 
     /// Length of one `pack_owned` record.
-    pub const OWNED_RECORD: usize = 21;
+    pub const OWNED_RECORD: usize = 25;
 
     /// The cell a `pack_owned` record carries.
     pub fn record_cell(rec: &[f64]) -> [i32; 3] {
@@ -145,6 +161,10 @@ impl Particles {
         self.theta_given[i] = rec[11] != 0.0;
         self.image[i] = [rec[12] as i32, rec[13] as i32, rec[14] as i32];
         self.r_build[i] = [rec[18], rec[19], rec[20]];
+        if !self.u_cond.is_empty() {
+            self.u_cond[i] = rec[21];
+        }
+        self.vest[i] = [rec[22], rec[23], rec[24]];
     }
 
     /// Removes owned particle `i` (the last owned particle takes its index; no ghosts
@@ -162,13 +182,17 @@ impl Particles {
         self.image.swap_remove(i);
         self.cell.swap_remove(i);
         self.r_build.swap_remove(i);
+        self.vest.swap_remove(i);
+        if !self.u_cond.is_empty() {
+            self.u_cond.swap_remove(i);
+        }
         self.nlocal -= 1;
         self.resize_derived(self.nlocal);
     }
 
     /// Length of one `pack_ghost` record.
     pub fn ghost_record(&self) -> usize {
-        14 + [&self.n, &self.pn2, &self.inv_tau].iter().filter(|v| !v.is_empty()).count()
+        14 + [&self.n, &self.pn2, &self.inv_tau, &self.u_cond, &self.rho].iter().filter(|v| !v.is_empty()).count()
     }
 
     /// Appends particle `i` as a ghost record, its position shifted by `shift` along `dim`
@@ -183,7 +207,7 @@ impl Particles {
         buf.extend_from_slice(&self.p[i]);
         buf.extend_from_slice(&[self.u[i], self.theta[i]]);
         buf.extend(c.iter().map(|&x| x as f64));
-        for v in [&self.n, &self.pn2, &self.inv_tau] {
+        for v in [&self.n, &self.pn2, &self.inv_tau, &self.u_cond, &self.rho] {
             if !v.is_empty() {
                 buf.push(v[i]);
             }
@@ -203,10 +227,11 @@ impl Particles {
         self.image.push([0; 3]);
         self.cell.push([rec[11] as i32, rec[12] as i32, rec[13] as i32]);
         self.r_build.push([rec[3], rec[4], rec[5]]);
+        self.vest.push([0.0; 3]);
         let len = self.len();
         self.resize_derived(len);
         let mut k = 14;
-        for v in [&mut self.n, &mut self.pn2, &mut self.inv_tau] {
+        for v in [&mut self.n, &mut self.pn2, &mut self.inv_tau, &mut self.u_cond, &mut self.rho] {
             if !v.is_empty() {
                 v[len - 1] = rec[k];
                 k += 1;

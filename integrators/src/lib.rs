@@ -2,6 +2,7 @@
 //! work split, the Shardlow (eSSA) pair sweep with its heat-flow models, and the heat
 //! reservoir. Equation numbers: 2019 PCCP paper unless stated.
 
+pub mod classic;
 pub mod error;
 pub mod heat;
 pub mod many_body;
@@ -13,6 +14,7 @@ pub mod sweep;
 pub mod system;
 pub mod verlet;
 
+pub use classic::{ClassicDpd, Integration, PairForce, ShardlowDpd};
 pub use error::StepError;
 pub use heat::HeatModel;
 pub use physics::{GenDpde, Physics, SetupError};

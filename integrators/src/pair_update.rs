@@ -33,9 +33,17 @@ pub struct PairDrive {
     pub xibar: f64,
 }
 
-/// Applies Phi^irr_ij over `dt` (eq 87).
+/// Energy moved by one pair update: `heat` into i (out of j), and half the pair's
+/// kinetic-energy change, taken from each of u_i and u_j.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PairDeltas {
+    pub heat: f64,
+    pub half_dk: f64,
+}
+
+/// Applies Phi^irr_ij over `dt` (eq 87); returns the energy it moved.
 #[inline(always)]
-pub fn pair_update<H: HeatFlow>(s: PairState<'_>, d: &PairDrive, kb: f64, dt: f64, sqrt_dt: f64) {
+pub fn pair_update<H: HeatFlow>(s: PairState<'_>, d: &PairDrive, kb: f64, dt: f64, sqrt_dt: f64) -> PairDeltas {
     let e = d.e;
     let (pi, pj) = (*s.p_i, *s.p_j);
     let k_before = 0.5 * (dot(pi, pi) * s.inv_m_i + dot(pj, pj) * s.inv_m_j);
@@ -67,6 +75,7 @@ pub fn pair_update<H: HeatFlow>(s: PairState<'_>, d: &PairDrive, kb: f64, dt: f6
     *s.p_j = qj;
     *s.u_i += heat - half_dk;
     *s.u_j += -heat - half_dk;
+    PairDeltas { heat, half_dk }
 }
 
 #[inline(always)]

@@ -16,6 +16,8 @@ pub mod stream {
     pub const RESERVOIR: u32 = 1;
     /// `velocity create`.
     pub const VELOCITY: u32 = 2;
+    /// Random pair forces of `pair dpd` and `pair mdpd`.
+    pub const FORCE: u32 = 3;
 }
 
 /// Philox4x32 with 10 rounds.

@@ -35,6 +35,9 @@ pub enum AtomStyle {
     Atomic,
     /// `id type dpdTheta x y z [ix iy iz]` (LAMMPS `atom_style dpd`).
     Dpd,
+    /// `id type rho x y z [ix iy iz]` (LAMMPS atom_style mdpd; rho is recomputed, so
+    /// the column is read and checked but not kept).
+    Mdpd,
 }
 
 impl AtomStyle {
@@ -43,6 +46,7 @@ impl AtomStyle {
         match self {
             AtomStyle::Atomic => "atomic",
             AtomStyle::Dpd => "dpd",
+            AtomStyle::Mdpd => "mdpd",
         }
     }
 
@@ -51,6 +55,7 @@ impl AtomStyle {
         match name {
             "atomic" => Some(AtomStyle::Atomic),
             "dpd" => Some(AtomStyle::Dpd),
+            "mdpd" => Some(AtomStyle::Mdpd),
             _ => None,
         }
     }
@@ -60,6 +65,7 @@ impl AtomStyle {
         match self {
             AtomStyle::Atomic => &["id", "type", "x", "y", "z"],
             AtomStyle::Dpd => &["id", "type", "dpdTheta", "x", "y", "z"],
+            AtomStyle::Mdpd => &["id", "type", "rho", "x", "y", "z"],
         }
     }
 }
@@ -209,6 +215,9 @@ fn render(data: &DataFile, style: AtomStyle) -> Result<String, String> {
                 return Err(format!("atom {} has no dpdTheta", a.tag));
             };
             let _ = write!(out, " {:?}", finite("dpdTheta", theta)?);
+        }
+        if style == AtomStyle::Mdpd {
+            out.push_str(" 0.0");
         }
         for x in a.r {
             let _ = write!(out, " {:?}", finite("position", x)?);
@@ -689,6 +698,11 @@ impl<'a> Parser<'a> {
                         return Err(err(format!("dpdTheta must be positive, got {theta}")));
                     }
                     Some(theta)
+                }
+                AtomStyle::Mdpd => {
+                    number(words[col]).map_err(|e| err(format!("rho: {e}")))?;
+                    col += 1;
+                    None
                 }
             };
             let mut r = [0.0; 3];

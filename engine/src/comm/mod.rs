@@ -273,12 +273,23 @@ fn record_width(store: &Particles, fields: Fields) -> usize {
             w += n;
         }
     }
-    for (f, v) in [(Fields::DENSITY, &store.n), (Fields::PRESSURE, &store.pn2), (Fields::INV_TAU, &store.inv_tau)] {
+    for (f, v) in exchanged(store) {
         if fields.contains(f) && !v.is_empty() {
             w += 1;
         }
     }
     w
+}
+
+/// The optional per-particle scalars that ghosts carry.
+fn exchanged(s: &Particles) -> [(Fields, &Vec<f64>); 5] {
+    [
+        (Fields::DENSITY, &s.n),
+        (Fields::PRESSURE, &s.pn2),
+        (Fields::INV_TAU, &s.inv_tau),
+        (Fields::U_COND, &s.u_cond),
+        (Fields::RHO, &s.rho),
+    ]
 }
 
 fn pack_fields(store: &Particles, i: usize, fields: Fields, shift: Option<(usize, f64)>, buf: &mut Vec<f64>) {
@@ -298,7 +309,7 @@ fn pack_fields(store: &Particles, i: usize, fields: Fields, shift: Option<(usize
     if fields.contains(Fields::THETA) {
         buf.push(store.theta[i]);
     }
-    for (f, v) in [(Fields::DENSITY, &store.n), (Fields::PRESSURE, &store.pn2), (Fields::INV_TAU, &store.inv_tau)] {
+    for (f, v) in exchanged(store) {
         if fields.contains(f) && !v.is_empty() {
             buf.push(v[i]);
         }
@@ -323,7 +334,13 @@ fn unpack_fields(store: &mut Particles, i: usize, fields: Fields, rec: &[f64]) {
         store.theta[i] = rec[k];
         k += 1;
     }
-    for (f, v) in [(Fields::DENSITY, &mut store.n), (Fields::PRESSURE, &mut store.pn2), (Fields::INV_TAU, &mut store.inv_tau)] {
+    for (f, v) in [
+        (Fields::DENSITY, &mut store.n),
+        (Fields::PRESSURE, &mut store.pn2),
+        (Fields::INV_TAU, &mut store.inv_tau),
+        (Fields::U_COND, &mut store.u_cond),
+        (Fields::RHO, &mut store.rho),
+    ] {
         if fields.contains(f) && !v.is_empty() {
             v[i] = rec[k];
             k += 1;

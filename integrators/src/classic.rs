@@ -1,0 +1,333 @@
+//! LAMMPS's pairwise DPD styles, with LAMMPS's semantics, for users who compare with it:
+//! `pair dpd` (isothermal DPD, friction and noise in the force), `pair dpd/fdt` and
+//! `dpd/fdt/energy` (conservative force only; friction, noise and heat in `fix shardlow`,
+//! theta from `fix eos/cv`), and many-body DPD (`pair mdpd/rhosum` + `mdpd`, integrated
+//! by `fix mvv/dpd`). As in LAMMPS the sweep runs at the start of the step and theta is
+//! not refreshed between pairs (it follows the sweep through eos/cv).
+//!
+//! Formulas (LAMMPS documentation and sources): w = 1 - r/rc;
+//! dpd: F = [a0 w - gamma w^2 (e.v) + sigma w xi / sqrt(dt)] e, sigma = sqrt(2 k_B T gamma);
+//! mdpd: F = [A w_c + B (rho_i + rho_j) w_d - gamma w_c^2 (e.v) + sigma w_c xi / sqrt(dt)] e
+//! with rho_i = sum_j m_j W_Lucy(r_ij; h); pair energy a0 rc w^2 / 2 (dpd).
+//! Shardlow DPDE pair update: gamma = sigma^2 / (2 k_B theta_ij), 1/theta_ij the mean of
+//! 1/theta_i and 1/theta_j; heat kappa w^2 (1/theta_i - 1/theta_j) dt + sqrt(2 k_B kappa)
+//! w xibar sqrt(dt) into i (uCond); -dK/2 into each u (uMech).
+
+use crate::error::StepError;
+use crate::heat::{Original, Temps};
+use crate::pair_update::{pair_update, PairDrive, PairState};
+use crate::physics::{Physics, SetupError};
+use crate::rng::{normal_pair, stream};
+use crate::settings::Settings;
+use crate::sweep::SWEPT;
+use crate::system::System;
+use gendpde_engine::{dot, sub, Fields};
+use gendpde_potentials::{Lucy, Weight};
+
+/// The pair force computed in the force pass.
+#[derive(Clone, Debug, PartialEq)]
+pub enum PairForce {
+    /// a0 w(rc) with in-force friction `gamma` and noise `sigma` (both 0 under Shardlow).
+    Dpd { a0: f64, rc: f64, gamma: f64, sigma: f64 },
+    /// Warren's many-body DPD; rho from the Lucy kernel of support `h`.
+    Mdpd { a: f64, b: f64, rc: f64, rd: f64, gamma: f64, sigma: f64, h: f64 },
+}
+
+impl PairForce {
+    fn cutoff(&self) -> f64 {
+        match self {
+            Self::Dpd { rc, .. } => *rc,
+            Self::Mdpd { rc, rd, h, .. } => rc.max(*rd).max(*h),
+        }
+    }
+}
+
+/// `fix shardlow` with `pair dpd/fdt` (fixed T) or `dpd/fdt/energy` (per-particle theta).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ShardlowDpd {
+    pub sigma: f64,
+    pub kappa: f64,
+    pub rc: f64,
+    /// `dpd/fdt`: the temperature of the friction; None: theta of the particles.
+    pub temperature: Option<f64>,
+}
+
+/// How positions and momenta advance.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Integration {
+    /// `fix nve`: velocity Verlet.
+    Nve,
+    /// `fix mvv/dpd lambda`: modified velocity Verlet of Groot and Warren.
+    Mvv { lambda: f64 },
+}
+
+/// A LAMMPS-style pairwise DPD scene.
+pub struct ClassicDpd {
+    pub force: PairForce,
+    pub shardlow: Option<ShardlowDpd>,
+    pub integration: Integration,
+    /// `fix eos/cv`: theta = u / C_V.
+    pub cv: Option<f64>,
+    pub kb: f64,
+    pub seed: u64,
+    pub settings: Settings,
+}
+
+impl ClassicDpd {
+    fn radius(&self) -> f64 {
+        self.force.cutoff().max(self.shardlow.as_ref().map_or(0.0, |s| s.rc)) + self.settings.skin
+    }
+
+    fn rebuild(&self, sys: &mut System, at_step: u64) {
+        let r = self.radius();
+        sys.rebuild(Some(r), self.shardlow.as_ref().map(|_| r), at_step);
+    }
+
+    /// theta = u / C_V for owned particles (fix eos/cv).
+    fn eos(&self, sys: &mut System) -> Result<(), StepError> {
+        let Some(cv) = self.cv else { return Ok(()) };
+        let s = &mut sys.store;
+        let mut outcome = Ok(());
+        for i in 0..s.nlocal {
+            let theta = s.u[i] / cv;
+            if !(theta > 0.0 && theta.is_finite()) && outcome.is_ok() {
+                let e = gendpde_potentials::EosError::NonPositiveTheta { u: s.u[i], n: 0.0, theta };
+                outcome = Err(StepError::eos(s, i, sys.step, e));
+            }
+            s.theta[i] = theta;
+        }
+        outcome
+    }
+
+    /// MDPD density: rho_i = sum_j m_j W(r_ij) over neighbours plus the self term.
+    fn rho(&self, sys: &mut System, h: f64) {
+        let w = Lucy::new(h);
+        let s = &mut sys.store;
+        for i in 0..s.nlocal {
+            let ri = s.r[i];
+            let mut rho = s.mass[i] * w.eval(0.0).0;
+            for &j in sys.nlist.of(i) {
+                let j = j as usize;
+                let d = sub(ri, s.r[j]);
+                let r2 = dot(d, d);
+                if r2 < h * h {
+                    rho += s.mass[j] * w.eval(r2.sqrt()).0;
+                }
+            }
+            s.rho[i] = rho;
+        }
+    }
+
+    /// Pair forces at the current positions and velocities; the noise of step `step`.
+    fn forces(&self, sys: &mut System, step: u64) {
+        let inv_sqrt_dt = 1.0 / self.settings.dt.sqrt();
+        let s = &mut sys.store;
+        for i in 0..s.nlocal {
+            let (ri, vi) = (s.r[i], velocity(s, i));
+            let (mut f, mut e, mut virial) = ([0.0; 3], 0.0, 0.0);
+            for &j in sys.nlist.of(i) {
+                let j = j as usize;
+                let d = sub(ri, s.r[j]);
+                let r2 = dot(d, d);
+                let (fpair, epair) = match &self.force {
+                    PairForce::Dpd { a0, rc, gamma, sigma } => {
+                        if r2 >= rc * rc || r2 < 1e-20 {
+                            continue;
+                        }
+                        let r = r2.sqrt();
+                        let w = 1.0 - r / rc;
+                        let mut fp = a0 * w;
+                        if *gamma > 0.0 || *sigma > 0.0 {
+                            let xi = normal_pair(self.seed, step, s.tag[i].min(s.tag[j]), s.tag[i].max(s.tag[j]), stream::FORCE).0;
+                            fp += -gamma * w * w * dot(d, sub(vi, velocity(s, j))) / r + sigma * w * xi * inv_sqrt_dt;
+                        }
+                        (fp / r, 0.25 * a0 * rc * w * w)
+                    }
+                    PairForce::Mdpd { a, b, rc, rd, gamma, sigma, .. } => {
+                        if r2 >= rc * rc || r2 < 1e-20 {
+                            continue;
+                        }
+                        let r = r2.sqrt();
+                        let wc = 1.0 - r / rc;
+                        let wd = (1.0 - r / rd).max(0.0);
+                        let mut fp = a * wc + b * (s.rho[i] + s.rho[j]) * wd;
+                        if *gamma > 0.0 || *sigma > 0.0 {
+                            let xi = normal_pair(self.seed, step, s.tag[i].min(s.tag[j]), s.tag[i].max(s.tag[j]), stream::FORCE).0;
+                            fp += -gamma * wc * wc * dot(d, sub(vi, velocity(s, j))) / r + sigma * wc * xi * inv_sqrt_dt;
+                        }
+                        (fp / r, 0.25 * (a * rc * wc * wc + b * rd * (s.rho[i] + s.rho[j]) * wd * wd))
+                    }
+                };
+                for c in 0..3 {
+                    f[c] += fpair * d[c];
+                }
+                e += epair;
+                virial += 0.5 * fpair * r2;
+            }
+            s.f[i] = f;
+            s.epair[i] = e;
+            s.virial[i] = virial;
+        }
+    }
+
+    /// The Shardlow sweep with LAMMPS's DPDE (or isothermal) pair update.
+    fn sweep(&self, sys: &mut System, p: &ShardlowDpd) {
+        let (dt, kb) = (self.settings.dt, self.kb);
+        let sqrt_dt = dt.sqrt();
+        let step = sys.step;
+        for colour in 0..8 {
+            let s = &mut sys.store;
+            for &[i, j] in sys.sweep.colour(colour) {
+                let (i, j) = (i as usize, j as usize);
+                let dr = sub(s.r[i], s.r[j]);
+                let r2 = dot(dr, dr);
+                if r2 >= p.rc * p.rc || r2 < 1e-20 {
+                    continue;
+                }
+                let r = r2.sqrt();
+                let w = 1.0 - r / p.rc;
+                let (inv_i, inv_j) = (1.0 / s.theta[i], 1.0 / s.theta[j]);
+                let theta_ij = p.temperature.unwrap_or(2.0 / (inv_i + inv_j));
+                let (xi, xibar) = normal_pair(self.seed, step, s.tag[i], s.tag[j], stream::PAIR);
+                // friction from sigma and theta_ij; heat on 1/theta (the Original law reads
+                // `inv_tau`, here set to 1/theta as LAMMPS's dpd/fdt/energy does)
+                let drive = PairDrive {
+                    e: [dr[0] / r, dr[1] / r, dr[2] / r],
+                    gamma: p.sigma * p.sigma * w * w / (2.0 * kb * theta_ij),
+                    kappa: if p.temperature.is_none() { p.kappa * w * w } else { 0.0 },
+                    ti: Temps { theta: theta_ij, inv_tau: inv_i },
+                    tj: Temps { theta: theta_ij, inv_tau: inv_j },
+                    xi,
+                    xibar,
+                };
+                let (mut p_i, mut p_j, mut u_i, mut u_j) = (s.p[i], s.p[j], s.u[i], s.u[j]);
+                let state = PairState { p_i: &mut p_i, p_j: &mut p_j, u_i: &mut u_i, u_j: &mut u_j, inv_m_i: 1.0 / s.mass[i], inv_m_j: 1.0 / s.mass[j] };
+                let moved = pair_update::<Original>(state, &drive, kb, dt, sqrt_dt);
+                (s.p[i], s.p[j], s.u[i], s.u[j]) = (p_i, p_j, u_i, u_j);
+                if !s.u_cond.is_empty() {
+                    s.u_cond[i] += moved.heat;
+                    s.u_cond[j] -= moved.heat;
+                }
+            }
+            let fields = SWEPT | Fields::U_COND;
+            sys.comm.reverse(&mut sys.store, &sys.sweep.ghost_writes[colour], fields);
+            sys.comm.forward(&mut sys.store, fields);
+        }
+    }
+
+    /// Positions, cells, ghosts, densities and forces after the particles moved.
+    fn after_drift(&self, sys: &mut System) {
+        let next = sys.step + 1;
+        let p = &self.settings.rebuild;
+        let due = next - sys.last_build >= p.delay.max(1) && next % p.every.max(1) == 0;
+        if due && (!p.check || 2.0 * sys.comm.max(sys.displacement_since_build()) > self.settings.skin) {
+            self.rebuild(sys, next);
+        } else {
+            sys.comm.forward(&mut sys.store, Fields::POSITION);
+        }
+        sys.comm.forward(&mut sys.store, Fields::MOMENTUM);
+        if let PairForce::Mdpd { h, .. } = self.force {
+            self.rho(sys, h);
+            sys.comm.forward(&mut sys.store, Fields::RHO);
+        }
+        self.forces(sys, next);
+    }
+}
+
+impl Physics for ClassicDpd {
+    fn settings(&self) -> &Settings {
+        &self.settings
+    }
+
+    fn setup(&self, sys: &mut System) -> Result<(), SetupError> {
+        sys.lay_grid(self.radius()).map_err(SetupError::Grid)?;
+        let mut fields = Fields::THETA | Fields::PAIR_ENERGY;
+        if self.shardlow.as_ref().is_some_and(|s| s.temperature.is_none()) {
+            fields = fields | Fields::U_COND;
+        }
+        if matches!(self.force, PairForce::Mdpd { .. }) {
+            fields = fields | Fields::RHO;
+        }
+        sys.store.enable(fields);
+        self.rebuild(sys, sys.step);
+        if let Some(cv) = self.cv {
+            // fix eos/cv: uCond = 0, uMech = C_V theta from the given dpdTheta
+            let s = &mut sys.store;
+            for i in 0..s.nlocal {
+                if s.theta_given[i] {
+                    s.u[i] = cv * s.theta[i];
+                    if !s.u_cond.is_empty() {
+                        s.u_cond[i] = 0.0;
+                    }
+                    s.theta_given[i] = false;
+                }
+            }
+        }
+        let state = self.eos(sys);
+        sys.comm.forward(&mut sys.store, SWEPT | Fields::U_COND);
+        if let PairForce::Mdpd { h, .. } = self.force {
+            self.rho(sys, h);
+            sys.comm.forward(&mut sys.store, Fields::RHO);
+        }
+        self.forces(sys, sys.step);
+        sys.settle(state).map_err(SetupError::State)
+    }
+
+    fn step(&self, sys: &mut System) -> Result<(), StepError> {
+        let dt = self.settings.dt;
+        if let Some(p) = &self.shardlow {
+            self.sweep(sys, p);
+            let outcome = self.eos(sys);
+            sys.comm.forward(&mut sys.store, SWEPT);
+            sys.settle(outcome)?;
+        }
+        let s = &mut sys.store;
+        match self.integration {
+            Integration::Nve => {
+                for i in 0..s.nlocal {
+                    let k = dt / s.mass[i];
+                    for c in 0..3 {
+                        s.p[i][c] += 0.5 * dt * s.f[i][c];
+                        s.r[i][c] += k * s.p[i][c];
+                    }
+                }
+                self.after_drift(sys);
+                let s = &mut sys.store;
+                for i in 0..s.nlocal {
+                    for c in 0..3 {
+                        s.p[i][c] += 0.5 * dt * s.f[i][c];
+                    }
+                }
+            }
+            Integration::Mvv { lambda } => {
+                // vest = v + dt/2 f/m; r += dt vest; v += lambda dt f/m (the estimate the
+                // dissipative force reads); after the forces: v = vest + dt/2 f/m
+                // (vest travels with a particle that changes rank)
+                for i in 0..s.nlocal {
+                    for c in 0..3 {
+                        s.vest[i][c] = s.p[i][c] + 0.5 * dt * s.f[i][c];
+                        s.r[i][c] += dt * s.vest[i][c] / s.mass[i];
+                        s.p[i][c] += lambda * dt * s.f[i][c];
+                    }
+                }
+                self.after_drift(sys);
+                let s = &mut sys.store;
+                for i in 0..s.nlocal {
+                    for c in 0..3 {
+                        s.p[i][c] = s.vest[i][c] + 0.5 * dt * s.f[i][c];
+                    }
+                }
+            }
+        }
+        sys.comm.forward(&mut sys.store, Fields::MOMENTUM);
+        sys.step += 1;
+        sys.time += dt;
+        Ok(())
+    }
+}
+
+#[inline(always)]
+fn velocity(s: &gendpde_engine::Particles, i: usize) -> [f64; 3] {
+    let k = 1.0 / s.mass[i];
+    [s.p[i][0] * k, s.p[i][1] * k, s.p[i][2] * k]
+}
