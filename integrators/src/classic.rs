@@ -99,13 +99,14 @@ impl ClassicDpd {
         outcome
     }
 
-    /// MDPD density: rho_i = sum_j m_j W(r_ij) over neighbours plus the self term.
+    /// MDPD density: rho_i = sum_{j != i} m_j W(r_ij), without a self term, as the
+    /// reference LAMMPS (22 Jul 2025) sums it.
     fn rho(&self, sys: &mut System, h: f64) {
         let w = Lucy::new(h);
         let s = &mut sys.store;
         for i in 0..s.nlocal {
             let ri = s.r[i];
-            let mut rho = s.mass[i] * w.eval(0.0).0;
+            let mut rho = 0.0;
             for &j in sys.nlist.of(i) {
                 let j = j as usize;
                 let d = sub(ri, s.r[j]);
