@@ -239,6 +239,14 @@ impl Interpreter {
                     return Err(a.err(format!("no fix with ID '{id}'")).into());
                 }
             }
+            "reset_timestep" => {
+                let n = a.u64("the new step number")?;
+                a.done()?;
+                let sys = sim.system.as_mut().ok_or_else(|| a.err("reset_timestep before create_box"))?;
+                // positions and lists stay; the build step follows the clock
+                sys.last_build = sys.last_build.saturating_sub(sys.step).saturating_add(n).min(n);
+                sys.step = n;
+            }
             "timestep" => {
                 sim.dt = a.positive("the timestep")?;
                 a.done()?;
@@ -461,6 +469,12 @@ fn mass(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
         let s = &mut sys.store;
         for i in 0..s.nlocal {
             if types.contains(&(s.kind[i] as usize)) {
+                if !s.mass[i].is_finite() {
+                    // read_data kept the velocity in p while the mass was unknown
+                    s.p[i] = s.p[i].map(|v| v * internal);
+                } else {
+                    s.p[i] = s.p[i].map(|p| p / s.mass[i] * internal);
+                }
                 s.mass[i] = internal;
             }
         }

@@ -32,7 +32,8 @@ pub fn read(sim: &mut Sim, a: &mut Args, transport: Box<dyn Transport>) -> Resul
         let i = sys.store.nlocal - 1;
         sys.store.image[i] = at.image;
         if let Some(v) = velocities.get(&at.tag) {
-            sys.store.p[i] = v.map(|c| c * mass);
+            // without a mass yet p holds the velocity; the `mass` command scales it
+            sys.store.p[i] = if mass.is_finite() { v.map(|c| c * mass) } else { *v };
         }
         if let Some(theta) = at.theta {
             sys.store.theta[i] = theta;

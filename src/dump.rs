@@ -61,10 +61,23 @@ pub fn write_dump(sim: &Sim, a: &mut Args) -> Result<(), ScriptError> {
     while let Some(w) = a.peek() {
         a.word("a column")?;
         if w == "modify" {
-            match (a.word("sort")?, a.word("id")?) {
-                ("sort", "id") => continue,
-                (k, v) => return Err(a.err(format!("write_dump modify {k} {v}: only 'sort id' is supported (dumps are always sorted)"))),
+            // dump_modify keywords: dumps are always sorted by ID and print values in
+            // shortest round-trip form, so `sort id` and `format ...` change nothing
+            while let Some(k) = a.peek() {
+                a.word("a dump_modify keyword")?;
+                match k {
+                    "sort" => match a.word("id")? {
+                        "id" => {}
+                        v => return Err(a.err(format!("write_dump modify sort {v}: dumps are always sorted by id"))),
+                    },
+                    "format" => {
+                        a.word("line, float or int")?;
+                        a.word("a format")?;
+                    }
+                    _ => return Err(a.err(format!("write_dump modify {k}: known are sort id, format"))),
+                }
             }
+            continue;
         }
         if !COLUMNS.split(' ').any(|c| c == w) {
             return Err(a.err(format!("unknown column '{w}'; known: {COLUMNS}")));

@@ -2,6 +2,7 @@
 //! overridden, and the statistics the physics tests need.
 #![allow(dead_code)]
 
+pub mod lammps;
 pub mod stats;
 
 use gendpde::{Interpreter, Mode, Output};

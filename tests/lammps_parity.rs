@@ -1,0 +1,163 @@
+//! Parity with the reference LAMMPS (22 Jul 2025, installed by ../shared/lammps/setup.sh):
+//! the same input scripts (scripts/lammps/) run unchanged in both codes.
+//! 1. deterministic (noise and dissipation off): per-particle positions and momenta agree
+//!    to 1e-9 relative after 100 steps, for DPDE (conservative a0 force) and MDPD;
+//! 2. statistical: time averages agree within 3 combined standard errors (block averages
+//!    over 10 blocks of the production run);
+//! 3. speed: atom-steps/s of both on the same script, reported (not asserted);
+//! 4. LAMMPS's own DPDE example in metal units runs unchanged and conserves energy.
+
+mod common;
+
+use common::lammps::{agree_within, block_average, expect_success, parse_thermo_blocks, read_dump_snapshot, run_lammps, stage_inputs, ThermoBlock};
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("gendpde-parity-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn gendpde(dir: &Path, input: &str, vars: &[(&str, &str)]) -> Output {
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_gendpde"));
+    cmd.current_dir(dir).args(["run", input, "-log", "none"]);
+    for (k, v) in vars {
+        cmd.args(["-var", k, v]);
+    }
+    cmd.output().expect("gendpde runs")
+}
+
+/// Runs `input` in both codes, each in its own directory; returns both directories and outputs.
+fn both(name: &str, input: &str, vars: &[(&str, &str)]) -> ((PathBuf, String), (PathBuf, String)) {
+    let (dl, dg) = (dir(&format!("{name}-lammps")), dir(&format!("{name}-gendpde")));
+    stage_inputs(&dl, input);
+    stage_inputs(&dg, input);
+    let l = expect_success("LAMMPS", &run_lammps(&dl, input, vars));
+    let out = gendpde(&dg, input, vars);
+    assert!(out.status.success(), "gendpde failed on {input}:\n{}", String::from_utf8_lossy(&out.stderr));
+    ((dl, l), (dg, String::from_utf8_lossy(&out.stdout).into_owned()))
+}
+
+/// Largest per-particle |dr| / L and |dp| / |p| between the final dumps.
+fn compare_dumps(a: &Path, b: &Path, box_len: f64) -> (f64, f64) {
+    let (a, b) = (read_dump_snapshot(a), read_dump_snapshot(b));
+    assert_eq!(a.atoms.len(), b.atoms.len());
+    let col = |s: &common::lammps::DumpSnapshot, c: &str| s.column_index(c).unwrap();
+    let (mut dr, mut dp): (f64, f64) = (0.0, 0.0);
+    for ((ia, va), (ib, vb)) in a.atoms.iter().zip(&b.atoms) {
+        assert_eq!(ia, ib);
+        let mut dv2 = 0.0;
+        let mut v2 = 0.0;
+        for (x, v) in [("x", "vx"), ("y", "vy"), ("z", "vz")] {
+            let mut d = va[col(&a, x)] - vb[col(&b, x)];
+            d -= box_len * (d / box_len).round();
+            dr = dr.max(d.abs() / box_len);
+            let (p, q) = (va[col(&a, v)], vb[col(&b, v)]);
+            dv2 += (p - q) * (p - q);
+            v2 += q * q;
+        }
+        dp = dp.max((dv2 / v2).sqrt());
+    }
+    (dr, dp)
+}
+
+#[test]
+fn dpde_conservative_dynamics_matches_lammps_per_particle() {
+    let ((dl, _), (dg, _)) = both("dpde-det", "in.dpde-deterministic", &[]);
+    let b = read_dump_snapshot(&dl.join("dpde-det.dump")).bounds;
+    let (dr, dp) = compare_dumps(&dl.join("dpde-det.dump"), &dg.join("dpde-det.dump"), b[0][1] - b[0][0]);
+    eprintln!("DPDE after 100 steps: max |dr|/L = {dr:.2e}, max |dp|/|p| = {dp:.2e}");
+    assert!(dr < 1e-9 && dp < 1e-9, "dr {dr:e}, dp {dp:e}");
+}
+
+#[test]
+fn mdpd_conservative_dynamics_matches_lammps_per_particle() {
+    let ((dl, _), (dg, _)) = both("mdpd-det", "in.mdpd-deterministic", &[]);
+    let b = read_dump_snapshot(&dl.join("mdpd-det.dump")).bounds;
+    let box_len = b[0][1] - b[0][0];
+    let (dr, dp) = compare_dumps(&dl.join("mdpd-det.dump"), &dg.join("mdpd-det.dump"), box_len);
+    eprintln!("MDPD after 100 steps: max |dr|/L = {dr:.2e}, max |dp|/|p| = {dp:.2e}");
+    assert!(dr < 1e-9 && dp < 1e-9, "dr {dr:e}, dp {dp:e}");
+}
+
+/// The production block (the last thermo block) of a run.
+fn production(text: &str) -> ThermoBlock {
+    parse_thermo_blocks(text, "Step").pop().expect("a thermo block")
+}
+
+fn rate(text: &str) -> f64 {
+    // "Loop time of T on P procs for S steps with N atoms"
+    let line = text.lines().filter(|l| l.starts_with("Loop time of")).last().expect("a Loop time line");
+    let w: Vec<&str> = line.split_whitespace().collect();
+    let (t, s, n): (f64, f64, f64) = (w[3].parse().unwrap(), w[8].parse().unwrap(), w[11].parse().unwrap());
+    s * n / t
+}
+
+/// Block averages of `columns` in both runs, asserted to agree within 3 combined SE.
+fn compare_averages(what: &str, l: &ThermoBlock, g: &ThermoBlock, columns: &[&str]) {
+    for c in columns {
+        let series = |b: &ThermoBlock| b.rows.iter().map(|r| r[b.column_index(c).unwrap()]).collect::<Vec<f64>>();
+        let (a, b) = (block_average(&series(l), 10), block_average(&series(g), 10));
+        eprintln!("{what} {c}: LAMMPS {:.5} +- {:.5}, gendpde {:.5} +- {:.5}", a.0, a.1, b.0, b.1);
+        assert!(agree_within(a, b, 3.0), "{what} {c}: LAMMPS {a:?} vs gendpde {b:?}");
+    }
+}
+
+/// Energy drift rate: slope of the total energy per block, block-averaged.
+fn drift(b: &ThermoBlock, column: &str) -> (f64, f64) {
+    let k = b.column_index(column).unwrap();
+    let rows = &b.rows;
+    let blocks = 10;
+    let len = rows.len() / blocks;
+    let slopes: Vec<f64> = (0..blocks)
+        .map(|i| {
+            let (first, last) = (&rows[i * len], &rows[(i + 1) * len - 1]);
+            (last[k] - first[k]) / (last[0] - first[0])
+        })
+        .collect();
+    block_average(&slopes, blocks)
+}
+
+#[test]
+fn dpde_shardlow_statistics_and_speed_agree_with_lammps() {
+    let vars = [("equil", "1000"), ("steps", "5000")];
+    let ((_, l), (_, g)) = both("dpde-stat", "in.dpde-shardlow", &vars);
+    let (lb, gb) = (production(&l), production(&g));
+    compare_averages("DPDE", &lb, &gb, &["Temp", "Press", "c_dpdU[4]"]);
+    let (dl, dg) = (drift(&lb, "v_totEnergy"), drift(&gb, "v_totEnergy"));
+    eprintln!("DPDE energy drift per unit time: LAMMPS {:.3e} +- {:.3e}, gendpde {:.3e} +- {:.3e}", dl.0, dl.1, dg.0, dg.1);
+    assert!(agree_within(dl, dg, 3.0), "energy drift: LAMMPS {dl:?} vs gendpde {dg:?}");
+    let (rl, rg) = (rate(&l), rate(&g));
+    eprintln!("DPDE + shardlow speed: LAMMPS {rl:.0} atom-steps/s, gendpde {rg:.0} atom-steps/s, ratio {:.2}", rg / rl);
+}
+
+#[test]
+fn mdpd_liquid_statistics_and_speed_agree_with_lammps() {
+    let vars = [("equil", "3000"), ("steps", "5000")];
+    let ((_, l), (_, g)) = both("mdpd-stat", "in.mdpd-liquid", &vars);
+    compare_averages("MDPD", &production(&l), &production(&g), &["Temp", "Press"]);
+    let (rl, rg) = (rate(&l), rate(&g));
+    eprintln!("MDPD speed: LAMMPS {rl:.0} atom-steps/s, gendpde {rg:.0} atom-steps/s, ratio {:.2}", rg / rl);
+}
+
+#[test]
+fn lammps_dpde_example_in_metal_units_runs_unchanged() {
+    let ((_, l), (_, g)) = both("dpde-metal", "in.dpde-metal", &[]);
+    let (lb, gb) = (production(&l), production(&g));
+    let k = gb.column_index("v_totEnergy").unwrap();
+    let (e0, e1) = (gb.rows[0][k], gb.rows.last().unwrap()[k]);
+    let kl = lb.column_index("v_totEnergy").unwrap();
+    eprintln!(
+        "DPDE metal example, total energy step 0 -> 100: LAMMPS {} -> {}, gendpde {e0} -> {e1}",
+        lb.rows[0][kl],
+        lb.rows.last().unwrap()[kl]
+    );
+    // identical initial state: same step-0 thermo (temperature, pair energy, energy)
+    for c in ["Temp", "PotEng", "v_totEnergy"] {
+        let (a, b) = (lb.rows[0][lb.column_index(c).unwrap()], gb.rows[0][gb.column_index(c).unwrap()]);
+        assert!((a - b).abs() <= 1e-9 * a.abs().max(1e-12), "step 0 {c}: LAMMPS {a} vs gendpde {b}");
+    }
+    assert!(((e1 - e0) / e0).abs() < 1e-6, "energy drifted from {e0} to {e1}");
+}
