@@ -119,18 +119,22 @@ mod tests {
 }
 
 /// Particles (owned and ghost) sorted by cell over the owned range plus one ghost
-/// cell on every side.
+/// cell on every side, and by tag within each cell. Walking cells in a fixed stencil
+/// order and particles in tag order gives every list an order that no decomposition can
+/// change (the lists need no sorting of their own).
 #[derive(Clone, Debug, Default)]
 pub struct CellBins {
     lo: [i32; 3],
     dims: [usize; 3],
     start: Vec<u32>,
     items: Vec<u32>,
+    fill: Vec<u32>,
 }
 
 impl CellBins {
-    /// Bins particles by their `cell` for the owned range [lo, hi).
-    pub fn build(&mut self, cells: &[[i32; 3]], lo: [i32; 3], hi: [i32; 3]) {
+    /// Bins particles by their `cell` for the owned range [lo, hi), ordered by `tag`
+    /// within each cell.
+    pub fn build(&mut self, cells: &[[i32; 3]], tags: &[u64], lo: [i32; 3], hi: [i32; 3]) {
         self.lo = [lo[0] - 1, lo[1] - 1, lo[2] - 1];
         self.dims = [0, 1, 2].map(|d| (hi[d] - lo[d] + 2) as usize);
         let ncell = self.dims.iter().product::<usize>();
@@ -143,13 +147,17 @@ impl CellBins {
         for k in 0..ncell {
             self.start[k + 1] += self.start[k];
         }
-        let mut fill: Vec<u32> = self.start[..ncell].to_vec();
+        self.fill.clear();
+        self.fill.extend_from_slice(&self.start[..ncell]);
         self.items.clear();
         self.items.resize(cells.len(), 0);
         for (i, c) in cells.iter().enumerate() {
             let k = self.index(*c);
-            self.items[fill[k] as usize] = i as u32;
-            fill[k] += 1;
+            self.items[self.fill[k] as usize] = i as u32;
+            self.fill[k] += 1;
+        }
+        for k in 0..ncell {
+            self.items[self.start[k] as usize..self.start[k + 1] as usize].sort_unstable_by_key(|&i| tags[i as usize]);
         }
     }
 

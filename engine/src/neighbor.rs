@@ -1,8 +1,9 @@
-//! Full Verlet neighbour lists in tag order, rebuilt when a particle has moved more
-//! than half the skin (the decision is the integrator's).
+//! Full Verlet neighbour lists, rebuilt when a particle has moved more than half the
+//! skin (the decision is the integrator's).
 //!
-//! Every owned particle lists all its neighbours (owned or ghost) sorted by tag, so
-//! density and force sums run in an order no decomposition can change.
+//! Every owned particle lists all its neighbours (owned or ghost) by stencil offset in a
+//! fixed order, then by tag within each cell, so density and force sums run in an order
+//! no decomposition can change.
 
 use crate::cells::CellBins;
 use crate::{dot, sub, Particles};
@@ -39,7 +40,7 @@ impl NeighborList {
                     }
                 }
             }
-            self.neighbors[start..].sort_unstable_by_key(|&j| store.tag[j as usize]);
+            debug_assert!(self.neighbors.len() >= start);
             self.offsets.push(self.neighbors.len() as u32);
         }
     }

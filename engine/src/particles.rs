@@ -239,3 +239,33 @@ impl Particles {
         }
     }
 }
+
+impl Particles {
+    /// Puts the owned particles in the order `order` (a permutation of 0..nlocal; no
+    /// ghosts may exist): neighbouring particles then sit close in memory.
+    pub fn reorder_owned(&mut self, order: &[u32]) {
+        debug_assert_eq!(self.nlocal, self.len(), "reorder before ghosts are built");
+        fn apply<T: Copy>(v: &mut Vec<T>, order: &[u32]) {
+            if v.len() == order.len() {
+                let old = std::mem::take(v);
+                v.extend(order.iter().map(|&k| old[k as usize]));
+            }
+        }
+        apply(&mut self.tag, order);
+        apply(&mut self.kind, order);
+        apply(&mut self.mass, order);
+        apply(&mut self.r, order);
+        apply(&mut self.p, order);
+        apply(&mut self.u, order);
+        apply(&mut self.theta, order);
+        apply(&mut self.theta_given, order);
+        apply(&mut self.image, order);
+        apply(&mut self.cell, order);
+        apply(&mut self.r_build, order);
+        apply(&mut self.vest, order);
+        apply(&mut self.f, order);
+        for v in [&mut self.n, &mut self.pn2, &mut self.inv_tau, &mut self.virial, &mut self.u_cond, &mut self.epair, &mut self.rho] {
+            apply(v, order);
+        }
+    }
+}

@@ -1,8 +1,9 @@
 //! The pairs of the Shardlow sweep, grouped by colour and block.
 //!
 //! Pairs of colour c live in blocks C + {0,1}^3 of cells C with colour c; blocks of
-//! one colour are disjoint, so they commute. Within a block, pairs run in the order
-//! of (smaller tag, larger tag), which no decomposition can change.
+//! one colour are disjoint, so they commute. Within a block, pairs run by pair of cells
+//! in a fixed order, then by the tags of the two particles (the bins hold each cell in
+//! tag order): an order no decomposition can change.
 
 use crate::cells::CellBins;
 use crate::{dot, sub, CellGrid, Particles};
@@ -71,8 +72,7 @@ impl SweepPairs {
                                 }
                             }
                         }
-                        let block = &mut self.pairs[block_start..];
-                        block.sort_unstable_by_key(|&[i, j]| (store.tag[i as usize], store.tag[j as usize]));
+                        let block = &self.pairs[block_start..];
                         writes.extend(block.iter().flatten().copied().filter(|&k| k as usize >= store.nlocal));
                     }
                 }
@@ -114,7 +114,7 @@ mod tests {
         comm.exchange(&mut s, &domain, &grid, false);
         let mut bins = CellBins::default();
         let (lo, hi) = comm.owned_cells(&grid);
-        bins.build(&s.cell, lo, hi);
+        bins.build(&s.cell, &s.tag, lo, hi);
         (s, bins, grid, domain)
     }
 

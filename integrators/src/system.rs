@@ -101,7 +101,7 @@ impl System {
         let restored = std::mem::take(&mut self.restored);
         self.comm.exchange(&mut self.store, &self.domain, grid, restored);
         let (lo, hi) = self.comm.owned_cells(grid);
-        self.bins.build(&self.store.cell, lo, hi);
+        self.bins.build(&self.store.cell, &self.store.tag, lo, hi);
         if let Some(radius) = density_radius {
             self.nlist.build(&self.store, &self.bins, radius);
             self.pair_force.resize(self.nlist.neighbors.len(), 0.0);

@@ -140,6 +140,14 @@ impl Comm {
             }
         }
         self.migrate(store, grid, keep_cells);
+        // owned particles in cell order (then by tag): neighbours sit close in memory
+        let mut order: Vec<u32> = (0..store.nlocal as u32).collect();
+        let key = |i: u32| {
+            let c = store.cell[i as usize];
+            (c[2], c[1], c[0], store.tag[i as usize])
+        };
+        order.sort_unstable_by_key(|&i| key(i));
+        store.reorder_owned(&order);
         self.borders(store, domain, grid);
         self.time.set(self.time.get() + start.elapsed());
     }
