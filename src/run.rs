@@ -128,6 +128,12 @@ pub fn run(it: &mut Interpreter, cmd: &Command, nsteps: u64) -> Result<(), AppEr
         it.out.line(&format!("Comm time (rank 0) = {comm:.6} s ({:.1} % of the loop)", 100.0 * comm / secs));
     }
     it.out.line(&format!("Neighbor list builds = {}", sys.builds));
+    if sys.substeps > 0 || sys.rejected > 0 {
+        it.out.line(&format!(
+            "Shardlow pair updates split into half steps (theta -> 0 guard) = {}, left out = {}",
+            sys.substeps, sys.rejected
+        ));
+    }
     it.out.flush();
     Ok(())
 }

@@ -82,8 +82,8 @@ pub enum FixStyle {
     Eos(EosModel),
     /// `fix nve/gendpde`: the reversible velocity-Verlet step with the work split.
     Verlet,
-    /// `fix shardlow [heat original|fourier]`.
-    Shardlow { heat: HeatModel },
+    /// `fix shardlow [heat original|fourier] [substeps N] [reject yes|no]`.
+    Shardlow { heat: HeatModel, substeps: u32, reject: bool },
     /// `fix heat/reservoir T KAPPA SEED [heat original|fourier]`.
     Reservoir { temperature: f64, kappa: f64, seed: u64, heat: Option<HeatModel> },
     /// `fix nve` (LAMMPS's pairwise styles).
@@ -99,6 +99,10 @@ pub struct Fix {
     /// The command as written (restart files re-create fixes from it).
     pub text: String,
 }
+
+/// Default and largest number of halving levels of a failing Shardlow pair update.
+pub const DEFAULT_SUBSTEPS: u32 = 4;
+pub const MAX_SUBSTEPS: u32 = 8;
 
 pub const FIX_STYLES: &str = "eos/vdw, eos/lj, eos/ideal, eos/cv, eos/density, eos/linear, nve/gendpde, shardlow, heat/reservoir, nve, mvv/dpd";
 
@@ -171,7 +175,24 @@ pub fn parse_fix(cmd: &Command, kb: f64) -> Result<Fix, ScriptError> {
         "nve/gendpde" => FixStyle::Verlet,
         "nve" => FixStyle::Nve,
         "mvv/dpd" => FixStyle::Mvv { lambda: if a.remaining() > 0 { a.positive("lambda")? } else { 0.5 } },
-        "shardlow" => FixStyle::Shardlow { heat: heat_keyword(&mut a)?.unwrap_or(HeatModel::Original) },
+        "shardlow" => {
+            let (mut heat, mut substeps, mut reject) = (HeatModel::Original, DEFAULT_SUBSTEPS, false);
+            while let Some(k) = a.peek() {
+                match k {
+                    "heat" => heat = heat_keyword(&mut a)?.unwrap_or(heat),
+                    "substeps" => {
+                        a.word("substeps")?;
+                        substeps = a.u64("the number of halving levels")?.min(MAX_SUBSTEPS as u64) as u32;
+                    }
+                    "reject" => {
+                        a.word("reject")?;
+                        reject = a.yes_no("reject")?;
+                    }
+                    _ => return Err(a.err(format!("unknown keyword '{k}'; known: heat, substeps, reject"))),
+                }
+            }
+            FixStyle::Shardlow { heat, substeps, reject }
+        }
         "heat/reservoir" => {
             let temperature = a.positive("the reservoir temperature")?;
             let kappa = a.positive("the reservoir coupling kappa")?;
@@ -289,9 +310,10 @@ pub fn build_physics(
     }
     let verlet = find(|s| matches!(s, FixStyle::Verlet)).is_some();
     let dissipation = match find(|s| matches!(s, FixStyle::Shardlow { .. })) {
-        Some(Fix { style: FixStyle::Shardlow { heat }, .. }) => {
+        Some(Fix { style: FixStyle::Shardlow { heat, substeps, reject }, .. }) => {
             let c = pair.coeff.as_ref().ok_or_else(|| err("fix shardlow needs the pair coefficients (pair_coeff * * GAMMA KAPPA)".into()))?;
-            Some(Dissipation { gamma: c.gamma, rc_friction: c.rc_friction, kappa: c.kappa, rc_heat: c.rc_heat, heat: *heat, seed: pair.seed })
+            let (gamma, kappa, heat, substeps, reject) = (c.gamma, c.kappa, *heat, *substeps, *reject);
+            Some(Dissipation { gamma, rc_friction: c.rc_friction, kappa, rc_heat: c.rc_heat, heat, seed: pair.seed, substeps, reject })
         }
         _ => None,
     };

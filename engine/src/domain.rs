@@ -24,23 +24,25 @@ impl Domain {
         l[0] * l[1] * l[2]
     }
 
-    /// Maps `r` into [lo, hi) and counts the box crossings in `image`.
+    /// Maps `r` into [lo, hi) and counts the box crossings in `image`. Non-finite
+    /// coordinates are left as they are (the integrator reports them).
     pub fn wrap(&self, r: &mut Vec3, image: &mut [i32; 3]) {
         let l = self.len();
         for d in 0..3 {
-            if !self.periodic[d] {
+            if !self.periodic[d] || !r[d].is_finite() {
                 continue;
             }
-            while r[d] >= self.hi[d] {
-                r[d] -= l[d];
-                image[d] += 1;
+            if r[d] >= self.hi[d] || r[d] < self.lo[d] {
+                let k = ((r[d] - self.lo[d]) / l[d]).floor();
+                r[d] -= k * l[d];
+                image[d] = image[d].saturating_add(k.clamp(i32::MIN as f64, i32::MAX as f64) as i32);
             }
-            while r[d] < self.lo[d] {
-                r[d] += l[d];
-                image[d] -= 1;
-            }
-            // r + L can round up to hi itself.
+            // rounding can leave r at hi itself or just below lo
             if r[d] >= self.hi[d] {
+                r[d] -= l[d];
+                image[d] = image[d].saturating_add(1);
+            }
+            if r[d] < self.lo[d] {
                 r[d] = self.lo[d];
             }
         }
@@ -69,5 +71,9 @@ mod tests {
         let mut tiny = [-1e-300, 0.0, 0.0];
         d.wrap(&mut tiny, &mut im);
         assert!(tiny[0] >= 0.0 && tiny[0] < 2.0);
+        // far away and non-finite coordinates neither loop nor panic
+        let (mut far, mut im) = ([1e300, f64::INFINITY, f64::NAN], [0; 3]);
+        d.wrap(&mut far, &mut im);
+        assert!(far[0] >= 0.0 && far[0] < 2.0 && far[1].is_infinite() && far[2].is_nan());
     }
 }

@@ -216,8 +216,12 @@ impl ClassicDpd {
         }
     }
 
-    /// Positions, cells, ghosts, densities and forces after the particles moved.
-    fn after_drift(&self, sys: &mut System) {
+    /// Positions, cells, ghosts, densities and forces after the particles moved; a
+    /// non-finite position stops the step on every rank.
+    fn after_drift(&self, sys: &mut System) -> Result<(), StepError> {
+        let s = &sys.store;
+        let bad = (0..s.nlocal).find(|&i| !s.r[i].iter().all(|x| x.is_finite()));
+        sys.settle(bad.map_or(Ok(()), |i| Err(StepError::state(s, i, sys.step, "position or momentum is not finite"))))?;
         let next = sys.step + 1;
         let p = &self.settings.rebuild;
         let due = next - sys.last_build >= p.delay.max(1) && next % p.every.max(1) == 0;
@@ -232,6 +236,7 @@ impl ClassicDpd {
             sys.comm.forward(&mut sys.store, Fields::RHO);
         }
         self.forces(sys, next);
+        Ok(())
     }
 }
 
@@ -292,7 +297,7 @@ impl Physics for ClassicDpd {
                         s.r[i][c] += k * s.p[i][c];
                     }
                 }
-                self.after_drift(sys);
+                self.after_drift(sys)?;
                 let s = &mut sys.store;
                 for i in 0..s.nlocal {
                     for c in 0..3 {
@@ -311,7 +316,7 @@ impl Physics for ClassicDpd {
                         s.p[i][c] += lambda * dt * s.f[i][c];
                     }
                 }
-                self.after_drift(sys);
+                self.after_drift(sys)?;
                 let s = &mut sys.store;
                 for i in 0..s.nlocal {
                     for c in 0..3 {

@@ -21,7 +21,14 @@ impl StepError {
     /// An EOS failure of particle `i`.
     pub fn eos(s: &Particles, i: usize, step: u64, e: EosError) -> Self {
         let EosError::NonPositiveTheta { u, n, theta } = e;
-        Self { tag: s.tag[i], step, u, n, theta, what: "particle temperature is not positive".into(), elsewhere: false }
+        let what = if theta.is_finite() && u.is_finite() { "particle temperature is not positive" } else { "particle state is not finite" };
+        Self { tag: s.tag[i], step, u, n, theta, what: what.into(), elsewhere: false }
+    }
+
+    /// Particle `i` reached a state the dynamics cannot continue from.
+    pub fn state(s: &Particles, i: usize, step: u64, what: &str) -> Self {
+        let n = s.n.get(i).copied().unwrap_or(f64::NAN);
+        Self { tag: s.tag[i], step, u: s.u[i], n, theta: s.theta[i], what: what.into(), elsewhere: false }
     }
 
     /// This rank stops because another one failed.

@@ -101,7 +101,8 @@ impl<E: Eos, W: Weight> GenDpde<E, W> {
             many_body::refresh_forces_and_work(sys, 0.25 * dt);
         }
         verlet::kick(sys, 0.5 * dt);
-        verlet::drift(sys, dt);
+        let drifted = verlet::drift(sys, dt);
+        sys.settle(before.and(drifted))?;
         let next = sys.step + 1;
         if self.needs_rebuild(sys, next) {
             self.rebuild(sys, next);
@@ -116,7 +117,7 @@ impl<E: Eos, W: Weight> GenDpde<E, W> {
         }
         let refreshed = many_body::refresh_state(&self.eos, sys);
         sys.comm.forward(&mut sys.store, sweep::SWEPT);
-        before.and(state).and(refreshed)
+        state.and(refreshed)
     }
 
     fn irreversible<H: HeatFlow>(&self, sys: &mut System) -> Result<(), StepError> {

@@ -18,6 +18,8 @@ pub mod stream {
     pub const VELOCITY: u32 = 2;
     /// Random pair forces of `pair dpd` and `pair mdpd`.
     pub const FORCE: u32 = 3;
+    /// Brownian-bridge noises of split pair updates: SUBSTEP + node of the split tree.
+    pub const SUBSTEP: u32 = 16;
 }
 
 /// Philox4x32 with 10 rounds.

@@ -13,6 +13,12 @@ pub struct Dissipation {
     pub rc_heat: f64,
     pub heat: HeatModel,
     pub seed: u64,
+    /// Levels of halving a pair update may use when a temperature would turn
+    /// non-positive (0: stop at once; 4: down to dt/16).
+    pub substeps: u32,
+    /// Leave a pair that fails at the last level unchanged for the step instead of
+    /// stopping the run.
+    pub reject: bool,
 }
 
 impl Dissipation {

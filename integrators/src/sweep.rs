@@ -3,6 +3,15 @@
 //!
 //! Between colours the ghosts written in the colour return their values to their
 //! owners, and the owners forward the new values to all ghosts (ARCHITECTURE.md).
+//!
+//! theta -> 0: a pair update that would leave a particle temperature non-positive (or
+//! non-finite) is undone and redone as two half steps whose noises split the step's
+//! Wiener increments by a Brownian bridge (dW_1,2 = dW/2 +- sqrt(dt)/2 eta, eta a fresh
+//! counter-based normal), recursively up to `Dissipation::substeps` levels. Each split
+//! conserves momentum and energy like a full update. A pair that still fails stops the
+//! run, or with `Dissipation::reject` is left unchanged for this step (counted; like a
+//! Metropolis rejection of a move outside the domain, it keeps p and K + u exact but
+//! biases the dynamics at the rare states it touches).
 
 use crate::error::StepError;
 use crate::heat::{HeatFlow, Temps};
@@ -20,7 +29,6 @@ pub const SWEPT: Fields = Fields::MOMENTUM.union(Fields::ENERGY).union(Fields::T
 /// updating pairs but keeps taking part in the exchanges, and reports the failure.
 pub fn sweep<E: Eos, H: HeatFlow>(eos: &E, d: &Dissipation, sys: &mut System, dt: f64) -> Result<(), StepError> {
     let kb = eos.kb();
-    let sqrt_dt = dt.sqrt();
     let rc = d.cutoff();
     let (inv_rcd, inv_rch) = (1.0 / d.rc_friction, 1.0 / d.rc_heat);
     let step = sys.step;
@@ -39,30 +47,23 @@ pub fn sweep<E: Eos, H: HeatFlow>(eos: &E, d: &Dissipation, sys: &mut System, dt
             let wd = (1.0 - r * inv_rcd).max(0.0);
             let wh = (1.0 - r * inv_rch).max(0.0);
             let (xi, xibar) = normal_pair(d.seed, step, s.tag[i], s.tag[j], stream::PAIR);
-            let drive = PairDrive {
+            let pair = Pair {
+                i,
+                j,
                 e: [dr[0] / r, dr[1] / r, dr[2] / r],
                 gamma: d.gamma * wd * wd,
                 kappa: d.kappa * wh * wh,
-                ti: temps::<H>(s, i),
-                tj: temps::<H>(s, j),
-                xi,
-                xibar,
+                seed: d.seed,
+                step,
+                kb,
             };
-            let (mut p_i, mut p_j, mut u_i, mut u_j) = (s.p[i], s.p[j], s.u[i], s.u[j]);
-            let state = PairState {
-                p_i: &mut p_i,
-                p_j: &mut p_j,
-                u_i: &mut u_i,
-                u_j: &mut u_j,
-                inv_m_i: 1.0 / s.mass[i],
-                inv_m_j: 1.0 / s.mass[j],
-            };
-            pair_update::<H>(state, &drive, kb, dt, sqrt_dt);
-            s.p[i] = p_i;
-            s.p[j] = p_j;
-            s.u[i] = u_i;
-            s.u[j] = u_j;
-            outcome = refresh::<E, H>(eos, s, i, step).and_then(|_| refresh::<E, H>(eos, s, j, step));
+            let saved = (s.p[i], s.p[j], s.u[i], s.u[j], s.theta[i], s.theta[j]);
+            outcome = pair_step::<E, H>(eos, s, &pair, xi, xibar, dt, 0, d.substeps, &mut sys.substeps);
+            if outcome.is_err() && d.reject {
+                (s.p[i], s.p[j], s.u[i], s.u[j], s.theta[i], s.theta[j]) = saved;
+                outcome = refresh::<E, H>(eos, s, i, step).and_then(|_| refresh::<E, H>(eos, s, j, step));
+                sys.rejected += 1;
+            }
             if outcome.is_err() {
                 break;
             }
@@ -92,6 +93,72 @@ pub fn reservoir<E: Eos, H: HeatFlow>(eos: &E, res: &Reservoir, sys: &mut System
     }
     sys.comm.forward(&mut sys.store, SWEPT);
     outcome
+}
+
+/// What stays fixed while one pair is updated, over any split of its step.
+struct Pair {
+    i: usize,
+    j: usize,
+    e: [f64; 3],
+    gamma: f64,
+    kappa: f64,
+    seed: u64,
+    step: u64,
+    kb: f64,
+}
+
+/// Updates one pair over `dt` with Wiener increments `xi sqrt(dt)`, `xibar sqrt(dt)`;
+/// splits the step by a Brownian bridge when a temperature fails (`node` numbers the
+/// halves of the binary tree, `levels` how many splits remain).
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn pair_step<E: Eos, H: HeatFlow>(
+    eos: &E,
+    s: &mut Particles,
+    p: &Pair,
+    xi: f64,
+    xibar: f64,
+    dt: f64,
+    node: u32,
+    levels: u32,
+    splits: &mut u64,
+) -> Result<(), StepError> {
+    let (i, j) = (p.i, p.j);
+    let saved = (s.p[i], s.p[j], s.u[i], s.u[j], s.theta[i], s.theta[j]);
+    let drive = PairDrive { e: p.e, gamma: p.gamma, kappa: p.kappa, ti: temps::<H>(s, i), tj: temps::<H>(s, j), xi, xibar };
+    let (mut p_i, mut p_j, mut u_i, mut u_j) = (s.p[i], s.p[j], s.u[i], s.u[j]);
+    let state = PairState { p_i: &mut p_i, p_j: &mut p_j, u_i: &mut u_i, u_j: &mut u_j, inv_m_i: 1.0 / s.mass[i], inv_m_j: 1.0 / s.mass[j] };
+    pair_update::<H>(state, &drive, p.kb, dt, dt.sqrt());
+    (s.p[i], s.p[j], s.u[i], s.u[j]) = (p_i, p_j, u_i, u_j);
+    let outcome = refresh::<E, H>(eos, s, i, p.step).and_then(|_| refresh::<E, H>(eos, s, j, p.step));
+    if outcome.is_ok() || levels == 0 {
+        return outcome;
+    }
+    split::<E, H>(eos, s, p, saved, (xi, xibar, dt, node, levels), splits)
+}
+
+/// Undoes a failed pair update and does it as two half steps.
+#[cold]
+fn split<E: Eos, H: HeatFlow>(
+    eos: &E,
+    s: &mut Particles,
+    p: &Pair,
+    saved: ([f64; 3], [f64; 3], f64, f64, f64, f64),
+    (xi, xibar, dt, node, levels): (f64, f64, f64, u32, u32),
+    splits: &mut u64,
+) -> Result<(), StepError> {
+    let (i, j) = (p.i, p.j);
+    (s.p[i], s.p[j], s.u[i], s.u[j], s.theta[i], s.theta[j]) = saved;
+    for k in [i, j] {
+        refresh::<E, H>(eos, s, k, p.step)?;
+    }
+    *splits += 1;
+    let (eta, etabar) = normal_pair(p.seed, p.step, s.tag[i], s.tag[j], stream::SUBSTEP + node);
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    let first = ((xi + eta) * h, (xibar + etabar) * h);
+    let second = ((xi - eta) * h, (xibar - etabar) * h);
+    pair_step::<E, H>(eos, s, p, first.0, first.1, 0.5 * dt, 2 * node + 1, levels - 1, splits)?;
+    pair_step::<E, H>(eos, s, p, second.0, second.1, 0.5 * dt, 2 * node + 2, levels - 1, splits)
 }
 
 #[inline(always)]

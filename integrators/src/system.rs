@@ -25,6 +25,10 @@ pub struct System {
     pub last_build: u64,
     /// Number of list builds so far.
     pub builds: u64,
+    /// Pair updates split into half steps so far (theta -> 0 guard of the sweep).
+    pub substeps: u64,
+    /// Pair updates left out because no split could keep theta positive (`reject yes`).
+    pub rejected: u64,
     /// The particles, cells and build positions were read from a restart: the next
     /// build keeps them as stored, so the lists come out as when it was written.
     pub restored: bool,
@@ -48,6 +52,8 @@ impl System {
             time: 0.0,
             last_build: 0,
             builds: 0,
+            substeps: 0,
+            rejected: 0,
             restored: false,
             restored_grid: None,
         }

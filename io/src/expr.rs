@@ -5,6 +5,9 @@
 //! than `^` and `^` is left-associative: `-2^2 == 4`, `2^3^2 == 64`. Comparisons and
 //! logic yield 1 or 0.
 
+use std::cell::RefCell;
+use std::collections::HashMap;
+
 use crate::variables::Variables;
 
 /// Deepest chain of `v_name` references followed before giving up.
@@ -22,8 +25,15 @@ pub fn evaluate(
     vars: &Variables,
     resolve: &dyn Fn(&str) -> Option<f64>,
 ) -> Result<f64, String> {
-    evaluate_nested(text, vars, resolve, 0, 0)
+    evaluate_nested(text, vars, resolve, 0, 0, &Memo::default())
 }
+
+/// Values of the variables already read during one top-level evaluation.
+///
+/// Nothing changes while an expression is evaluated, so each `v_name` needs
+/// evaluating only once: without this, `a1 = v_a0+v_a0`, `a2 = v_a1+v_a1`,
+/// ... takes time exponential in the length of the chain.
+pub(crate) type Memo = RefCell<HashMap<String, f64>>;
 
 /// [`evaluate`] for an expression reached through `depth` variable
 /// references from inside `nesting` levels of enclosing expressions.
@@ -33,6 +43,7 @@ pub(crate) fn evaluate_nested(
     resolve: &dyn Fn(&str) -> Option<f64>,
     depth: usize,
     nesting: usize,
+    memo: &Memo,
 ) -> Result<f64, String> {
     if depth > MAX_VARIABLE_DEPTH {
         return Err(format!(
@@ -46,6 +57,7 @@ pub(crate) fn evaluate_nested(
         vars,
         resolve,
         depth,
+        memo,
     };
     if parser.tokens.is_empty() {
         return Err("empty expression".into());
@@ -155,6 +167,7 @@ struct Parser<'a> {
     vars: &'a Variables,
     resolve: &'a dyn Fn(&str) -> Option<f64>,
     depth: usize,
+    memo: &'a Memo,
 }
 
 /// Binary operator levels, lowest precedence first.
@@ -236,8 +249,14 @@ impl Parser<'_> {
         }
         match name.strip_prefix("v_") {
             Some(var) if !var.is_empty() && !var.contains('[') => {
-                self.vars
-                    .numeric(var, self.resolve, self.depth, self.nesting)
+                if let Some(&x) = self.memo.borrow().get(var) {
+                    return Ok(x);
+                }
+                let x = self
+                    .vars
+                    .numeric(var, self.resolve, self.depth, self.nesting, self.memo)?;
+                self.memo.borrow_mut().insert(var.to_string(), x);
+                Ok(x)
             }
             _ => (self.resolve)(name)
                 .ok_or_else(|| format!("unknown identifier '{name}' in expression")),
@@ -346,6 +365,7 @@ fn call(name: &str, args: &[f64]) -> Result<f64, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::format::format_g;
 
     fn eval(text: &str) -> Result<f64, String> {
         let thermo = |k: &str| match k {
@@ -509,5 +529,36 @@ mod tests {
         let err = evaluate("v_a", &vars, &none).unwrap_err();
         assert!(err.contains("nested deeper than 64"), "{err}");
         assert_eq!(evaluate("v_c", &vars, &none), Ok(42.0));
+    }
+
+    /// Fuzzing regression (target `script`): a chain of variables each
+    /// reading the previous one twice took 2^39 evaluations, a hang.
+    /// Minimised input: `variable a0 equal 1`, then
+    /// `variable aI equal v_aJ+v_aJ` for I = 1..39 (J = I-1), then
+    /// `print $(v_a39)`.
+    #[test]
+    fn fuzz_doubling_variable_chain_is_linear() {
+        use crate::script::ScriptReader;
+        let mut text = String::from("variable a0 equal 1\n");
+        for i in 1..40 {
+            text += &format!("variable a{i} equal v_a{}+v_a{}\n", i - 1, i - 1);
+        }
+        text += "print $(v_a39) ${a39}\n";
+        let none = |_: &str| None;
+        let start = std::time::Instant::now();
+        let mut reader = ScriptReader::from_string("fuzz.in", &text);
+        let mut vars = Variables::new();
+        let mut printed = None;
+        while let Some(cmd) = reader.next_command(&vars, &none).unwrap() {
+            if cmd.name == "variable" {
+                vars.define(&cmd).unwrap();
+            } else {
+                printed = Some(cmd.args);
+            }
+        }
+        let want = format_g(2f64.powi(39), 20);
+        assert_eq!(printed, Some(vec![want, "549755813888".to_string()]));
+        assert_eq!(evaluate("v_a39", &vars, &none), Ok(2f64.powi(39)));
+        assert!(start.elapsed().as_secs() < 5, "took {:?}", start.elapsed());
     }
 }

@@ -157,7 +157,7 @@ impl Variables {
             }),
             Some(Var::Str(s)) => Ok(s.clone()),
             Some(Var::Equal(_)) => self
-                .numeric(name, resolve, 0, 0)
+                .numeric(name, resolve, 0, 0, &expr::Memo::default())
                 .map(|x| format_g(x, 15))
                 .map_err(|e| format!("variable '{name}': {e}")),
         }
@@ -169,17 +169,19 @@ impl Variables {
     }
 
     /// The numeric value of a variable as read by `v_name` in an expression
-    /// `depth` variables and `nesting` levels deep.
+    /// `depth` variables and `nesting` levels deep; `memo` holds the values
+    /// of the variables already read by the same top-level evaluation.
     pub(crate) fn numeric(
         &self,
         name: &str,
         resolve: &dyn Fn(&str) -> Option<f64>,
         depth: usize,
         nesting: usize,
+        memo: &expr::Memo,
     ) -> Result<f64, String> {
         match self.vars.get(name) {
             Some(Var::Equal(text)) => {
-                expr::evaluate_nested(text, self, resolve, depth + 1, nesting)
+                expr::evaluate_nested(text, self, resolve, depth + 1, nesting, memo)
             }
             _ => {
                 let text = self.value(name, resolve)?;
