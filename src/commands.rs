@@ -420,6 +420,9 @@ fn create_atoms(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     a.done()?;
     let lattice = sim.lattice.as_ref().ok_or_else(|| a.err("create_atoms needs a lattice command first"))?;
     let mass = sim.masses[kind - 1].map_or(f64::NAN, |m| m * sim.units.mvv2e);
+    let bound = lattice.count_bound(lo, hi);
+    crate::memory::check(24.0 * bound + crate::memory::STORE_BYTES_PER_PARTICLE * bound / sys.comm.size() as f64, &format!("create_atoms of up to {bound:.3e} particles"))
+        .map_err(|e| a.err(e))?;
     let points = lattice.points(lo, hi);
     if sim.max_tag + points.len() as u64 > u32::MAX as u64 {
         return Err(a.err(format!("more than {} particles: particle IDs must fit in 32 bits", u32::MAX)));

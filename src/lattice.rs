@@ -22,6 +22,12 @@ impl Lattice {
         Some(Self { constant, basis })
     }
 
+    /// An upper bound of the number of points in the block [lo, hi) (no allocation).
+    pub fn count_bound(&self, lo: Vec3, hi: Vec3) -> f64 {
+        let cells: f64 = (0..3).map(|d| ((hi[d] - lo[d]) / self.constant).ceil() + 1.0).product();
+        cells * self.basis.len() as f64
+    }
+
     /// Lattice points inside the block [lo, hi), in LAMMPS's order (z, y, x, basis).
     pub fn points(&self, lo: Vec3, hi: Vec3) -> Vec<Vec3> {
         let a = self.constant;

@@ -9,6 +9,7 @@ mod gather;
 mod h5md_out;
 mod restart;
 pub mod lattice;
+mod memory;
 pub mod output;
 pub mod run;
 pub mod sim;

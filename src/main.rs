@@ -37,6 +37,11 @@ enum Cmd {
         #[command(flatten)]
         script: ScriptArgs,
     },
+    /// Make an H5MD file whose writer was killed or ran out of disk readable again
+    /// (like `h5clear -s -i`); never while a run still writes it.
+    H5mdRepair {
+        file: PathBuf,
+    },
     /// Evaluate a particle EOS: gendpde eos MODEL PARAMS... --theta T --n N (or --u U).
     /// MODEL and PARAMS as in `fix ID all eos/MODEL PARAMS`, e.g. `vdw 60 2.4682 1.4142`.
     Eos {
@@ -90,10 +95,12 @@ fn lammps_style_args() -> Vec<String> {
         .collect()
 }
 
-/// MPI_COMM_WORLD with the `mpi` feature, else a single rank.
+/// MPI_COMM_WORLD with the `mpi` feature when started by an MPI launcher, else a
+/// single rank (a plain `gendpde run` never initialises MPI).
 #[cfg(feature = "mpi")]
 fn transport() -> Box<dyn Transport> {
-    match gendpde_engine::comm::MpiTransport::init() {
+    let launched = ["OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK", "MPI_LOCALNRANKS"].iter().any(|v| std::env::var_os(v).is_some());
+    match launched.then(gendpde_engine::comm::MpiTransport::init).flatten() {
         Some(t) => Box::new(t),
         None => Box::new(gendpde_engine::Local),
     }
@@ -114,6 +121,18 @@ fn main() -> ExitCode {
         Cmd::Run { script, log } => (script, Mode::Run, Some(log)),
         Cmd::Check { script } => (script, Mode::Check, None),
         Cmd::Eos { model, params, theta, u, n } => return eos(model, params, theta, u, n),
+        Cmd::H5mdRepair { file } => {
+            return match gendpde_io::h5md::repair_h5md(&file).and_then(|_| gendpde_io::check_h5md(&file)) {
+                Ok(summary) => {
+                    println!("{}: {} frames of {} particles", file.display(), summary.frames, summary.particles);
+                    ExitCode::SUCCESS
+                }
+                Err(e) => {
+                    eprintln!("ERROR: {}", e.0);
+                    ExitCode::FAILURE
+                }
+            }
+        }
     };
     let transport = transport();
     let rank = transport.rank();

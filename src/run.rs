@@ -20,6 +20,12 @@ pub fn prepare(it: &mut Interpreter, cmd: &Command) -> Result<Box<dyn Physics>, 
     if let Some(i) = (0..sys.store.nlocal).find(|&i| !sys.store.mass[i].is_finite()) {
         return Err(err(format!("the mass of type {} is not set", sys.store.kind[i])));
     }
+    // neighbour and sweep lists, estimated from the mean density before they are built
+    let (n, volume) = (sys.store.nlocal as f64, sys.domain.volume() / sys.comm.size() as f64);
+    let reach = physics.list_radius();
+    let neighbours = n / volume * 4.0 / 3.0 * std::f64::consts::PI * reach.powi(3);
+    let bytes = n * neighbours * (crate::memory::NEIGHBOUR_ENTRY_BYTES + 0.5 * crate::memory::SWEEP_PAIR_BYTES);
+    crate::memory::check(bytes, &format!("the neighbour lists ({neighbours:.0} neighbours per particle)")).map_err(err)?;
     physics.setup(sys).map_err(|e| match e {
         SetupError::Grid(g) => err(g),
         SetupError::State(s) => AppError::Step { cmd: cmd.clone(), err: s },

@@ -155,3 +155,14 @@ fn non_finite_input_and_non_finite_states_stop_with_the_particle_named() {
     assert!(err.contains("the last good state (step 0) is in failed.restart.h5"), "{err}");
     assert!(!err.contains("internal error"), "{err}");
 }
+
+#[test]
+fn a_system_too_large_for_memory_is_refused_before_allocating() {
+    let dir = std::env::temp_dir().join(format!("gendpde-mem-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("in.big"), vdw(100_000, 0.5, "")).unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_gendpde")).args(["check", "in.big"]).current_dir(&dir).output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success());
+    assert!(err.contains("in.big:5: create_atoms: create_atoms of up to") && err.contains("GiB of memory"), "{err}");
+}

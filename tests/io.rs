@@ -146,3 +146,25 @@ fn damaged_restart_and_data_files_give_clear_errors() {
     assert!(!out.status.success());
     assert!(err.contains("data.bad:12: Atoms: expected 6 columns"), "{err}");
 }
+
+#[test]
+fn a_full_disk_during_output_stops_cleanly_with_earlier_frames_intact() {
+    let dir = tempdir("full");
+    let script = std::fs::read_to_string(common::example("heat-only"))
+        .unwrap()
+        .replace("run          ${steps}", "dump traj all h5md 1 traj.h5 x p u theta\nrun ${steps}");
+    std::fs::write(dir.join("in.test"), script).unwrap();
+    // a file-size limit of 600 KiB stands for the full disk (SIGXFSZ ignored: writes fail)
+    let cmd = format!("trap '' XFSZ; ulimit -f 600; exec {} run in.test -log none -var steps 100", env!("CARGO_BIN_EXE_gendpde"));
+    let out = Command::new("bash").args(["-c", &cmd]).current_dir(&dir).output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success(), "the run must stop when the disk is full");
+    assert!(err.contains("in.test:32: run: dump traj: traj.h5") && err.contains("File too large"), "{err}");
+    assert!(!err.contains("internal error"), "{err}");
+    // the file's recorded end lies past the bytes the disk took: once there is space
+    // again, repair_h5md (or `h5clear -s -i`) makes it whole, with every earlier frame
+    let path = dir.join("traj.h5");
+    gendpde_io::h5md::repair_h5md(&path).unwrap_or_else(|e| panic!("repair failed: {}", e.0));
+    let summary = gendpde_io::check_h5md(&path).unwrap_or_else(|e| panic!("earlier frames lost: {}", e.0));
+    assert!(summary.frames >= 3, "frames before the disk filled: {}", summary.frames);
+}

@@ -17,6 +17,7 @@ use gendpde_integrators::heat::{Fourier, HeatFlow, Original, Temps};
 use gendpde_integrators::pair_update::{pair_update, PairDrive, PairState};
 use gendpde_potentials::{Eos, LennardJones, LinearTheta, TableGrid, Tabulated, ISOLATED_DENSITY};
 use proptest::prelude::*;
+use proptest::strategy::ValueTree;
 
 // ---------------------------------------------------------------------------------------
 // EOS inversion

@@ -245,6 +245,10 @@ impl Physics for ClassicDpd {
         &self.settings
     }
 
+    fn list_radius(&self) -> f64 {
+        self.radius()
+    }
+
     fn setup(&self, sys: &mut System) -> Result<(), SetupError> {
         sys.lay_grid(self.radius()).map_err(SetupError::Grid)?;
         let mut fields = Fields::THETA | Fields::PAIR_ENERGY;

@@ -16,6 +16,8 @@ pub trait Physics {
     fn setup(&self, sys: &mut System) -> Result<(), SetupError>;
     /// Advances one time step. Every rank returns an error when any rank failed.
     fn step(&self, sys: &mut System) -> Result<(), StepError>;
+    /// Largest list radius (cutoff plus skin), for memory estimates.
+    fn list_radius(&self) -> f64;
 }
 
 /// Why a run cannot start.
@@ -136,6 +138,11 @@ impl<E: Eos, W: Weight> GenDpde<E, W> {
 impl<E: Eos, W: Weight> Physics for GenDpde<E, W> {
     fn settings(&self) -> &Settings {
         &self.settings
+    }
+
+    fn list_radius(&self) -> f64 {
+        let (density, sweep) = self.radii();
+        density.unwrap_or(0.0).max(sweep.unwrap_or(0.0))
     }
 
     fn setup(&self, sys: &mut System) -> Result<(), SetupError> {
