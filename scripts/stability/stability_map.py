@@ -96,7 +96,7 @@ def run_one(r, binary, timeout):
            "-var", "rc", f"{r['rc']:g}", "-var", "dt", f"{r['dt']:g}", "-var", "cv", f"{r['cv']:g}",
            "-var", "eos", EOS[r["eos"]]["fix"](r["cv"]), "-var", "guard", guard, "-log", "none"]
     if r["flash"]:
-        cmd[5:5] = ["-var", "Tflash", f"{r['value']:g}"]
+        cmd[3:3] = ["-var", "Tflash", f"{r['value']:g}"]
     work = tempfile.mkdtemp(prefix="gendpde-stab-")
     t0 = time.monotonic()
     try:
@@ -135,10 +135,11 @@ def run_one(r, binary, timeout):
     if p.returncode != 0:
         m = STOP.search(stderr)
         res["outcome"] = "stopped"
+        res["edrift_last"], res["edrift"] = drift, None
         if m:
             res["fail_step"] = int(m.group(3))
             msg = m.group(1)
-            res["message"] = re.sub(r"; the last good state.*?\(", " (", msg).split("; a smaller")[0]
+            res["message"] = re.sub(r"; the last good state.*?h5 \(", " (", msg).split("; a smaller")[0]
         elif p.returncode < 0:
             res["message"] = f"killed after {timeout:.0f} s (time limit)"
             res["outcome"] = "timeout"
@@ -149,7 +150,7 @@ def run_one(r, binary, timeout):
     return res
 
 
-def run_all(runs, binary, jobs, timeout, done):
+def run_all(runs, binary, jobs, timeout, done, save=lambda: None):
     todo = [r for r in runs if key(r) not in done]
     # longest first: LJ is ~7x dearer per step than vdW, cost ~ N * neighbours * steps
     todo.sort(key=lambda r: -(r["N"] * r["rho"] * r["rc"] ** 3 * r["steps"] * (2 if r["flash"] else 1)
@@ -159,6 +160,7 @@ def run_all(runs, binary, jobs, timeout, done):
         for f in cf.as_completed(futs):
             res = f.result()
             done[key(res)] = res
+            save()
             d = res["edrift"]
             print(f"[{len(done):3d}] {key(res):28s} {res['outcome']:8s} edrift={d if d is None else f'{d:.2e}'}"
                   f" wall={res['wall']:.1f}s {res.get('message', '')[:90]}", flush=True)
@@ -379,12 +381,13 @@ def main():
         done = data["results"]
         t0 = time.monotonic()
         runs = plan(a.steps, a.lj_steps)
-        run_all(runs, binary, a.jobs, a.timeout, done)
-        json.dump(data, open(store, "w"), indent=1)
+        def save():
+            json.dump(data, open(store, "w"), indent=1)
+        run_all(runs, binary, a.jobs, a.timeout, done, save)
         if not a.no_reject:
             again = [dict({k: v for k, v in r.items() if k in runs[0]}, reject=True)
                      for r in list(done.values()) if r["outcome"] in ("stopped", "timeout") and not r.get("reject")]
-            run_all(again, binary, a.jobs, a.timeout, done)
+            run_all(again, binary, a.jobs, a.timeout, done, save)
         data["meta"]["total_wall"] = data["meta"].get("total_wall_prev", 0) + time.monotonic() - t0
         data["meta"]["total_wall_prev"] = data["meta"]["total_wall"]
         json.dump(data, open(store, "w"), indent=1)
