@@ -206,6 +206,7 @@ impl Interpreter {
             }
             "mass" => mass(sim, &mut a)?,
             "velocity" => velocity::velocity(sim, &mut a)?,
+            "group" => crate::groups::group(sim, &mut a)?,
             "set" => set(sim, &mut a)?,
             "pair_style" => {
                 if sim.system.is_none() {
@@ -334,9 +335,16 @@ fn region(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
         "block" => {}
         s => return Err(a.err(format!("unknown region style '{s}'; known: block"))),
     }
+    // INF and EDGE (LAMMPS) leave a side open; create_atoms clips regions to the box
     let mut b = [0.0; 6];
     for (k, what) in ["xlo", "xhi", "ylo", "yhi", "zlo", "zhi"].iter().enumerate() {
-        b[k] = a.f64(what)?;
+        b[k] = match a.peek() {
+            Some("INF" | "EDGE") => {
+                a.word(what)?;
+                if k % 2 == 0 { f64::NEG_INFINITY } else { f64::INFINITY }
+            }
+            _ => a.f64(what)?,
+        };
     }
     let mut scale = None;
     while a.remaining() > 0 {
@@ -389,6 +397,9 @@ fn create_box(sim: &mut Sim, a: &mut Args, transport: Box<dyn Transport>) -> Res
     let id = a.word("a region ID")?;
     a.done()?;
     let block = sim.regions.get(id).ok_or_else(|| a.err(format!("no region with ID '{id}'")))?;
+    if !block.lo.iter().chain(&block.hi).all(|x| x.is_finite()) {
+        return Err(a.err(format!("region '{id}' is open (INF/EDGE): a box needs finite bounds")));
+    }
     let domain = Domain::new(block.lo, block.hi);
     let procs = ProcGrid::choose(transport.size(), domain.len(), sim.procs).map_err(|e| a.err(e))?;
     sim.ntypes = n;
@@ -488,13 +499,14 @@ fn mass(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
 /// `set atom|type|group ID KEYWORD VALUE ...` with keywords theta (dpd/theta) and u.
 fn set(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     let style = a.word("atom, type or group")?;
+    let group_mask = if style == "group" { Some(crate::groups::mask(sim, a.word("a group ID")?, a)?) } else { None };
     let sys = sim.system.as_mut().ok_or_else(|| a.err("set before create_box"))?;
     let s = &mut sys.store;
     let selected: Vec<usize> = match style {
-        "group" => match a.word("a group ID")? {
-            "all" => (0..s.nlocal).collect(),
-            g => return Err(a.err(format!("group '{g}': only group all is defined"))),
-        },
+        "group" => {
+            let m = group_mask.unwrap_or(0);
+            (0..s.nlocal).filter(|&i| m == u32::MAX || s.groups[i] & m != 0).collect()
+        }
         "type" => {
             let range = a.range("a particle type", sim.ntypes as u64)?;
             (0..s.nlocal).filter(|&i| range.contains(&(s.kind[i] as u64))).collect()

@@ -6,6 +6,7 @@ pub mod commands;
 mod data;
 mod dump;
 mod gather;
+mod groups;
 mod h5md_out;
 mod restart;
 pub mod lattice;

@@ -40,6 +40,8 @@ pub struct Sim {
     pub dumps: Vec<H5mdDump>,
     /// `compute ID all dpd` IDs (thermo `c_ID[1..5]`).
     pub computes: Vec<String>,
+    /// Group names by bit (an empty name is a free slot).
+    pub groups: Vec<String>,
 }
 
 impl Default for Sim {
@@ -66,6 +68,7 @@ impl Default for Sim {
             checkpoint: None,
             dumps: Vec::new(),
             computes: Vec::new(),
+            groups: Vec::new(),
         }
     }
 }

@@ -13,9 +13,7 @@ use gendpde_io::ScriptError;
 
 pub fn velocity(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     let group = a.word("a group")?;
-    if group != "all" {
-        return Err(a.err(format!("group '{group}': only group all is defined")));
-    }
+    let mask = crate::groups::mask(sim, group, a)?;
     match a.word("a velocity style (create)")? {
         "create" => {}
         s => return Err(a.err(format!("unknown velocity style '{s}'; known: create"))),
@@ -52,9 +50,11 @@ pub fn velocity(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     if let Some(i) = (0..s.nlocal).find(|&i| !s.mass[i].is_finite()) {
         return Err(a.err(format!("the mass of type {} is not set", s.kind[i])));
     }
-    let n = s.nlocal;
+    let members: Vec<usize> = (0..s.nlocal).filter(|&i| mask == u32::MAX || s.groups[i] & mask != 0).collect();
+    let n = members.len();
     let mut v = vec![[0.0; 3]; n];
-    for (i, vi) in v.iter_mut().enumerate() {
+    for (k, vi) in v.iter_mut().enumerate() {
+        let i = members[k];
         let tag = s.tag[i];
         let x = if gaussian {
             let (a, b) = normal_pair(seed, 0, tag, 0, stream::VELOCITY);
@@ -68,9 +68,9 @@ pub fn velocity(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     }
     let t_ = sys.comm.transport();
     if mom {
-        let [px, py, pz, mass] = exact_sums(t_, (0..n).map(|i| {
-            let m = s.mass[i];
-            [m * v[i][0], m * v[i][1], m * v[i][2], m]
+        let [px, py, pz, mass] = exact_sums(t_, (0..n).map(|k| {
+            let m = s.mass[members[k]];
+            [m * v[k][0], m * v[k][1], m * v[k][2], m]
         }));
         for vi in v.iter_mut() {
             for (k, pk) in [px, py, pz].iter().enumerate() {
@@ -78,11 +78,11 @@ pub fn velocity(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
             }
         }
     }
-    let [mv2, count] = exact_sums(t_, (0..n).map(|i| [s.mass[i] * (v[i][0] * v[i][0] + v[i][1] * v[i][1] + v[i][2] * v[i][2]), 1.0]));
+    let [mv2, count] = exact_sums(t_, (0..n).map(|k| [s.mass[members[k]] * (v[k][0] * v[k][0] + v[k][1] * v[k][1] + v[k][2] * v[k][2]), 1.0]));
     let dof = 3.0 * count - 3.0;
     let scale = if mv2 > 0.0 && dof > 0.0 { (t * sim_kb * dof / mv2).sqrt() } else { 0.0 };
-    for i in 0..n {
-        s.p[i] = [0, 1, 2].map(|k| s.mass[i] * v[i][k] * scale);
+    for (k, &i) in members.iter().enumerate() {
+        s.p[i] = [0, 1, 2].map(|c| s.mass[i] * v[k][c] * scale);
     }
     Ok(())
 }

@@ -21,6 +21,8 @@ pub struct Particles {
     pub theta: Vec<f64>,
     /// True where u is still to be derived from theta at the next setup (`set theta`).
     pub theta_given: Vec<bool>,
+    /// Bit mask of the groups the particle belongs to (owned particles).
+    pub groups: Vec<u32>,
     /// Periodic image counters of owned particles.
     pub image: Vec<[i32; 3]>,
     /// Global cell coordinates at the last rebuild (ghosts: outside 0..n).
@@ -73,6 +75,7 @@ impl Particles {
         self.u.push(0.0);
         self.theta.push(0.0);
         self.theta_given.push(false);
+        self.groups.push(0);
         self.image.push([0; 3]);
         self.cell.push([0; 3]);
         self.r_build.push(r);
@@ -105,6 +108,7 @@ impl Particles {
         self.u.truncate(len);
         self.theta.truncate(len);
         self.theta_given.truncate(len);
+        self.groups.truncate(len);
         self.image.truncate(len);
         self.cell.truncate(len);
         self.r_build.truncate(len);
@@ -141,10 +145,11 @@ impl Particles {
         buf.extend_from_slice(&self.r_build[i]);
         buf.push(self.u_cond.get(i).copied().unwrap_or(0.0));
         buf.extend_from_slice(&self.vest[i]);
+        buf.push(self.groups[i] as f64);
     }
 
     /// Length of one `pack_owned` record.
-    pub const OWNED_RECORD: usize = 25;
+    pub const OWNED_RECORD: usize = 26;
 
     /// The cell a `pack_owned` record carries.
     pub fn record_cell(rec: &[f64]) -> [i32; 3] {
@@ -165,6 +170,7 @@ impl Particles {
             self.u_cond[i] = rec[21];
         }
         self.vest[i] = [rec[22], rec[23], rec[24]];
+        self.groups[i] = rec[25] as u32;
     }
 
     /// Removes owned particle `i` (the last owned particle takes its index; no ghosts
@@ -179,6 +185,7 @@ impl Particles {
         self.u.swap_remove(i);
         self.theta.swap_remove(i);
         self.theta_given.swap_remove(i);
+        self.groups.swap_remove(i);
         self.image.swap_remove(i);
         self.cell.swap_remove(i);
         self.r_build.swap_remove(i);
@@ -224,6 +231,7 @@ impl Particles {
         self.u.push(rec[9]);
         self.theta.push(rec[10]);
         self.theta_given.push(false);
+        self.groups.push(0);
         self.image.push([0; 3]);
         self.cell.push([rec[11] as i32, rec[12] as i32, rec[13] as i32]);
         self.r_build.push([rec[3], rec[4], rec[5]]);
@@ -259,6 +267,7 @@ impl Particles {
         apply(&mut self.u, order);
         apply(&mut self.theta, order);
         apply(&mut self.theta_given, order);
+        apply(&mut self.groups, order);
         apply(&mut self.image, order);
         apply(&mut self.cell, order);
         apply(&mut self.r_build, order);
