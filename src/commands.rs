@@ -49,6 +49,8 @@ pub struct Interpreter {
     pub mode: Mode,
     /// The ranks' transport, handed to the box's communicator by `create_box`.
     transport: Option<Box<dyn Transport>>,
+    /// A `next` exhausted its variables: the next `jump` falls through.
+    skip_jump: bool,
 }
 
 impl Interpreter {
@@ -59,7 +61,7 @@ impl Interpreter {
 
     /// An interpreter whose box is split over the ranks of `transport`.
     pub fn with_transport(mode: Mode, out: Output, transport: Box<dyn Transport>) -> Self {
-        Self { sim: Sim::default(), vars: Variables::new(), out, mode, transport: Some(transport) }
+        Self { sim: Sim::default(), vars: Variables::new(), out, mode, transport: Some(transport), skip_jump: false }
     }
 
     /// Executes a script file to its end.
@@ -80,7 +82,26 @@ impl Interpreter {
             };
             let Some(cmd) = next else { return Ok(()) };
             self.out.log_line(&echo(&cmd));
-            self.execute(&cmd)?;
+            match cmd.name.as_str() {
+                // LAMMPS loops: `label L`, `next V ...`, `jump SELF L`; a `next` that
+                // exhausts its variables makes the following `jump` fall through
+                "label" => {}
+                "next" => {
+                    if cmd.args.is_empty() {
+                        return Err(ScriptError::at(&cmd, "missing argument: expected variable names").into());
+                    }
+                    self.skip_jump = self.vars.next(&cmd.args).map_err(|mut e| {
+                        e.loc = Some(cmd.loc.clone());
+                        e
+                    })?;
+                }
+                "jump" => {
+                    if !std::mem::take(&mut self.skip_jump) {
+                        reader.jump(&cmd)?;
+                    }
+                }
+                _ => self.execute(&cmd)?,
+            }
         }
     }
 

@@ -130,3 +130,18 @@ fn a_blow_up_during_the_run_names_step_and_particle() {
     let out = gendpde(&["run", "in.load", "-log", "none"], &dir);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
 }
+
+#[test]
+fn label_next_jump_loop_like_lammps() {
+    let dir = tempdir("loop");
+    std::fs::write(
+        dir.join("in.loop"),
+        "variable a loop 3\nlabel top\nprint \"iteration ${a}\"\nnext a\njump SELF top\nprint done\njump SELF nowhere\n",
+    )
+    .unwrap();
+    let out = gendpde(&["run", "in.loop", "-log", "none"], &dir);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(stdout.lines().take(4).collect::<Vec<_>>(), ["iteration 1", "iteration 2", "iteration 3", "done"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("in.loop:7: jump: no line 'label nowhere' in in.loop"), "{err}");
+}

@@ -186,6 +186,31 @@ impl ScriptReader {
         Ok(None)
     }
 
+    /// `jump SELF LABEL` (or the current file's name): continues reading the current
+    /// file after the line `label LABEL`.
+    pub fn jump(&mut self, cmd: &Command) -> Result<(), ScriptError> {
+        let [file, label] = cmd.args.as_slice() else {
+            return Err(ScriptError::at(cmd, "expected SELF (or this file) and a label"));
+        };
+        let Some(src) = self.sources.last_mut() else {
+            return Err(ScriptError::at(cmd, "no script to jump in"));
+        };
+        if file != "SELF" && Path::new(file) != src.file {
+            return Err(ScriptError::at(cmd, format!("jump to another file ('{file}') is not supported: use SELF")));
+        }
+        let target = src.lines.iter().position(|l| {
+            let mut w = l.split_whitespace();
+            w.next() == Some("label") && w.next() == Some(label.as_str())
+        });
+        match target {
+            Some(k) => {
+                src.next = k + 1;
+                Ok(())
+            }
+            None => Err(ScriptError::at(cmd, format!("no line 'label {label}' in {}", src.file.display()))),
+        }
+    }
+
     /// Starts reading the file named by an `include` command.
     fn include(&mut self, cmd: &Command) -> Result<(), ScriptError> {
         let [file] = cmd.args.as_slice() else {
