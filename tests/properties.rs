@@ -198,22 +198,20 @@ proptest! {
     }
 }
 
-/// Finding (potentials/src/eos/linear.rs, not fixed here): at an absurd density far past
+/// Finding (potentials/src/eos/linear.rs, fixed in `Eos::state`): at an absurd density far past
 /// the cap the Taylor continuation times theta overflows and `state()` returns `Ok` with
 /// pi/n^2 = inf instead of an error. Minimal case found by `eos_state_never_panics`.
 #[test]
-#[ignore = "known: LinearTheta::state returns pn2 = inf at n ~ 1e215 (report to the potentials owner)"]
 fn eos_state_pn2_overflows_at_absurd_density() {
     let vdw = LinearTheta::vdw_excess(1.5, A_VDW, B_VDW);
     let st = vdw.state(0.0, 1.4140151202674355e215, 0.0);
     assert!(st.is_err() || st.as_ref().is_ok_and(|s| s.pn2.is_finite()), "{st:?}");
 }
 
-/// Finding (potentials/src/eos/mod.rs, `Eos::state`, not fixed here): a NaN density is
+/// Finding (potentials/src/eos/mod.rs, `Eos::state`, fixed): a NaN density is
 /// not rejected (`NaN < ISOLATED_DENSITY` is false) and the ideal gas, whose theta does
 /// not read n, returns `Ok` with pi/n^2 = NaN. Minimal case of `eos_state_never_panics`.
 #[test]
-#[ignore = "known: Eos::state(u, NaN) is Ok with pn2 = NaN for the ideal gas (report to the potentials owner)"]
 fn eos_state_accepts_nan_density() {
     let st = LinearTheta::ideal(1.5).state(919.7892251464189, f64::NAN, 0.0);
     assert!(st.is_err() || st.as_ref().is_ok_and(|s| s.pn2.is_finite()), "{st:?}");
@@ -414,14 +412,13 @@ fn pair_update_in_range_states_stay_finite() {
     }
 }
 
-/// Finding (integrators/src/pair_update.rs, not fixed here): with 0.5 gamma dt (1/m_i +
+/// Finding (integrators/src/pair_update.rs, fixed by folding the two kicks): with 0.5 gamma dt (1/m_i +
 /// 1/m_j) >> 1 the explicit half step kicks the pair by ~1e6 and the implicit one kicks
 /// it back, so total momentum is conserved only to round-off of that intermediate kick,
 /// 7e-12 relative to the momenta here (minimal case of `pair_update_conserves_original`).
 /// Applying the two kicks as one (a + b, with the velocity after the first kick computed
 /// as v + (1/m_i + 1/m_j) a) would conserve it to round-off of the momenta.
 #[test]
-#[ignore = "known: stiff pair updates lose momentum to round-off of the overshooting explicit kick"]
 fn pair_update_stiff_momentum_strict() {
     let t = Temps { theta: 1.0, inv_tau: 1.0 / 3.0 };
     let (mut p_i, mut p_j) = ([1.255865066831282e-4, 2.5583378740279114e-5, 5.12814983936212e-3], [9.45010378026018e-3, 1.0, -1.0]);

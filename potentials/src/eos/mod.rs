@@ -71,16 +71,21 @@ pub trait Eos: Send + Sync {
     fn max_density(&self) -> Option<f64>;
 
     /// theta, pi/n^2 and C_V at (u, n), with the isolated-particle rule applied.
+    /// A non-finite result (an absurd density or energy) is an error, never a value.
     #[inline]
     fn state(&self, u: f64, n: f64, guess: f64) -> Result<EosState, EosError> {
         let isolated = n < ISOLATED_DENSITY;
         let n = if isolated { ISOLATED_DENSITY } else { n };
         let theta = self.theta(u, n, guess);
-        if !(theta > 0.0 && theta.is_finite()) {
+        if !(theta > 0.0 && theta.is_finite()) || n.is_nan() {
             return Err(EosError::NonPositiveTheta { u, n, theta });
         }
         let pn2 = if isolated { 0.0 } else { self.pn2(theta, n) };
-        Ok(EosState { theta, pn2, cv: self.cv(theta, n) })
+        let cv = self.cv(theta, n);
+        if !(pn2.is_finite() && cv.is_finite()) {
+            return Err(EosError::NonPositiveTheta { u, n, theta: f64::NAN });
+        }
+        Ok(EosState { theta, pn2, cv })
     }
 
     /// 1/tau = (1 - k_B/C_V)/theta, the inverse dressed temperature (eqs 19, 23).
