@@ -8,7 +8,7 @@ stopped, reruns the stopped ones with `fix shardlow ... reject yes`, and writes
 docs/STABILITY.md and docs/stability.png (results are kept in results.json next to this
 script, so `--report-only` redraws without running).
 
-    python3 scripts/stability/stability_map.py            # full map (about 20 min on 2 cores)
+    python3 scripts/stability/stability_map.py            # full map (about 15 min on 2 free cores)
     python3 scripts/stability/stability_map.py --quick    # 1000-step smoke version
     python3 scripts/stability/stability_map.py --binary PATH --jobs 2
 
@@ -354,8 +354,8 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--binary", default=os.path.join(ROOT, "target", "release", "gendpde"))
     ap.add_argument("--quick", action="store_true", help="1000 steps per run (smoke test); writes to a temp dir")
-    ap.add_argument("--steps", type=int, default=10000, help="steps per vdW run (default 10000)")
-    ap.add_argument("--lj-steps", type=int, default=5000, help="steps per LJ run (default 5000)")
+    ap.add_argument("--steps", type=int, default=5000, help="steps per vdW run (default 5000)")
+    ap.add_argument("--lj-steps", type=int, default=2000, help="steps per LJ run (default 2000)")
     ap.add_argument("--jobs", type=int, default=2, help="simulations at once (default 2)")
     ap.add_argument("--timeout", type=float, default=900.0, help="seconds before a run is killed")
     ap.add_argument("--out", default=None, help="directory for STABILITY.md, stability.png (default docs/)")
