@@ -177,6 +177,11 @@ def fmt_value(axis, v):
     return "50 (flash)" if axis == "flash" else f"{v:g}"
 
 
+def guard_counts(r):
+    # `run` prints the counts only at the end of a finished run
+    return "n/a" if r["outcome"] in ("stopped", "timeout") else f"{r['split']} / {r['left_out']}"
+
+
 def table(results, eos, axes_order):
     out = ["| axis | value | N | outcome | final edrift | guard: split / left out | failure (step: message) | "
            "`reject yes` rerun | wall s |", "|---|---|---|---|---|---|---|---|---|"]
@@ -194,11 +199,11 @@ def table(results, eos, axes_order):
                     rej += f" at step {rr.get('fail_step', '?')}"
                 else:
                     rej += f", edrift {fmt_drift(rr['edrift'])}"
-                rej += f" (left out {rr['left_out']})"
+                    rej += f" (left out {rr['left_out']})"
             base = all(r[a] == BASE[a] for a in BASE) and not r["flash"]
             val = fmt_value(axis, r["value"]) + (" (base)" if base else "")
             out.append(f"| {AXIS_NAMES[axis]} | {val} | {r['N']} | **{r['outcome']}** | {fmt_drift(r['edrift'])} | "
-                       f"{r['split']} / {r['left_out']} | {fail} | {rej} | {r['wall']:.1f} |")
+                       f"{guard_counts(r)} | {fail} | {rej} | {r['wall']:.1f} |")
     return "\n".join(out)
 
 
@@ -225,7 +230,7 @@ def figure(results, path):
     import matplotlib.pyplot as plt
     import numpy as np
 
-    fig, axs = plt.subplots(1, 2, figsize=(9.0, 3.4), dpi=90, gridspec_kw=dict(width_ratios=[1.0, 1.25]))
+    fig, axs = plt.subplots(1, 2, figsize=(9.0, 4.8), dpi=90, gridspec_kw=dict(width_ratios=[1.0, 1.25]))
     ax = axs[0]
     colors = {"vdw": "tab:blue", "lj": "tab:red"}
     for eos in EOS:
@@ -259,7 +264,7 @@ def figure(results, path):
             for i, r in enumerate(rows):
                 m, c = mark[r["outcome"]]
                 ax.plot(i, yy, m, color=c, ms=8)
-                ax.annotate(fmt_value(axis, r["value"]).replace(" (flash)", ""), (i, yy), xytext=(0, 6),
+                ax.annotate(fmt_value(axis, r["value"]).replace(" (flash)", ""), (i, yy), xytext=(0, 5),
                             textcoords="offset points", ha="center", fontsize=6)
                 rr = results.get(key(dict(r, reject=True)))
                 if rr and rr["outcome"] != r["outcome"]:
@@ -317,7 +322,7 @@ in `scripts/stability/results.json`.
   Flash (`scripts/stability/in.flash`): half the steps at T = 1.5, then
   `velocity all create 50 ...` + `set group all theta 50`, and the other half; its drift is
   measured from the first thermo line after the heating (edrift refers to the first run's E0).
-- Steps: **{steps['vdw']} for vdW, {steps['lj']} for LJ** (`eos/lj` costs about 7x more per step than
+- Steps: **{steps['vdw']} for vdW, {steps['lj']} for LJ** (`eos/lj` costs about 6-9x more per step than
   `eos/vdw` in this binary, so the LJ rows were shortened to fit the time budget; the flash rows
   run {steps['vdw'] // 2} + {steps['vdw'] // 2} and {steps['lj'] // 2} + {steps['lj'] // 2}).
 - Classification: **stable** = finished with |edrift| <= 1e-4 at the end; **drifting** = finished with
