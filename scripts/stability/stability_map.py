@@ -323,14 +323,14 @@ in `scripts/stability/results.json`.
   `velocity all create 50 ...` + `set group all theta 50`, and the other half; its drift is
   measured from the first thermo line after the heating (edrift refers to the first run's E0).
 - Steps: **{steps['vdw']} for vdW, {steps['lj']} for LJ** (`eos/lj` costs about 6-9x more per step than
-  `eos/vdw` in this binary, so the LJ rows were shortened to fit the time budget; the flash rows
+  `eos/vdw`{'' if steps['lj'] >= steps['vdw'] else ', so the LJ rows were shortened to fit the time budget'}; the flash rows
   run {steps['vdw'] // 2} + {steps['vdw'] // 2} and {steps['lj'] // 2} + {steps['lj'] // 2}).
 - Classification: **stable** = finished with |edrift| <= 1e-4 at the end; **drifting** = finished with
   |edrift| > 1e-4; **stopped** = non-zero exit (step and message from stderr). Every stopped
   row was run once more with `fix shardlow ... substeps 4 reject yes` (column `reject yes` rerun).
   "guard: split / left out" counts the pair updates split into half steps by the theta -> 0
   guard and those left out by `reject yes` (printed by `run`).
-- Binary: {meta.get('binary_note', meta.get('binary'))}. Two runs at a time on the 2-core machine
+- Binary: the release build of this commit ({meta.get('binary_note', meta.get('binary'))}). Two runs at a time on the 2-core machine
   {meta.get('load_note', '')}; total wall time of the map {f'{total_wall / 60:.1f} min' if total_wall else '-'}.
 - Regenerate: `python3 scripts/stability/stability_map.py` (add `--binary PATH` for another build,
   `--quick` for a 1000-step smoke version, `--report-only` to redraw from results.json).
