@@ -656,26 +656,8 @@ impl H5mdWriter {
                 (frame, rows, ..),
             ),
             (Kind::F64, _) => el.value.write_slice(data, (frame, rows)),
-            (Kind::I32, 3) => {
-                let v = as_triples(data, |x| to_int::<i32>(x).ok_or(x))
-                    .map_err(|x| self.bad_int(field, x))?;
-                el.value
-                    .write_slice::<_, i32, _, _>(v.as_slice(), (frame, rows, ..))
-            }
-            (Kind::I32, _) => {
-                let v = convert(data, to_int::<i32>).map_err(|x| self.bad_int(field, x))?;
-                el.value.write_slice(v.as_slice(), (frame, rows))
-            }
-            (Kind::I64, 3) => {
-                let v = as_triples(data, |x| to_int::<i64>(x).ok_or(x))
-                    .map_err(|x| self.bad_int(field, x))?;
-                el.value
-                    .write_slice::<_, i64, _, _>(v.as_slice(), (frame, rows, ..))
-            }
-            (Kind::I64, _) => {
-                let v = convert(data, to_int::<i64>).map_err(|x| self.bad_int(field, x))?;
-                el.value.write_slice(v.as_slice(), (frame, rows))
-            }
+            (Kind::I32, _) => write_ints::<i32>(&el.value, data, width, frame, rows).map_err(|x| self.bad_int(field, x))?,
+            (Kind::I64, _) => write_ints::<i64>(&el.value, data, width, frame, rows).map_err(|x| self.bad_int(field, x))?,
         };
         h5(&self.path, &what, r)
     }
@@ -851,6 +833,24 @@ fn to_int<T: TryFrom<i64>>(x: f64) -> Option<T> {
 
 fn convert<T>(data: &[f64], f: fn(f64) -> Option<T>) -> Result<Vec<T>, f64> {
     data.iter().map(|&x| f(x).ok_or(x)).collect()
+}
+
+/// Writes integer rows (`width` 1 or 3) of frame `frame`; Err holds a value that is not
+/// an integer of type T.
+fn write_ints<T: H5Type + Copy + TryFrom<i64>>(
+    ds: &Dataset,
+    data: &[f64],
+    width: usize,
+    frame: usize,
+    rows: std::ops::Range<usize>,
+) -> Result<hdf5::Result<()>, f64> {
+    if width == 3 {
+        let v = as_triples(data, |x| to_int::<T>(x).ok_or(x))?;
+        Ok(ds.write_slice::<_, T, _, _>(v.as_slice(), (frame, rows, ..)))
+    } else {
+        let v = convert(data, to_int::<T>)?;
+        Ok(ds.write_slice(v.as_slice(), (frame, rows)))
+    }
 }
 
 fn as_triples<T: Copy, E>(data: &[f64], f: impl Fn(f64) -> Result<T, E>) -> Result<Vec<[T; 3]>, E> {
