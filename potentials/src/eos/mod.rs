@@ -7,10 +7,12 @@
 
 mod linear;
 mod lj;
+mod lth;
 mod table;
 
 pub use linear::LinearTheta;
 pub use lj::LennardJones;
+pub use lth::Lth;
 pub use table::{ErrorAt, TableError, TableErrors, TableGrid, Tabulated};
 
 use std::fmt;
