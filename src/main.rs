@@ -57,6 +57,29 @@ enum Cmd {
         #[arg(long)]
         n: f64,
     },
+    /// Reduced LTh model parameters of argon (argon paper, eqs 101-117; Tables 1, 2, 9).
+    LthParams {
+        /// liquid or supercritical.
+        #[arg(long)]
+        state: String,
+    },
+}
+
+/// `gendpde lth-params`: one `name value` line per parameter.
+fn lth_params(state: &str) -> ExitCode {
+    use gendpde_potentials::lth_params::{LthParams, Reference};
+    let reference = match state {
+        "liquid" => Reference::liquid_argon(),
+        "supercritical" => Reference::supercritical_argon(),
+        _ => {
+            eprintln!("ERROR: unknown state '{state}' (liquid or supercritical)");
+            return ExitCode::FAILURE;
+        }
+    };
+    for (name, value) in LthParams::derive(&reference).lines() {
+        println!("{name} {}", gendpde_io::format_g(value, 8));
+    }
+    ExitCode::SUCCESS
 }
 
 /// `gendpde eos`: one `name value` line per quantity.
@@ -121,6 +144,7 @@ fn main() -> ExitCode {
         Cmd::Run { script, log } => (script, Mode::Run, Some(log)),
         Cmd::Check { script } => (script, Mode::Check, None),
         Cmd::Eos { model, params, theta, u, n } => return eos(model, params, theta, u, n),
+        Cmd::LthParams { state } => return lth_params(&state),
         Cmd::H5mdRepair { file } => {
             return match gendpde_io::h5md::repair_h5md(&file).and_then(|_| gendpde_io::check_h5md(&file)) {
                 Ok(summary) => {
