@@ -5,18 +5,22 @@
 //! follow from its own equations the test checks what the equations give, at the same
 //! digits, and the table below records both (see potentials/src/lth_params.rs):
 //!
-//! | entry                     | printed | equations | difference |
-//! |---------------------------|---------|-----------|------------|
-//! | C_V0* liquid (eq 108)     | 12.51   | 11.008    | -1.50 (= 3/2 k_B; `cv_macro` = 12.508 matches) |
-//! | alpha* liquid (eq 106)    | 29.35   | 29.3448   | -0.0052    |
-//! | gamma* R = 1.3365 (112)   | 23.42   | 23.408    | -0.012     |
-//! | gamma* R = 2.1564 (112)   | 2.14    | 2.1346    | -0.0054    |
-//! | kappa* R = 1.3365 (113)   | 0.0079  | 0.0079638 | +0.00006 (`kappa_macro` 0.0079608, also 0.0080) |
-//! | kappa* R = 2.1564 (113)   | 0.00072 | 0.00072502| +0.000005 (`kappa_macro` 0.00072429 matches) |
-//! | C_V0* supercritical (108) | 8.56    | 7.0634    | -1.50 (`cv_macro` = 8.5634 matches) |
-//! | pi00* supercritical (101) | 0.5211  | 0.49990   | -0.0212    |
-//! | gamma* supercritical (112)| 1.05    | 1.0449    | -0.0051    |
-//! | kappa* supercritical (113)| 0.034   | 0.034838  | +0.0008 (`kappa_macro` 0.034213 matches) |
+//! | entry                      | printed | equations  | equations - printed |
+//! |----------------------------|---------|------------|---------------------|
+//! | C_V0* liquid (eq 108)      | 12.51   | 11.008     | -1.50 (a)           |
+//! | alpha* liquid (eq 106)     | 29.35   | 29.3448    | -0.0052             |
+//! | gamma* R = 1.3365 (eq 112) | 23.42   | 23.408     | -0.012              |
+//! | gamma* R = 2.1564 (eq 112) | 2.14    | 2.1346     | -0.0054             |
+//! | kappa* R = 1.3365 (eq 113) | 0.0079  | 0.0079638  | +0.00006 (b)        |
+//! | kappa* R = 2.1564 (eq 113) | 0.00072 | 0.00072502 | +0.000005 (c)       |
+//! | C_V0* supercritical        | 8.56    | 7.0634     | -1.50 (a)           |
+//! | pi00* supercritical (101)  | 0.5211  | 0.49990    | -0.0212             |
+//! | gamma* supercritical (112) | 1.05    | 1.0449     | -0.0051             |
+//! | kappa* supercritical (113) | 0.034   | 0.034838   | +0.0008 (c)         |
+//!
+//! (a) the printed value is Cbar_V/(N k_B) of eq 111 (`cv_macro` 12.508 and 8.5634 match);
+//! (b) with `cv_macro` in eq 113 0.0079608, which still rounds to 0.0080;
+//! (c) with `cv_macro` in eq 113 (`kappa_macro`) 0.00072429 and 0.034213 match.
 
 use std::collections::HashMap;
 use std::process::Command;

@@ -4,6 +4,7 @@
 //! docstring names another paper. This crate depends on nothing project-internal.
 
 pub mod eos;
+pub mod hnc;
 pub mod lth_params;
 pub mod volume;
 pub mod weight;

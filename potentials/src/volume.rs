@@ -40,7 +40,7 @@ pub struct CorrectedDensity {
     pub n: f64,
     /// zeta = dn/dn^b (eq 24); 0 without neighbours, where no w' multiplies it.
     pub zeta: f64,
-    /// dzeta/dn^b (enters [W_nn], eq 88); 0 without neighbours.
+    /// dzeta/dn^b (enters \[W_nn\], eq 88); 0 without neighbours.
     pub zeta_n: f64,
 }
 
@@ -224,8 +224,9 @@ mod tests {
                 // eq 25 as printed, against d/dk of eq 2
                 let k = v.k(nb);
                 let c = 4.0 * PI * v.r3;
-                let eq25 = -c * (1.5 + (1.0 - 3.0 * k) / (2.0 * k.sqrt()) * (1.0 / k.sqrt()).atan()
-                    - ((k + 1.0) / k).ln());
+                let eq25 = -c
+                    * (1.5 + (1.0 - 3.0 * k) / (2.0 * k.sqrt()) * (1.0 / k.sqrt()).atan()
+                        - ((k + 1.0) / k).ln());
                 let fd = d1(&|x| c * integral(x).0, k, 1e-3 * k);
                 assert!((eq25 - fd).abs() < 1e-7 * fd.abs(), "eq 25 at k {k}: {eq25} vs {fd}");
             }
