@@ -22,7 +22,7 @@ mod transform;
 #[cfg(test)]
 mod tests;
 
-pub use lth::{LthFluid, LthHnc, MacroState};
+pub use lth::{LthFluid, LthHnc, MacroState, MeanField};
 pub use transform::RadialGrid;
 
 use std::fmt;

@@ -37,10 +37,10 @@ pub struct LthFluid<W: Weight> {
     pub temperature: f64,
 }
 
-/// Macroscopic state of an LTh fluid from one g(r).
+/// The mean-field coefficients at one mean primitive density n^b.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct MacroState {
-    /// n^b = c int w g (eq 78) and the corrected density n(n^b) (eqs 2-3, 24).
+pub struct MeanField {
+    /// n^b and the corrected density n(n^b) with zeta (eqs 2-3, 24).
     pub density: CorrectedDensity,
     /// Particle pressure pi(T, n) (eq 41 at the reservoir temperature, eq 73).
     pub pi: f64,
@@ -48,6 +48,13 @@ pub struct MacroState {
     pub w_n: f64,
     /// \[W_nn\] = d\[W_n\]/dn^b (eq 88, see the module doc).
     pub w_nn: f64,
+}
+
+/// Macroscopic state of an LTh fluid from one g(r).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MacroState {
+    /// At n^b = c int w g (eq 78).
+    pub mean_field: MeanField,
     /// The three excess terms of eq 91 (pair, pair with w, triplet by superposition).
     pub p_ex: [f64; 3],
     /// P = c k_B T + P_ex (eqs 85, 91).
@@ -69,14 +76,14 @@ impl<W: Weight> LthFluid<W> {
     }
 
     /// Corrected density, pi(T, n), \[W_n\] and \[W_nn\] at a mean primitive density n^b.
-    pub fn mean_field(&self, nb: f64) -> (CorrectedDensity, f64, f64, f64) {
-        let d = self.volume.density(nb);
-        let (n, z) = (d.n, d.zeta);
+    pub fn mean_field(&self, nb: f64) -> MeanField {
+        let density = self.volume.density(nb);
+        let (n, z) = (density.n, density.zeta);
         let pi = self.eos.pressure(self.temperature, n);
         let w_n = pi * z / (n * n);
-        let w_nn =
-            z * z * (1.0 / self.eos.kappa_t - 2.0 * pi) / (n * n * n) + pi * d.zeta_n / (n * n);
-        (d, pi, w_n, w_nn)
+        let w_nn = z * z * (1.0 / self.eos.kappa_t - 2.0 * pi) / (n * n * n)
+            + pi * density.zeta_n / (n * n);
+        MeanField { density, pi, w_n, w_nn }
     }
 
     /// w(r_i) and w'(r_i) (normalised, zero beyond R_cut).
@@ -98,7 +105,8 @@ impl<W: Weight> LthFluid<W> {
         assert_eq!(g.len(), grid.points(), "g on the grid");
         let (w, dw) = self.kernel(grid);
         let nb = self.primitive_density(grid, &w, g);
-        let (density, pi, w_n, w_nn) = self.mean_field(nb);
+        let mean_field = self.mean_field(nb);
+        let MeanField { density, w_n, w_nn, .. } = mean_field;
         let n = grid.points();
         let c = self.density;
         // [(w g) * h](r) by the convolution theorem
@@ -118,10 +126,7 @@ impl<W: Weight> LthFluid<W> {
             [-w_n * c * c * i1 / 3.0, -w_nn * c * c * i2 / 3.0, -w_nn * c * c * c * i3 / 3.0];
         let kt = self.kt();
         MacroState {
-            density,
-            pi,
-            w_n,
-            w_nn,
+            mean_field,
             p_ex,
             pressure: c * kt + p_ex.iter().sum::<f64>(),
             energy: 1.5 * kt + self.eos.potential(density.n) + self.eos.cv * self.temperature,
@@ -135,7 +140,7 @@ impl<W: Weight> LthFluid<W> {
         let (w, _) = self.kernel(grid);
         let (kt, c, n) = (self.kt(), self.density, grid.points());
         let beta_u = |nb: f64| {
-            let w_n = self.mean_field(nb).2;
+            let w_n = self.mean_field(nb).w_n;
             w.iter().map(|w| 2.0 * w_n * w / kt).collect::<Vec<f64>>()
         };
         let mut x0 = vec![0.0; n + 1];

@@ -27,6 +27,17 @@ fn transform_of_a_gaussian_and_back() {
     assert!((grid.integrate(&f) - PI.powf(1.5)).abs() < 1e-12);
 }
 
+/// A strongly attractive potential at liquid density has no HNC solution: an error, not
+/// a NaN or a hang.
+#[test]
+fn no_solution_is_an_error() {
+    let grid = RadialGrid::new(512, 0.02);
+    let bu: Vec<f64> = (0..512).map(|i| -6.0 * (-grid.r(i).powi(2)).exp()).collect();
+    let opts = HncOptions { max_iter: 2000, ..HncOptions::default() };
+    let e = solve(&grid, 1.0, &bu, None, &opts).unwrap_err();
+    assert!(matches!(e, HncError::Diverged { .. } | HncError::NotConverged { .. }), "{e}");
+}
+
 #[test]
 fn tables_are_sampled_linearly_with_g_1_beyond() {
     let grid = RadialGrid::new(8, 0.5);
@@ -126,10 +137,10 @@ fn w_nn_is_the_derivative_of_w_n() {
     for (rc, fc) in TABLE4 {
         let f = argon(rc, fc);
         for nb in [0.5, 0.85, 1.0] {
-            let (h, w_n) = (1e-3, |x: f64| f.mean_field(x).2);
+            let (h, w_n) = (1e-3, |x: f64| f.mean_field(x).w_n);
             let fd = (8.0 * (w_n(nb + h) - w_n(nb - h)) - (w_n(nb + 2.0 * h) - w_n(nb - 2.0 * h)))
                 / (12.0 * h);
-            let w_nn = f.mean_field(nb).3;
+            let w_nn = f.mean_field(nb).w_nn;
             assert!(rel(fd, w_nn) < 1e-7, "R {rc}, n^b {nb}: {fd} vs {w_nn}");
         }
     }
@@ -146,8 +157,8 @@ fn ideal_structure_gives_the_mean_field_pressure() {
         let f = argon(rc, fc);
         let s = f.macro_state(&grid, &one);
         let c = f.density;
-        assert!(rel(s.density.nb, c) < 1e-5);
-        let (_, _, w_n, w_nn) = f.mean_field(s.density.nb);
+        assert!(rel(s.mean_field.density.nb, c) < 1e-5);
+        let MeanField { w_n, w_nn, .. } = f.mean_field(s.mean_field.density.nb);
         let w2 = 4.0
             * PI
             * grid.dr()
@@ -183,18 +194,19 @@ fn table_8_trends() {
         let f = argon(rc, fc);
         let sol = f.hnc(&grid, &HncOptions::default()).unwrap();
         let s = sol.state;
+        let (d, w_n) = (s.mean_field.density, s.mean_field.w_n);
         eprintln!(
             "R {rc}: n^b {:.4} n {:.4} P {:.4} U/N {:.4} beta 2u1(0) {:.3} ({} iterations)",
-            s.density.nb,
-            s.density.n,
+            d.nb,
+            d.n,
             s.pressure,
             s.energy,
-            2.0 * s.w_n * f.weight.eval(0.0).0 / f.temperature,
+            2.0 * w_n * f.weight.eval(0.0).0 / f.temperature,
             sol.hnc.iterations
         );
-        assert!(s.density.n > 1.0 && s.pressure > 0.127);
+        assert!(d.n > 1.0 && s.pressure > 0.127);
         if let Some(prev) = last {
-            assert!(s.density.n < prev.density.n);
+            assert!(d.n < prev.mean_field.density.n);
             assert!(s.pressure < prev.pressure && s.energy > prev.energy);
         }
         last = Some(s);
@@ -206,6 +218,6 @@ fn table_8_trends() {
         // linear interpolation of bins 0.01 wide: errors O(0.01^2)
         let dp = (again.pressure - s.pressure).abs();
         assert!(dp < 1e-3 * s.pressure, "{} vs {}", again.pressure, s.pressure);
-        assert!((again.density.n - s.density.n).abs() < 1e-4);
+        assert!((again.mean_field.density.n - d.n).abs() < 1e-4);
     }
 }
