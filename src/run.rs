@@ -32,11 +32,11 @@ pub fn prepare(it: &mut Interpreter, cmd: &Command) -> Result<Box<dyn Physics>, 
     })?;
     if let Some(grid) = &sys.grid {
         log::info!(
-            "cell grid {:?} of side {:?}; {} ghosts; {} neighbour entries; {} sweep pairs",
+            "cell grid {:?} of side {:?}; {} ghosts; {} neighbour pairs; {} sweep pairs",
             grid.count,
             grid.side,
             sys.store.nghost(),
-            sys.nlist.neighbors.len(),
+            sys.nlist.pairs.len(),
             sys.sweep.pairs.len()
         );
     }

@@ -6,7 +6,7 @@
 use crate::args::Args;
 use gendpde_integrators::{Dissipation, GenDpde, HeatModel, Physics, RebuildPolicy, Reservoir, Settings};
 use gendpde_io::{Command, ScriptError};
-use gendpde_potentials::{CubicSpline, Eos, LennardJones, LinearTheta, Linear, Lucy, Quadratic, WeightKind};
+use gendpde_potentials::{CubicSpline, Eos, LennardJones, LinearTheta, Linear, Lucy, Quadratic, TableError, TableErrors, TableGrid, Tabulated, WeightKind};
 
 /// `pair_style gendpde CUTOFF SEED [weight W]` with `pair_coeff * * GAMMA KAPPA [RC_D [RC_H]]`.
 #[derive(Clone, Debug, PartialEq)]
@@ -34,29 +34,61 @@ pub struct PairCoeff {
     pub rc_heat: f64,
 }
 
-/// A particle EOS chosen by a `fix eos/...`.
+/// A particle EOS chosen by a `fix eos/...`, analytic or through a table (`table`
+/// keyword).
 #[derive(Clone, Debug, PartialEq)]
 pub enum EosModel {
     Linear(LinearTheta),
     Lj(LennardJones),
+    LinearTable(Tabulated<LinearTheta>),
+    LjTable(Tabulated<LennardJones>),
+}
+
+/// Evaluates `$body` with `$e` bound to the concrete EOS of `$model`.
+macro_rules! each_eos {
+    ($model:expr, $e:ident => $body:expr) => {
+        match $model {
+            EosModel::Linear($e) => $body,
+            EosModel::Lj($e) => $body,
+            EosModel::LinearTable($e) => $body,
+            EosModel::LjTable($e) => $body,
+        }
+    };
 }
 
 impl EosModel {
     /// Largest mean number density the model admits, if bounded.
     pub fn max_density(&self) -> Option<f64> {
-        match self {
-            Self::Linear(e) => e.max_density(),
-            Self::Lj(e) => e.max_density(),
-        }
+        each_eos!(self, e => e.max_density())
     }
 
     /// The state at (theta, n), or at (u, n) when `u` is given: `name value` pairs as
-    /// `gendpde eos` prints them.
+    /// `gendpde eos` prints them (with the table's measured errors for a table).
     pub fn describe(&self, theta: Option<f64>, u: Option<f64>, n: f64) -> Result<Vec<(&'static str, f64)>, String> {
-        match self {
-            Self::Linear(e) => describe(e, theta, u, n),
-            Self::Lj(e) => describe(e, theta, u, n),
+        let mut out = each_eos!(self, e => describe(e, theta, u, n))?;
+        if let Some(err) = self.table_errors() {
+            out.extend([("table_error_u", err.u.rel), ("table_error_pn2", err.pn2.rel), ("table_error_cv", err.cv.rel), ("table_error_theta", err.theta.rel)]);
         }
+        Ok(out)
+    }
+
+    /// The largest relative errors of a table against its analytic model, sampled at 4 x 4
+    /// states per cell (None for an analytic model).
+    pub fn table_errors(&self) -> Option<TableErrors> {
+        match self {
+            Self::LinearTable(t) => Some(t.max_error(4)),
+            Self::LjTable(t) => Some(t.max_error(4)),
+            _ => None,
+        }
+    }
+
+    /// Replaces the model by its table on `grid`.
+    fn tabulate(self, grid: TableGrid) -> Result<Self, TableError> {
+        Ok(match self {
+            Self::Linear(e) => Self::LinearTable(Tabulated::new(e, grid)?),
+            Self::Lj(e) => Self::LjTable(Tabulated::new(e, grid)?),
+            table => table,
+        })
     }
 }
 
@@ -218,8 +250,27 @@ fn heat_keyword(a: &mut Args) -> Result<Option<HeatModel>, ScriptError> {
 }
 
 /// The EOS fixes: `eos/vdw CV A B [excess|full] [cap F]`, `eos/lj CV`, `eos/ideal CV`, `eos/cv CV`,
-/// `eos/density CV c1 [c2 ...]`, `eos/linear CV Q R B [c1 ...]`.
+/// `eos/density CV c1 [c2 ...]`, `eos/linear CV Q R B [c1 ...]`, each optionally followed by
+/// `table THETA_MIN THETA_MAX N_THETA N_MIN N_MAX N_N`.
 pub fn parse_eos(style: &str, a: &mut Args, kb: f64) -> Result<EosModel, ScriptError> {
+    let model = parse_model(style, a, kb)?;
+    if a.peek() != Some("table") {
+        return Ok(model);
+    }
+    a.word("keyword")?;
+    let theta = (a.positive("the table's smallest theta")?, a.positive("the table's largest theta")?, a.u64("the number of theta nodes")? as usize);
+    let n = (a.non_negative("the table's smallest density")?, a.positive("the table's largest density")?, a.u64("the number of density nodes")? as usize);
+    if let Some(w) = a.peek() {
+        return Err(a.err(format!("unexpected '{w}' after the table grid")));
+    }
+    let table = model.tabulate(TableGrid { theta, n }).map_err(|e| a.err(e.to_string()))?;
+    if let Some(err) = table.table_errors() {
+        log::info!("EOS table: {err}");
+    }
+    Ok(table)
+}
+
+fn parse_model(style: &str, a: &mut Args, kb: f64) -> Result<EosModel, ScriptError> {
     let cv = a.positive("the heat capacity C_V")?;
     if cv <= kb {
         return Err(a.err(format!("C_V = {cv} must exceed k_B = {kb} (the dressed temperature of eq 23 diverges at C_V = k_B)")));
@@ -228,7 +279,7 @@ pub fn parse_eos(style: &str, a: &mut Args, kb: f64) -> Result<EosModel, ScriptE
         "eos/vdw" => {
             let (va, b) = (a.non_negative("the vdW attraction a")?, a.positive("the vdW excluded volume b")?);
             let mut e = LinearTheta::vdw_excess(cv, va, b);
-            while let Some(k) = a.peek() {
+            while let Some(k) = a.peek().filter(|&k| k != "table") {
                 a.word("keyword")?;
                 match k {
                     "excess" => e = LinearTheta { cap: e.cap, ..LinearTheta::vdw_excess(cv, va, b) },
@@ -240,7 +291,7 @@ pub fn parse_eos(style: &str, a: &mut Args, kb: f64) -> Result<EosModel, ScriptE
                         }
                         e.cap = f;
                     }
-                    _ => return Err(a.err(format!("unknown keyword '{k}'; known: excess, full, cap"))),
+                    _ => return Err(a.err(format!("unknown keyword '{k}'; known: excess, full, cap, table"))),
                 }
             }
             e
@@ -265,7 +316,7 @@ pub fn parse_eos(style: &str, a: &mut Args, kb: f64) -> Result<EosModel, ScriptE
 
 fn coefficients(a: &mut Args) -> Result<Vec<f64>, ScriptError> {
     let mut c = Vec::new();
-    while a.remaining() > 0 {
+    while a.remaining() > 0 && a.peek() != Some("table") {
         c.push(a.f64("a coefficient c_k of V(n) = sum_k c_k n^k")?);
     }
     Ok(c)
@@ -332,10 +383,7 @@ pub fn build_physics(
         }
     }
     let settings = Settings { dt, skin, rebuild, verlet, dissipation, reservoir };
-    Ok(match eos {
-        EosModel::Linear(e) => with_weight(e, pair.weight, pair.cutoff, settings),
-        EosModel::Lj(e) => with_weight(e, pair.weight, pair.cutoff, settings),
-    })
+    Ok(each_eos!(eos, e => with_weight(e, pair.weight, pair.cutoff, settings)))
 }
 
 /// Monomorphises the dynamics over the weight function.

@@ -7,6 +7,7 @@ pub mod comm;
 pub mod domain;
 pub mod fields;
 pub mod neighbor;
+pub mod pair_search;
 pub mod particles;
 pub mod sweep_pairs;
 
@@ -15,6 +16,7 @@ pub use comm::{exact_sums, Comm, Local, ProcGrid, Transport};
 pub use domain::Domain;
 pub use fields::Fields;
 pub use neighbor::NeighborList;
+pub use pair_search::{build_lists, ListRequest};
 pub use particles::Particles;
 pub use sweep_pairs::SweepPairs;
 

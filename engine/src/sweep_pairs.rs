@@ -3,10 +3,7 @@
 //! Pairs of colour c live in blocks C + {0,1}^3 of cells C with colour c; blocks of
 //! one colour are disjoint, so they commute. Within a block, pairs run by pair of cells
 //! in a fixed order, then by the tags of the two particles (the bins hold each cell in
-//! tag order): an order no decomposition can change.
-
-use crate::cells::CellBins;
-use crate::{dot, sub, CellGrid, Particles};
+//! tag order): an order no decomposition can change. Built by [`crate::pair_search`].
 
 #[derive(Clone, Debug, Default)]
 pub struct SweepPairs {
@@ -20,70 +17,7 @@ pub struct SweepPairs {
     pub ghost_writes: [Vec<u32>; 8],
 }
 
-/// Cell offsets (a, b) within a block whose componentwise min is the block's own cell:
-/// the 3-bit masks a, b with a & b == 0 and a <= b (14 pairs of cells).
-const CELL_PAIRS: [(u8, u8); 14] = {
-    let mut out = [(0u8, 0u8); 14];
-    let mut k = 0;
-    let mut a = 0u8;
-    while a < 8 {
-        let mut b = a;
-        while b < 8 {
-            if a & b == 0 {
-                out[k] = (a, b);
-                k += 1;
-            }
-            b += 1;
-        }
-        a += 1;
-    }
-    out
-};
-
 impl SweepPairs {
-    /// Collects, colour by colour, the pairs closer than `radius` owned by the cells
-    /// in [lo, hi).
-    pub fn build(&mut self, store: &Particles, bins: &CellBins, lo: [i32; 3], hi: [i32; 3], radius: f64) {
-        self.radius = radius;
-        let r2max = radius * radius;
-        self.pairs.clear();
-        let offset = |c: [i32; 3], m: u8| [c[0] + (m & 1) as i32, c[1] + ((m >> 1) & 1) as i32, c[2] + ((m >> 2) & 1) as i32];
-        for colour in 0..8 {
-            self.colour_start[colour] = self.pairs.len();
-            let mut writes = Vec::new();
-            for z in lo[2]..hi[2] {
-                for y in lo[1]..hi[1] {
-                    for x in lo[0]..hi[0] {
-                        let c = [x, y, z];
-                        if CellGrid::colour(c) != colour {
-                            continue;
-                        }
-                        let block_start = self.pairs.len();
-                        for &(a, b) in &CELL_PAIRS {
-                            let (ca, cb) = (bins.cell(offset(c, a)), bins.cell(offset(c, b)));
-                            for (k, &i) in ca.iter().enumerate() {
-                                let partners = if a == b { &ca[k + 1..] } else { cb };
-                                for &j in partners {
-                                    let d = sub(store.r[i as usize], store.r[j as usize]);
-                                    if dot(d, d) < r2max {
-                                        let pair = if store.tag[i as usize] < store.tag[j as usize] { [i, j] } else { [j, i] };
-                                        self.pairs.push(pair);
-                                    }
-                                }
-                            }
-                        }
-                        let block = &self.pairs[block_start..];
-                        writes.extend(block.iter().flatten().copied().filter(|&k| k as usize >= store.nlocal));
-                    }
-                }
-            }
-            writes.sort_unstable();
-            writes.dedup();
-            self.ghost_writes[colour] = writes;
-        }
-        self.colour_start[8] = self.pairs.len();
-    }
-
     /// Pairs of one colour.
     pub fn colour(&self, c: usize) -> &[[u32; 2]] {
         &self.pairs[self.colour_start[c]..self.colour_start[c + 1]]
@@ -93,7 +27,9 @@ impl SweepPairs {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{Comm, Domain};
+    use crate::cells::CellBins;
+    use crate::pair_search::{build_lists, ListRequest};
+    use crate::{CellGrid, Comm, Domain, NeighborList, Particles};
     use std::collections::{HashMap, HashSet};
 
     /// A random gas in a 4x4x6 cell box, with its ghosts and bins.
@@ -123,7 +59,7 @@ mod tests {
         let (s, bins, grid, domain) = gas();
         let (lo, hi) = ([0; 3], grid.count.map(|c| c as i32));
         let mut sp = SweepPairs::default();
-        sp.build(&s, &bins, lo, hi, 2.0);
+        build_lists(&s, &bins, lo, hi, ListRequest { nlist: None, sweep: Some((&mut sp, 2.0)) });
         let l = domain.len();
         let mut expect = HashSet::new();
         for i in 0..s.nlocal {
@@ -150,7 +86,8 @@ mod tests {
     fn within_a_colour_every_particle_has_one_writer() {
         let (s, bins, grid, _) = gas();
         let mut sp = SweepPairs::default();
-        sp.build(&s, &bins, [0; 3], grid.count.map(|c| c as i32), 2.0);
+        let hi = grid.count.map(|c| c as i32);
+        build_lists(&s, &bins, [0; 3], hi, ListRequest { nlist: None, sweep: Some((&mut sp, 2.0)) });
         for c in 0..8 {
             // tag -> the local index (owned or ghost copy) written in this colour
             let mut writer: HashMap<u64, u32> = HashMap::new();
@@ -163,5 +100,54 @@ mod tests {
             let ghosts: Vec<u32> = writer.values().copied().filter(|&k| k as usize >= s.nlocal).collect();
             assert_eq!(ghosts.len(), sp.ghost_writes[c].len());
         }
+    }
+
+    /// Tags of the particles closer than `radius` to each owned particle, by brute force
+    /// over the periodic images.
+    fn brute_neighbours(s: &Particles, domain: &Domain, radius: f64) -> Vec<Vec<u64>> {
+        let l = domain.len();
+        (0..s.nlocal)
+            .map(|i| {
+                let mut tags: Vec<u64> = (0..s.nlocal)
+                    .filter(|&j| {
+                        let mut d2 = 0.0;
+                        for k in 0..3 {
+                            let mut d = s.r[i][k] - s.r[j][k];
+                            d -= l[k] * (d / l[k]).round();
+                            d2 += d * d;
+                        }
+                        j != i && d2 < radius * radius
+                    })
+                    .map(|j| s.tag[j])
+                    .collect();
+                tags.sort_unstable();
+                tags
+            })
+            .collect()
+    }
+
+    #[test]
+    fn neighbour_pairs_give_every_owned_particle_each_neighbour_once() {
+        let (s, bins, grid, domain) = gas();
+        let (mut sp, mut nl) = (SweepPairs::default(), NeighborList::default());
+        let hi = grid.count.map(|c| c as i32);
+        // the sweep on a shorter radius than the lists: each filtered on its own
+        let req = ListRequest { nlist: Some((&mut nl, 2.0)), sweep: Some((&mut sp, 1.5)) };
+        build_lists(&s, &bins, [0; 3], hi, req);
+        let expect = brute_neighbours(&s, &domain, 2.0);
+        let mut got = vec![Vec::new(); s.nlocal];
+        for &[i, j] in &nl.pairs {
+            for (a, b) in [(i as usize, j as usize), (j as usize, i as usize)] {
+                if a < s.nlocal {
+                    got[a].push(s.tag[b]);
+                }
+            }
+        }
+        for i in 0..s.nlocal {
+            got[i].sort_unstable();
+            assert_eq!(got[i], expect[i], "neighbours of tag {}", s.tag[i]);
+        }
+        let closer: usize = brute_neighbours(&s, &domain, 1.5).iter().map(Vec::len).sum();
+        assert_eq!(2 * sp.pairs.len(), closer);
     }
 }

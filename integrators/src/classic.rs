@@ -17,11 +17,11 @@ use crate::error::StepError;
 use crate::heat::{Original, Temps};
 use crate::pair_update::{pair_update, PairDrive, PairState};
 use crate::physics::{Physics, SetupError};
-use crate::rng::{normal_pair, stream};
+use crate::rng::{normal_pair, stream, Normals};
 use crate::settings::Settings;
 use crate::sweep::SWEPT;
 use crate::system::System;
-use gendpde_engine::{dot, sub, Fields};
+use gendpde_engine::{dot, sub, Fields, Particles, Vec3};
 use gendpde_potentials::{Lucy, Weight};
 
 /// The pair force computed in the force pass.
@@ -100,74 +100,54 @@ impl ClassicDpd {
     }
 
     /// MDPD density: rho_i = sum_{j != i} m_j W(r_ij), without a self term, as the
-    /// reference LAMMPS (22 Jul 2025) sums it.
+    /// reference LAMMPS (22 Jul 2025) sums it. One pass over the half list (see
+    /// [`gendpde_engine::NeighborList::pairs`]).
     fn rho(&self, sys: &mut System, h: f64) {
         let w = Lucy::new(h);
         let s = &mut sys.store;
-        for i in 0..s.nlocal {
-            let ri = s.r[i];
-            let mut rho = 0.0;
-            for &j in sys.nlist.of(i) {
-                let j = j as usize;
-                let d = sub(ri, s.r[j]);
-                let r2 = dot(d, d);
-                if r2 < h * h {
-                    rho += s.mass[j] * w.eval(r2.sqrt()).0;
+        let n = s.nlocal;
+        s.rho[..n].fill(0.0);
+        for &[i, j] in &sys.nlist.pairs {
+            let (i, j) = (i as usize, j as usize);
+            let d = sub(s.r[i], s.r[j]);
+            let r2 = dot(d, d);
+            if r2 < h * h {
+                let wij = w.eval(r2.sqrt()).0;
+                if i < n {
+                    s.rho[i] += s.mass[j] * wij;
+                }
+                if j < n {
+                    s.rho[j] += s.mass[i] * wij;
                 }
             }
-            s.rho[i] = rho;
         }
     }
 
     /// Pair forces at the current positions and velocities; the noise of step `step`.
     fn forces(&self, sys: &mut System, step: u64) {
         let inv_sqrt_dt = 1.0 / self.settings.dt.sqrt();
-        let s = &mut sys.store;
-        for i in 0..s.nlocal {
-            let (ri, vi) = (s.r[i], velocity(s, i));
-            let (mut f, mut e, mut virial) = ([0.0; 3], 0.0, 0.0);
-            for &j in sys.nlist.of(i) {
-                let j = j as usize;
-                let d = sub(ri, s.r[j]);
-                let r2 = dot(d, d);
-                let (fpair, epair) = match &self.force {
-                    PairForce::Dpd { a0, rc, gamma, sigma } => {
-                        if r2 >= rc * rc || r2 < 1e-20 {
-                            continue;
-                        }
-                        let r = r2.sqrt();
-                        let w = 1.0 - r / rc;
-                        let mut fp = a0 * w;
-                        if *gamma > 0.0 || *sigma > 0.0 {
-                            let xi = normal_pair(self.seed, step, s.tag[i].min(s.tag[j]), s.tag[i].max(s.tag[j]), stream::FORCE).0;
-                            fp += -gamma * w * w * dot(d, sub(vi, velocity(s, j))) / r + sigma * w * xi * inv_sqrt_dt;
-                        }
-                        (fp / r, 0.25 * a0 * rc * w * w)
-                    }
-                    PairForce::Mdpd { a, b, rc, rd, gamma, sigma, .. } => {
-                        if r2 >= rc * rc || r2 < 1e-20 {
-                            continue;
-                        }
-                        let r = r2.sqrt();
-                        let wc = 1.0 - r / rc;
-                        let wd = (1.0 - r / rd).max(0.0);
-                        let mut fp = a * wc + b * (s.rho[i] + s.rho[j]) * wd;
-                        if *gamma > 0.0 || *sigma > 0.0 {
-                            let xi = normal_pair(self.seed, step, s.tag[i].min(s.tag[j]), s.tag[i].max(s.tag[j]), stream::FORCE).0;
-                            fp += -gamma * wc * wc * dot(d, sub(vi, velocity(s, j))) / r + sigma * wc * xi * inv_sqrt_dt;
-                        }
-                        (fp / r, 0.25 * (a * rc * wc * wc + b * rd * (s.rho[i] + s.rho[j]) * wd * wd))
-                    }
-                };
-                for c in 0..3 {
-                    f[c] += fpair * d[c];
+        let (seed, pairs, s) = (self.seed, &sys.nlist.pairs, &mut sys.store);
+        let noise = |s: &Particles, i: usize, j: usize| normal_pair(seed, step, s.tag[i].min(s.tag[j]), s.tag[i].max(s.tag[j]), stream::FORCE).0;
+        match self.force {
+            PairForce::Dpd { a0, rc, gamma: 0.0, sigma: 0.0 } => tally(s, pairs, rc, |_, _, _, _, r| {
+                let w = 1.0 - r / rc;
+                (a0 * w, 0.25 * a0 * rc * w * w)
+            }),
+            PairForce::Dpd { a0, rc, gamma, sigma } => tally(s, pairs, rc, |s, i, j, d, r| {
+                let w = 1.0 - r / rc;
+                let fp = a0 * w - gamma * w * w * dot(d, sub(velocity(s, i), velocity(s, j))) / r + sigma * w * noise(s, i, j) * inv_sqrt_dt;
+                (fp, 0.25 * a0 * rc * w * w)
+            }),
+            PairForce::Mdpd { a, b, rc, rd, gamma, sigma, .. } => tally(s, pairs, rc, |s, i, j, d, r| {
+                let wc = 1.0 - r / rc;
+                let wd = (1.0 - r / rd).max(0.0);
+                let rho = s.rho[i] + s.rho[j];
+                let mut fp = a * wc + b * rho * wd;
+                if gamma > 0.0 || sigma > 0.0 {
+                    fp += -gamma * wc * wc * dot(d, sub(velocity(s, i), velocity(s, j))) / r + sigma * wc * noise(s, i, j) * inv_sqrt_dt;
                 }
-                e += epair;
-                virial += 0.5 * fpair * r2;
-            }
-            s.f[i] = f;
-            s.epair[i] = e;
-            s.virial[i] = virial;
+                (fp, 0.25 * (a * rc * wc * wc + b * rd * rho * wd * wd))
+            }),
         }
     }
 
@@ -175,7 +155,7 @@ impl ClassicDpd {
     fn sweep(&self, sys: &mut System, p: &ShardlowDpd) {
         let (dt, kb) = (self.settings.dt, self.kb);
         let sqrt_dt = dt.sqrt();
-        let step = sys.step;
+        let (step, normals) = (sys.step, Normals::get());
         for colour in 0..8 {
             let s = &mut sys.store;
             for &[i, j] in sys.sweep.colour(colour) {
@@ -186,14 +166,15 @@ impl ClassicDpd {
                     continue;
                 }
                 let r = r2.sqrt();
+                let inv_r = 1.0 / r;
                 let w = 1.0 - r / p.rc;
                 let (inv_i, inv_j) = (1.0 / s.theta[i], 1.0 / s.theta[j]);
                 let theta_ij = p.temperature.unwrap_or(2.0 / (inv_i + inv_j));
-                let (xi, xibar) = normal_pair(self.seed, step, s.tag[i], s.tag[j], stream::PAIR);
+                let (xi, xibar) = normals.pair(self.seed, step, s.tag[i], s.tag[j], stream::PAIR);
                 // friction from sigma and theta_ij; heat on 1/theta (the Original law reads
                 // `inv_tau`, here set to 1/theta as LAMMPS's dpd/fdt/energy does)
                 let drive = PairDrive {
-                    e: [dr[0] / r, dr[1] / r, dr[2] / r],
+                    e: [dr[0] * inv_r, dr[1] * inv_r, dr[2] * inv_r],
                     gamma: p.sigma * p.sigma * w * w / (2.0 * kb * theta_ij),
                     kappa: if p.temperature.is_none() { p.kappa * w * w } else { 0.0 },
                     ti: Temps { theta: theta_ij, inv_tau: inv_i },
@@ -340,4 +321,42 @@ impl Physics for ClassicDpd {
 fn velocity(s: &gendpde_engine::Particles, i: usize) -> [f64; 3] {
     let k = 1.0 / s.mass[i];
     [s.p[i][0] * k, s.p[i][1] * k, s.p[i][2] * k]
+}
+
+/// Sums pair forces, energies and virials over the half list into the owned particles
+/// (see [`gendpde_engine::NeighborList::pairs`]). `pair(s, i, j, r_ij, r)` gives the
+/// scalar force F (f_ij = F e_ij) and the pair energy of a pair closer than `rc`.
+#[inline(always)]
+fn tally(s: &mut Particles, pairs: &[[u32; 2]], rc: f64, pair: impl Fn(&Particles, usize, usize, Vec3, f64) -> (f64, f64)) {
+    let n = s.nlocal;
+    s.f[..n].fill([0.0; 3]);
+    s.epair[..n].fill(0.0);
+    s.virial[..n].fill(0.0);
+    for &[i, j] in pairs {
+        let (i, j) = (i as usize, j as usize);
+        let d = sub(s.r[i], s.r[j]);
+        let r2 = dot(d, d);
+        if r2 >= rc * rc || r2 < 1e-20 {
+            continue;
+        }
+        let r = r2.sqrt();
+        let (fp, e) = pair(s, i, j, d, r);
+        let fpair = fp / r;
+        let df = [fpair * d[0], fpair * d[1], fpair * d[2]];
+        let virial = 0.5 * fpair * r2;
+        if i < n {
+            for c in 0..3 {
+                s.f[i][c] += df[c];
+            }
+            s.epair[i] += e;
+            s.virial[i] += virial;
+        }
+        if j < n {
+            for c in 0..3 {
+                s.f[j][c] -= df[c];
+            }
+            s.epair[j] += e;
+            s.virial[j] += virial;
+        }
+    }
 }

@@ -1,8 +1,10 @@
-//! The many-body conservative passes over full neighbour lists: local density (eq 2),
+//! The many-body conservative passes over the half pair list (each pair once; the sums
+//! of every owned particle come out as over its full list, see
+//! [`gendpde_engine::NeighborList`]): local density (eq 2),
 //! particle state from the EOS, force (eq 51) with the virial (eq 52), and the
 //! reversible work split (eq 84): u_i -= c sum_j v_ij . f_ij.
 //!
-//! The force pass keeps, per list entry, the geometric factor g_ij = w'(r_ij)/([w] r_ij)
+//! The force pass keeps, per pair, the geometric factor g_ij = w'(r_ij)/([w] r_ij)
 //! and F_ij = -(pi_i/n_i^2 + pi_j/n_j^2) g_ij, so f_ij = F_ij r_ij. After the Shardlow
 //! sweep has changed the particle temperatures, `refresh_forces_and_work` rebuilds F_ij
 //! from g_ij and the new pi/n^2 without evaluating the weight again.
@@ -16,17 +18,16 @@ use gendpde_potentials::{Eos, Weight, ISOLATED_DENSITY};
 pub fn density<W: Weight>(w: &W, sys: &mut System) {
     let rc2 = w.cutoff() * w.cutoff();
     let s = &mut sys.store;
-    for i in 0..s.nlocal {
-        let ri = s.r[i];
-        let mut n = 0.0;
-        for &j in sys.nlist.of(i) {
-            let d = sub(ri, s.r[j as usize]);
-            let r2 = dot(d, d);
-            if r2 < rc2 {
-                n += w.eval(r2.sqrt()).0;
-            }
+    let n = s.nlocal;
+    s.n[..n].fill(0.0);
+    for &[i, j] in &sys.nlist.pairs {
+        let (i, j) = (i as usize, j as usize);
+        let d = sub(s.r[i], s.r[j]);
+        let r2 = dot(d, d);
+        if r2 < rc2 {
+            let wij = w.eval(r2.sqrt()).0;
+            add(&mut s.n, n, i, j, wij);
         }
-        s.n[i] = n;
     }
 }
 
@@ -75,53 +76,50 @@ pub fn refresh_state<E: Eos>(eos: &E, sys: &mut System) -> Result<(), StepError>
     first
 }
 
-/// f_i = sum_j F_ij r_ij (eq 51), keeping g_ij and F_ij per list entry and the
-/// per-particle virial sum_j F_ij r_ij^2 / 2 (eq 52).
+/// f_i = sum_j F_ij r_ij (eq 51), keeping g_ij and F_ij per pair and the per-particle
+/// virial sum_j F_ij r_ij^2 / 2 (eq 52).
 pub fn forces<W: Weight>(w: &W, sys: &mut System) {
     let rc2 = w.cutoff() * w.cutoff();
     let s = &mut sys.store;
-    for i in 0..s.nlocal {
-        let (ri, pi) = (s.r[i], s.pn2[i]);
-        let start = sys.nlist.offsets[i] as usize;
-        let mut f = [0.0; 3];
-        let mut virial = 0.0;
-        for (k, &j) in sys.nlist.of(i).iter().enumerate() {
-            let j = j as usize;
-            let d = sub(ri, s.r[j]);
-            let r2 = dot(d, d);
-            let mut g = 0.0;
-            if r2 < rc2 && r2 > 0.0 {
-                let r = r2.sqrt();
-                g = w.eval(r).1 / r;
-            }
-            let big_f = -(pi + s.pn2[j]) * g;
-            for c in 0..3 {
-                f[c] += big_f * d[c];
-            }
-            virial += big_f * r2;
-            sys.pair_geometry[start + k] = g;
-            sys.pair_force[start + k] = big_f;
+    let n = s.nlocal;
+    s.f[..n].fill([0.0; 3]);
+    s.virial[..n].fill(0.0);
+    for (k, &[i, j]) in sys.nlist.pairs.iter().enumerate() {
+        let (i, j) = (i as usize, j as usize);
+        let d = sub(s.r[i], s.r[j]);
+        let r2 = dot(d, d);
+        let mut g = 0.0;
+        if r2 < rc2 && r2 > 0.0 {
+            let r = r2.sqrt();
+            g = w.eval(r).1 / r;
         }
-        s.f[i] = f;
-        s.virial[i] = 0.5 * virial;
+        let big_f = -(s.pn2[i] + s.pn2[j]) * g;
+        kick(&mut s.f, n, i, j, big_f, d);
+        add(&mut s.virial, n, i, j, big_f * r2);
+        sys.pair_geometry[k] = g;
+        sys.pair_force[k] = big_f;
+    }
+    for v in &mut s.virial[..n] {
+        *v *= 0.5;
     }
 }
 
 /// u_i -= c sum_j (v_i - v_j) . f_ij, with the F_ij of the last force pass.
 pub fn work(sys: &mut System, c: f64) {
     let s = &mut sys.store;
-    for i in 0..s.nlocal {
-        let (ri, vi) = (s.r[i], velocity(s, i));
-        let start = sys.nlist.offsets[i] as usize;
-        let mut sum = 0.0;
-        for (k, &j) in sys.nlist.of(i).iter().enumerate() {
-            let big_f = sys.pair_force[start + k];
-            if big_f != 0.0 {
-                let j = j as usize;
-                sum += big_f * dot(sub(vi, velocity(s, j)), sub(ri, s.r[j]));
-            }
+    let n = s.nlocal;
+    let sums = &mut sys.pair_sums;
+    sums.clear();
+    sums.resize(n, 0.0);
+    for (k, &[i, j]) in sys.nlist.pairs.iter().enumerate() {
+        let big_f = sys.pair_force[k];
+        if big_f != 0.0 {
+            let (i, j) = (i as usize, j as usize);
+            add(sums, n, i, j, big_f * dot(sub(velocity(s, i), velocity(s, j)), sub(s.r[i], s.r[j])));
         }
-        s.u[i] -= c * sum;
+    }
+    for i in 0..n {
+        s.u[i] -= c * sums[i];
     }
 }
 
@@ -129,25 +127,50 @@ pub fn work(sys: &mut System, c: f64) {
 /// (which ghosts must hold), f_i anew, and u_i -= c sum_j v_ij . f_ij in the same pass.
 pub fn refresh_forces_and_work(sys: &mut System, c: f64) {
     let s = &mut sys.store;
-    for i in 0..s.nlocal {
-        let (ri, vi, pi) = (s.r[i], velocity(s, i), s.pn2[i]);
-        let start = sys.nlist.offsets[i] as usize;
-        let (mut f, mut sum) = ([0.0; 3], 0.0);
-        for (k, &j) in sys.nlist.of(i).iter().enumerate() {
-            let g = sys.pair_geometry[start + k];
-            let j = j as usize;
-            let big_f = -(pi + s.pn2[j]) * g;
-            sys.pair_force[start + k] = big_f;
-            if big_f != 0.0 {
-                let d = sub(ri, s.r[j]);
-                for c in 0..3 {
-                    f[c] += big_f * d[c];
-                }
-                sum += big_f * dot(sub(vi, velocity(s, j)), d);
-            }
+    let n = s.nlocal;
+    let sums = &mut sys.pair_sums;
+    sums.clear();
+    sums.resize(n, 0.0);
+    s.f[..n].fill([0.0; 3]);
+    for (k, &[i, j]) in sys.nlist.pairs.iter().enumerate() {
+        let (i, j) = (i as usize, j as usize);
+        let big_f = -(s.pn2[i] + s.pn2[j]) * sys.pair_geometry[k];
+        sys.pair_force[k] = big_f;
+        if big_f != 0.0 {
+            let d = sub(s.r[i], s.r[j]);
+            kick(&mut s.f, n, i, j, big_f, d);
+            add(sums, n, i, j, big_f * dot(sub(velocity(s, i), velocity(s, j)), d));
         }
-        s.f[i] = f;
-        s.u[i] -= c * sum;
+    }
+    for i in 0..n {
+        s.u[i] -= c * sums[i];
+    }
+}
+
+/// Adds a symmetric pair term to whichever of i, j is owned (index below `n`).
+#[inline(always)]
+fn add(v: &mut [f64], n: usize, i: usize, j: usize, x: f64) {
+    if i < n {
+        v[i] += x;
+    }
+    if j < n {
+        v[j] += x;
+    }
+}
+
+/// f_i += F r_ij, f_j -= F r_ij for the owned ones: the same bits as f_j += F r_ji.
+#[inline(always)]
+fn kick(f: &mut [Vec3], n: usize, i: usize, j: usize, big_f: f64, d: Vec3) {
+    let df = [big_f * d[0], big_f * d[1], big_f * d[2]];
+    if i < n {
+        for c in 0..3 {
+            f[i][c] += df[c];
+        }
+    }
+    if j < n {
+        for c in 0..3 {
+            f[j][c] -= df[c];
+        }
     }
 }
 

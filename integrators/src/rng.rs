@@ -48,24 +48,42 @@ fn open_unit(hi: u32, lo: u32) -> f64 {
 /// same key with a counter of their own.
 #[inline(always)]
 pub fn normal_pair(seed: u64, step: u64, a: u64, b: u64, stream: u32) -> (f64, f64) {
-    let ctr = [step as u32, a as u32, b as u32, stream ^ ((step >> 32) as u32).rotate_left(16)];
-    let key = [seed as u32, (seed >> 32) as u32];
-    let o = philox4x32(ctr, key);
-    let z = ziggurat();
-    let (b0, b1) = (((o[0] as u64) << 32) | o[1] as u64, ((o[2] as u64) << 32) | o[3] as u64);
-    let first = z.fast(b0).unwrap_or_else(|| z.slow(b0, ctr, key, 0));
-    let second = z.fast(b1).unwrap_or_else(|| z.slow(b1, ctr, key, 1));
-    (first, second)
+    Normals::get().pair(seed, step, a, b, stream)
+}
+
+/// [`normal_pair`] with the ziggurat table fetched once, for loops over many pairs.
+#[derive(Clone, Copy)]
+pub struct Normals(&'static Ziggurat);
+
+impl Normals {
+    pub fn get() -> Self {
+        Self(ziggurat())
+    }
+
+    /// As [`normal_pair`].
+    #[inline(always)]
+    pub fn pair(self, seed: u64, step: u64, a: u64, b: u64, stream: u32) -> (f64, f64) {
+        let ctr = [step as u32, a as u32, b as u32, stream ^ ((step >> 32) as u32).rotate_left(16)];
+        let key = [seed as u32, (seed >> 32) as u32];
+        let o = philox4x32(ctr, key);
+        let z = self.0;
+        let (b0, b1) = (((o[0] as u64) << 32) | o[1] as u64, ((o[2] as u64) << 32) | o[3] as u64);
+        let first = z.fast(b0).unwrap_or_else(|| z.slow(b0, ctr, key, 0));
+        let second = z.fast(b1).unwrap_or_else(|| z.slow(b1, ctr, key, 1));
+        (first, second)
+    }
 }
 
 const LAYERS: usize = 128;
 const ZIG_R: f64 = 3.442619855899;
 const ZIG_V: f64 = 9.91256303526217e-3;
 
-/// Layer edges x[i] and densities f(x[i]) = exp(-x^2/2) of the ziggurat.
+/// Layer edges x[i], densities f(x[i]) = exp(-x^2/2) and edge ratios x[i+1]/x[i] of
+/// the ziggurat.
 struct Ziggurat {
     x: [f64; LAYERS + 1],
     f: [f64; LAYERS + 1],
+    ratio: [f64; LAYERS],
 }
 
 fn ziggurat() -> &'static Ziggurat {
@@ -79,7 +97,7 @@ fn ziggurat() -> &'static Ziggurat {
             x[i] = (-2.0 * (ZIG_V / x[i - 1] + pdf(x[i - 1])).ln()).sqrt();
         }
         x[LAYERS] = 0.0;
-        Ziggurat { x, f: x.map(pdf) }
+        Ziggurat { x, f: x.map(pdf), ratio: std::array::from_fn(|i| x[i + 1] / x[i]) }
     })
 }
 
@@ -89,7 +107,7 @@ impl Ziggurat {
     fn fast(&self, bits: u64) -> Option<f64> {
         let i = (bits & 0x7f) as usize;
         let u = 2.0 * (((bits >> 11) as f64 + 0.5) * (1.0 / (1u64 << 53) as f64)) - 1.0;
-        (u.abs() < self.x[i + 1] / self.x[i]).then(|| u * self.x[i])
+        (u.abs() < self.ratio[i]).then(|| u * self.x[i])
     }
 
     /// Completes draw `which` whose first 64 bits `first` missed the rectangles: the
@@ -111,7 +129,7 @@ impl Ziggurat {
             let i = (bits & 0x7f) as usize;
             let u = 2.0 * unit(bits) - 1.0;
             bits = next;
-            if u.abs() < self.x[i + 1] / self.x[i] {
+            if u.abs() < self.ratio[i] {
                 return u * self.x[i];
             }
             if i == 0 {

@@ -16,7 +16,7 @@
 use crate::error::StepError;
 use crate::heat::{HeatFlow, Temps};
 use crate::pair_update::{pair_update, PairDrive, PairState};
-use crate::rng::{normal_pair, stream};
+use crate::rng::{normal_pair, stream, Normals};
 use crate::settings::{Dissipation, Reservoir};
 use crate::system::System;
 use gendpde_engine::{dot, sub, Fields, Particles};
@@ -31,7 +31,7 @@ pub fn sweep<E: Eos, H: HeatFlow>(eos: &E, d: &Dissipation, sys: &mut System, dt
     let kb = eos.kb();
     let rc = d.cutoff();
     let (inv_rcd, inv_rch) = (1.0 / d.rc_friction, 1.0 / d.rc_heat);
-    let step = sys.step;
+    let (step, normals) = (sys.step, Normals::get());
     let mut outcome = Ok(());
     for colour in 0..8 {
         let s = &mut sys.store;
@@ -46,11 +46,12 @@ pub fn sweep<E: Eos, H: HeatFlow>(eos: &E, d: &Dissipation, sys: &mut System, dt
             let r = r2.sqrt();
             let wd = (1.0 - r * inv_rcd).max(0.0);
             let wh = (1.0 - r * inv_rch).max(0.0);
-            let (xi, xibar) = normal_pair(d.seed, step, s.tag[i], s.tag[j], stream::PAIR);
+            let (xi, xibar) = normals.pair(d.seed, step, s.tag[i], s.tag[j], stream::PAIR);
+            let inv_r = 1.0 / r;
             let pair = Pair {
                 i,
                 j,
-                e: [dr[0] / r, dr[1] / r, dr[2] / r],
+                e: [dr[0] * inv_r, dr[1] * inv_r, dr[2] * inv_r],
                 gamma: d.gamma * wd * wd,
                 kappa: d.kappa * wh * wh,
                 seed: d.seed,

@@ -2,7 +2,7 @@
 
 use crate::error::StepError;
 use gendpde_engine::cells::CellBins;
-use gendpde_engine::{dot, sub, CellGrid, Comm, Domain, NeighborList, Particles, SweepPairs};
+use gendpde_engine::{dot, sub, CellGrid, Comm, Domain, build_lists, ListRequest, NeighborList, Particles, SweepPairs};
 
 /// State that the step mutates.
 pub struct System {
@@ -15,10 +15,12 @@ pub struct System {
     pub nlist: NeighborList,
     /// Coloured pair lists for the Shardlow sweep.
     pub sweep: SweepPairs,
-    /// F_ij of each neighbour-list entry (f_ij = F_ij r_ij).
+    /// F_ij of each pair of the neighbour list (f_ij = F_ij r_ij).
     pub pair_force: Vec<f64>,
-    /// w'(r_ij)/([w] r_ij) of each neighbour-list entry, from the last force pass.
+    /// w'(r_ij)/([w] r_ij) of each pair of the neighbour list, from the last force pass.
     pub pair_geometry: Vec<f64>,
+    /// Per-particle sums of the pair passes (scratch).
+    pub pair_sums: Vec<f64>,
     pub step: u64,
     pub time: f64,
     /// Step of the last list build.
@@ -48,6 +50,7 @@ impl System {
             sweep: SweepPairs::default(),
             pair_force: Vec::new(),
             pair_geometry: Vec::new(),
+            pair_sums: Vec::new(),
             step: 0,
             time: 0.0,
             last_build: 0,
@@ -108,13 +111,11 @@ impl System {
         self.comm.exchange(&mut self.store, &self.domain, grid, restored);
         let (lo, hi) = self.comm.owned_cells(grid);
         self.bins.build(&self.store.cell, &self.store.tag, lo, hi);
-        if let Some(radius) = density_radius {
-            self.nlist.build(&self.store, &self.bins, radius);
-            self.pair_force.resize(self.nlist.neighbors.len(), 0.0);
-            self.pair_geometry.resize(self.nlist.neighbors.len(), 0.0);
-        }
-        if let Some(radius) = sweep_radius {
-            self.sweep.build(&self.store, &self.bins, lo, hi, radius);
+        let req = ListRequest { nlist: density_radius.map(|r| (&mut self.nlist, r)), sweep: sweep_radius.map(|r| (&mut self.sweep, r)) };
+        build_lists(&self.store, &self.bins, lo, hi, req);
+        if density_radius.is_some() {
+            self.pair_force.resize(self.nlist.pairs.len(), 0.0);
+            self.pair_geometry.resize(self.nlist.pairs.len(), 0.0);
         }
         if !restored {
             self.last_build = at_step;

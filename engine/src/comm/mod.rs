@@ -227,7 +227,13 @@ impl Comm {
     pub fn forward(&mut self, store: &mut Particles, fields: Fields) {
         let start = std::time::Instant::now();
         let width = record_width(store, fields);
+        let me = self.t.rank();
         for s in &self.swaps {
+            if s.dest == me && s.src == me {
+                let moves = s.send.iter().enumerate().map(|(k, &i)| (i as usize, s.recv_start + k));
+                copy_fields(store, moves, fields, Some((s.dim, s.shift)));
+                continue;
+            }
             self.send.clear();
             for &i in &s.send {
                 pack_fields(store, i as usize, fields, Some((s.dim, s.shift)), &mut self.send);
@@ -252,7 +258,22 @@ impl Comm {
         for &g in ghosts {
             self.written[g as usize] = true;
         }
+        let me = self.t.rank();
         for s in self.swaps.iter().rev() {
+            if s.dest == me && s.src == me {
+                let written = &self.written;
+                let moves = (0..s.recv_count).filter(|&k| written[s.recv_start + k]).map(|k| (s.recv_start + k, s.send[k] as usize));
+                copy_fields(store, moves, fields, None);
+                // the owners reached may be ghosts that travel on in later swaps (the
+                // sources, ghosts of this swap, lie above every destination)
+                for k in 0..s.recv_count {
+                    let i = s.send[k] as usize;
+                    if self.written[s.recv_start + k] && i >= store.nlocal {
+                        self.written[i] = true;
+                    }
+                }
+                continue;
+            }
             self.send.clear();
             for k in 0..s.recv_count {
                 if self.written[s.recv_start + k] {
@@ -320,6 +341,41 @@ fn pack_fields(store: &Particles, i: usize, fields: Fields, shift: Option<(usize
     for (f, v) in exchanged(store) {
         if fields.contains(f) && !v.is_empty() {
             buf.push(v[i]);
+        }
+    }
+}
+
+/// Copies `fields` from particle `from` to particle `to` for each (from, to) of `moves`
+/// (a swap of this rank with itself: no buffer), field by field; `shift` as in
+/// [`pack_fields`].
+fn copy_fields(store: &mut Particles, moves: impl Iterator<Item = (usize, usize)> + Clone, fields: Fields, shift: Option<(usize, f64)>) {
+    if fields.contains(Fields::POSITION) {
+        for (i, j) in moves.clone() {
+            let mut r = store.r[i];
+            if let Some((d, s)) = shift {
+                r[d] += s;
+            }
+            store.r[j] = r;
+        }
+    }
+    if fields.contains(Fields::MOMENTUM) {
+        for (i, j) in moves.clone() {
+            store.p[j] = store.p[i];
+        }
+    }
+    for (f, v) in [
+        (Fields::ENERGY, &mut store.u),
+        (Fields::THETA, &mut store.theta),
+        (Fields::DENSITY, &mut store.n),
+        (Fields::PRESSURE, &mut store.pn2),
+        (Fields::INV_TAU, &mut store.inv_tau),
+        (Fields::U_COND, &mut store.u_cond),
+        (Fields::RHO, &mut store.rho),
+    ] {
+        if fields.contains(f) && !v.is_empty() {
+            for (i, j) in moves.clone() {
+                v[j] = v[i];
+            }
         }
     }
 }

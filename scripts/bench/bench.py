@@ -1,0 +1,126 @@
+#!/usr/bin/env python3
+"""Side-by-side benchmark of gendpde and the reference LAMMPS (issue: performance).
+
+Runs every case for both codes in one invocation, alternating gendpde / LAMMPS, REPS
+times, and reads atom-steps/s from the `Loop time of T on P procs for S steps with N
+atoms` line of the timed run (the last `run` of the script; a short untimed warm-up run
+precedes it). Writes the table (median, min-max, ratio) between the bench markers of
+docs/PERFORMANCE.md and prints it.
+
+    scripts/bench/run.sh            # everything (about 10 minutes on 2 cores)
+    scripts/bench/run.sh classic    # only cases whose name contains "classic"
+
+Environment: GENDPDE (binary), LMP (reference LAMMPS launcher), REPS (default 3).
+"""
+import os
+import re
+import statistics
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+BENCH = ROOT / "scripts" / "bench"
+GENDPDE = os.environ.get("GENDPDE", str(ROOT / "target" / "release" / "gendpde"))
+LMP = os.environ.get("LMP", "/work/shared/lammps/lmp")
+REPS = int(os.environ.get("REPS", "3"))
+LOOP = re.compile(r"Loop time of ([0-9.eE+-]+) on (\d+) procs for (\d+) steps with (\d+) atoms")
+
+VDW = "vdw 60.0 2.4682 1.4142 excess"
+CLASSIC_RC1 = {"rho": 3.0, "rc": 1.0, "skin": 0.3, "n": 20, "steps": 300}
+CLASSIC_RC4 = {"rho": 0.5, "rc": 4.0, "skin": 0.4, "n": 30, "steps": 30}
+
+
+def case(name, script, gvars, lvars=None, ranks=1, lammps=True):
+    return {"name": name, "script": script, "gvars": gvars, "lvars": lvars if lvars is not None else gvars,
+            "ranks": ranks, "lammps": lammps}
+
+
+def cases():
+    out = [
+        case("classic DPDE + shardlow, rho 3, rc 1, N 8000", "in.dpde", CLASSIC_RC1),
+        case("classic DPDE + shardlow, rho 0.5, rc 4, N 27000", "in.dpde", CLASSIC_RC4),
+        case("GenDPDE vdW, rho 0.5, rc 4, N 27000 (LAMMPS: DPDE)", "in.gendpde",
+             {"eos": VDW, "n": 30, "steps": 20}, CLASSIC_RC4),
+        case("GenDPDE LJ, rho 0.5, rc 4, N 27000 (LAMMPS: DPDE)", "in.gendpde",
+             {"eos": "lj 60.0", "n": 30, "steps": 5, "warm": 2}, CLASSIC_RC4),
+    ]
+    # O(N): classic DPDE at rho 3, rc 1 from 10^3 to 2.5 10^5 particles
+    for n, steps in [(10, 2000), (22, 200), (32, 60), (47, 20), (63, 8)]:
+        out.append(case(f"N scaling classic rho 3, N {n ** 3}", "in.dpde", {**CLASSIC_RC1, "n": n, "steps": steps}))
+    for ranks in (1, 2):
+        out.append(case(f"MPI classic rho 3, N 27000, {ranks} rank(s)", "in.dpde",
+                        {**CLASSIC_RC1, "n": 30, "steps": 100}, ranks=ranks, lammps=False))
+        out.append(case(f"MPI GenDPDE vdW N 27000, {ranks} rank(s)", "in.gendpde",
+                        {"eos": VDW, "n": 30, "steps": 20}, ranks=ranks, lammps=False))
+    return out
+
+
+def var_args(flag, values):
+    args = []
+    for k, v in values.items():
+        args += [flag, k, str(v)]
+    return args
+
+
+def run(code, c):
+    """atom-steps/s of the timed run of case `c` by `code`."""
+    script = BENCH / c["script"] if code == "gendpde" else BENCH / "in.dpde"
+    if code == "gendpde":
+        cmd = [GENDPDE, "run", str(script), "-log", "none"] + var_args("-var", c["gvars"])
+        if c["ranks"] > 1:
+            cmd = ["mpirun", "--oversubscribe", "-np", str(c["ranks"])] + cmd
+    else:
+        cmd = [LMP, "-in", str(script), "-log", "none"] + var_args("-var", c["lvars"])
+    env = dict(os.environ, OMP_NUM_THREADS="1")
+    out = subprocess.run(cmd, cwd=BENCH, capture_output=True, text=True, env=env)
+    loops = LOOP.findall(out.stdout)
+    if out.returncode != 0 or not loops:
+        sys.exit(f"{code} failed on '{c['name']}':\n{' '.join(cmd)}\n{out.stdout[-2000:]}\n{out.stderr[-2000:]}")
+    t, _, steps, atoms = loops[-1]
+    return int(atoms) * int(steps) / float(t)
+
+
+def fmt(x):
+    return f"{x:.3g}"
+
+
+def main():
+    wanted = sys.argv[1] if len(sys.argv) > 1 else ""
+    rows = []
+    for c in cases():
+        if wanted not in c["name"]:
+            continue
+        rates = {"gendpde": [], "lammps": []}
+        for _ in range(REPS):
+            rates["gendpde"].append(run("gendpde", c))
+            if c["lammps"]:
+                rates["lammps"].append(run("lammps", c))
+        g = statistics.median(rates["gendpde"])
+        cells = [c["name"], fmt(g), f"{fmt(min(rates['gendpde']))}-{fmt(max(rates['gendpde']))}"]
+        if rates["lammps"]:
+            lmp = statistics.median(rates["lammps"])
+            cells += [fmt(lmp), f"{fmt(min(rates['lammps']))}-{fmt(max(rates['lammps']))}", f"{g / lmp:.2f}"]
+        else:
+            cells += ["", "", ""]
+        rows.append(cells)
+        print(" | ".join(cells), flush=True)
+    header = ["case", "gendpde atom-steps/s (median)", "min-max", "LAMMPS atom-steps/s (median)", "min-max",
+              "ratio"]
+    table = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+    table += ["| " + " | ".join(r) + " |" for r in rows]
+    note = (f"Generated by `scripts/bench/run.sh{' ' + wanted if wanted else ''}` ({REPS} alternating "
+            f"repetitions per case, one core per rank).")
+    block = "\n".join([note, "", *table])
+    doc = ROOT / "docs" / "PERFORMANCE.md"
+    text = doc.read_text()
+    begin, end = "<!-- bench:begin -->", "<!-- bench:end -->"
+    if begin in text and not wanted:
+        head, rest = text.split(begin, 1)
+        text = head + begin + "\n" + block + "\n" + end + rest.split(end, 1)[1]
+        doc.write_text(text)
+    print("\n" + block)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,10 @@
+#!/usr/bin/env bash
+# Side-by-side benchmark of gendpde and the reference LAMMPS; writes the table into
+# docs/PERFORMANCE.md. Usage: scripts/bench/run.sh [case-name-filter]
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/../.."
+source scripts/deps.sh
+install_build_deps
+bash "${LAMMPS_SETUP:-/work/shared/lammps/setup.sh}" >/dev/null
+cargo build --release --quiet --features mpi
+exec python3 scripts/bench/bench.py "$@"
