@@ -38,7 +38,10 @@ pub struct Observables {
     pub u: f64,
     pub theta: f64,
     pub mv2: f64,
-    pub virial: f64,
+    /// Diagonal of sum p p^T / m and of the virial (the traces are `mv2` and the scalar
+    /// virial).
+    pub mv2_diag: [f64; 3],
+    pub virial_diag: [f64; 3],
     pub mass: f64,
     pub volume: f64,
     /// Total momentum.
@@ -56,25 +59,27 @@ impl Observables {
         let s = &sys.store;
         let opt = |v: &Vec<f64>, i: usize| v.get(i).copied().unwrap_or(0.0);
         let rows = (0..s.nlocal).map(|i| {
-            let p = s.p[i];
-            let p2 = p[0] * p[0] + p[1] * p[1] + p[2] * p[2];
+            let (p, m) = (s.p[i], s.mass[i]);
             let (u_cond, epair) = (opt(&s.u_cond, i), opt(&s.epair, i));
-            [1.0, p2 / s.mass[i], s.u[i], s.theta[i], s.mass[i], opt(&s.virial, i), p[0], p[1], p[2], epair, u_cond, 1.0 / s.theta[i]]
+            let w = s.virial.get(i).copied().unwrap_or_default();
+            let q = [p[0] * p[0] / m, p[1] * p[1] / m, p[2] * p[2] / m];
+            [1.0, q[0], q[1], q[2], s.u[i], s.theta[i], m, w[0], w[1], w[2], p[0], p[1], p[2], epair, u_cond, 1.0 / s.theta[i]]
         });
         let sums = exact_sums(sys.comm.transport(), rows);
         Self {
             atoms: sums[0],
-            ke: 0.5 * sums[1],
-            u: sums[2],
-            theta: sums[3],
-            mv2: sums[1],
-            virial: sums[5],
-            mass: sums[4],
+            ke: 0.5 * (sums[1] + sums[2] + sums[3]),
+            u: sums[4],
+            theta: sums[5],
+            mv2: sums[1] + sums[2] + sums[3],
+            mv2_diag: [sums[1], sums[2], sums[3]],
+            virial_diag: [sums[7], sums[8], sums[9]],
+            mass: sums[6],
             volume: sys.domain.volume(),
-            momentum: [sums[6], sums[7], sums[8]],
-            epair: sums[9],
-            u_cond: sums[10],
-            inv_theta: sums[11],
+            momentum: [sums[10], sums[11], sums[12]],
+            epair: sums[13],
+            u_cond: sums[14],
+            inv_theta: sums[15],
         }
     }
 
@@ -89,7 +94,12 @@ impl Observables {
     }
 
     pub fn pressure(&self) -> f64 {
-        (self.mv2 + self.virial) / (3.0 * self.volume)
+        (self.mv2 + self.virial_diag.iter().sum::<f64>()) / (3.0 * self.volume)
+    }
+
+    /// Diagonal component `a` of the pressure tensor (LAMMPS's pxx, pyy, pzz).
+    pub fn pressure_component(&self, a: usize) -> f64 {
+        (self.mv2_diag[a] + self.virial_diag[a]) / self.volume
     }
 }
 
@@ -125,6 +135,9 @@ impl ThermoContext<'_> {
             "temp" => o.temperature(self.units.kb),
             "tint" => if o.atoms > 0.0 { o.theta / o.atoms } else { 0.0 },
             "press" => o.pressure(),
+            "pxx" => o.pressure_component(0),
+            "pyy" => o.pressure_component(1),
+            "pzz" => o.pressure_component(2),
             "pe" => per(self.potential()),
             "ke" => per(o.ke),
             "etotal" => per(self.potential() + o.ke),
@@ -185,6 +198,9 @@ pub fn heading(name: &str) -> String {
         "temp" => "Temp".into(),
         "tint" => "Tint".into(),
         "press" => "Press".into(),
+        "pxx" => "Pxx".into(),
+        "pyy" => "Pyy".into(),
+        "pzz" => "Pzz".into(),
         "pe" => "PotEng".into(),
         "ke" => "KinEng".into(),
         "etotal" => "TotEng".into(),

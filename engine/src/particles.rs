@@ -39,8 +39,9 @@ pub struct Particles {
     pub pn2: Vec<f64>,
     /// 1/tau (eq 19); only for the original heat-flow model.
     pub inv_tau: Vec<f64>,
-    /// Per-particle virial sum_j F_ij r_ij^2 / 2 of owned particles.
-    pub virial: Vec<f64>,
+    /// Per-particle diagonal virial sum_j F_ij (x_ij^2, y_ij^2, z_ij^2) / 2 of owned
+    /// particles (its trace is the scalar virial).
+    pub virial: Vec<Vec3>,
     /// Conductive part of u (classic DPDE, LAMMPS's uCond; uMech = u - uCond).
     pub u_cond: Vec<f64>,
     /// Half the pair energy of each pair a particle is in (pairwise styles).
@@ -123,7 +124,7 @@ impl Particles {
         let (cond, epair, rho) = (on(Fields::U_COND), on(Fields::PAIR_ENERGY), on(Fields::RHO));
         self.n.resize(if dens { len } else { 0 }, 0.0);
         self.pn2.resize(if pres { len } else { 0 }, 0.0);
-        self.virial.resize(if pres || epair { len } else { 0 }, 0.0);
+        self.virial.resize(if pres || epair { len } else { 0 }, [0.0; 3]);
         self.inv_tau.resize(if tau { len } else { 0 }, 0.0);
         self.u_cond.resize(if cond { len } else { 0 }, 0.0);
         self.epair.resize(if epair { len } else { 0 }, 0.0);
@@ -273,7 +274,8 @@ impl Particles {
         apply(&mut self.r_build, order);
         apply(&mut self.vest, order);
         apply(&mut self.f, order);
-        for v in [&mut self.n, &mut self.pn2, &mut self.inv_tau, &mut self.virial, &mut self.u_cond, &mut self.epair, &mut self.rho] {
+        apply(&mut self.virial, order);
+        for v in [&mut self.n, &mut self.pn2, &mut self.inv_tau, &mut self.u_cond, &mut self.epair, &mut self.rho] {
             apply(v, order);
         }
     }

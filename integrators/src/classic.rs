@@ -331,7 +331,7 @@ fn tally(s: &mut Particles, pairs: &[[u32; 2]], rc: f64, pair: impl Fn(&Particle
     let n = s.nlocal;
     s.f[..n].fill([0.0; 3]);
     s.epair[..n].fill(0.0);
-    s.virial[..n].fill(0.0);
+    s.virial[..n].fill([0.0; 3]);
     for &[i, j] in pairs {
         let (i, j) = (i as usize, j as usize);
         let d = sub(s.r[i], s.r[j]);
@@ -343,20 +343,15 @@ fn tally(s: &mut Particles, pairs: &[[u32; 2]], rc: f64, pair: impl Fn(&Particle
         let (fp, e) = pair(s, i, j, d, r);
         let fpair = fp / r;
         let df = [fpair * d[0], fpair * d[1], fpair * d[2]];
-        let virial = 0.5 * fpair * r2;
-        if i < n {
-            for c in 0..3 {
-                s.f[i][c] += df[c];
+        let virial = [0.5 * df[0] * d[0], 0.5 * df[1] * d[1], 0.5 * df[2] * d[2]];
+        for (k, sign) in [(i, 1.0), (j, -1.0)] {
+            if k < n {
+                for c in 0..3 {
+                    s.f[k][c] += sign * df[c];
+                    s.virial[k][c] += virial[c];
+                }
+                s.epair[k] += e;
             }
-            s.epair[i] += e;
-            s.virial[i] += virial;
-        }
-        if j < n {
-            for c in 0..3 {
-                s.f[j][c] -= df[c];
-            }
-            s.epair[j] += e;
-            s.virial[j] += virial;
         }
     }
 }

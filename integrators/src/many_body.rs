@@ -77,13 +77,13 @@ pub fn refresh_state<E: Eos>(eos: &E, sys: &mut System) -> Result<(), StepError>
 }
 
 /// f_i = sum_j F_ij r_ij (eq 51), keeping g_ij and F_ij per pair and the per-particle
-/// virial sum_j F_ij r_ij^2 / 2 (eq 52).
+/// diagonal virial sum_j F_ij (x_ij^2, y_ij^2, z_ij^2) / 2 (eq 52).
 pub fn forces<W: Weight>(w: &W, sys: &mut System) {
     let rc2 = w.cutoff() * w.cutoff();
     let s = &mut sys.store;
     let n = s.nlocal;
     s.f[..n].fill([0.0; 3]);
-    s.virial[..n].fill(0.0);
+    s.virial[..n].fill([0.0; 3]);
     for (k, &[i, j]) in sys.nlist.pairs.iter().enumerate() {
         let (i, j) = (i as usize, j as usize);
         let d = sub(s.r[i], s.r[j]);
@@ -95,12 +95,16 @@ pub fn forces<W: Weight>(w: &W, sys: &mut System) {
         }
         let big_f = -(s.pn2[i] + s.pn2[j]) * g;
         kick(&mut s.f, n, i, j, big_f, d);
-        add(&mut s.virial, n, i, j, big_f * r2);
+        for o in [i, j].into_iter().filter(|&o| o < n) {
+            for c in 0..3 {
+                s.virial[o][c] += big_f * d[c] * d[c];
+            }
+        }
         sys.pair_geometry[k] = g;
         sys.pair_force[k] = big_f;
     }
     for v in &mut s.virial[..n] {
-        *v *= 0.5;
+        *v = v.map(|x| 0.5 * x);
     }
 }
 
