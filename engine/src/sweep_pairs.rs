@@ -5,6 +5,8 @@
 //! in a fixed order, then by the tags of the two particles (the bins hold each cell in
 //! tag order): an order no decomposition can change. Built by [`crate::pair_search`].
 
+use crate::{dot, sub, Particles};
+
 #[derive(Clone, Debug, Default)]
 pub struct SweepPairs {
     /// List radius: sweep cutoff plus skin.
@@ -15,12 +17,30 @@ pub struct SweepPairs {
     pub colour_start: [usize; 9],
     /// Ghosts written by the pairs of colour c (sorted, unique).
     pub ghost_writes: [Vec<u32>; 8],
+    /// Scratch of [`SweepPairs::within`].
+    active: Vec<[u32; 2]>,
 }
 
 impl SweepPairs {
     /// Pairs of one colour.
     pub fn colour(&self, c: usize) -> &[[u32; 2]] {
         &self.pairs[self.colour_start[c]..self.colour_start[c + 1]]
+    }
+
+    /// The pairs of colour c closer than `rc` and farther than 1e-10, in order,
+    /// selected without a branch per pair (about half the list lies in the skin, a test
+    /// the processor could not predict).
+    pub fn within(&mut self, c: usize, store: &Particles, rc: f64) -> &[[u32; 2]] {
+        let range = self.colour_start[c]..self.colour_start[c + 1];
+        self.active.resize(range.len(), [0; 2]);
+        let mut m = 0;
+        for &[i, j] in &self.pairs[range] {
+            let d = sub(store.r[i as usize], store.r[j as usize]);
+            let r2 = dot(d, d);
+            self.active[m] = [i, j];
+            m += (r2 < rc * rc && r2 >= 1e-20) as usize;
+        }
+        &self.active[..m]
     }
 }
 

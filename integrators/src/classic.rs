@@ -83,18 +83,23 @@ impl ClassicDpd {
         sys.rebuild(Some(r), self.shardlow.as_ref().map(|_| r), at_step);
     }
 
-    /// theta = u / C_V for owned particles (fix eos/cv).
+    /// theta = u / C_V for owned particles (fix eos/cv), and 1/theta, which the sweep
+    /// reads for theta_ij and the heat flow, in `inv_tau` where kept.
     fn eos(&self, sys: &mut System) -> Result<(), StepError> {
-        let Some(cv) = self.cv else { return Ok(()) };
         let s = &mut sys.store;
         let mut outcome = Ok(());
         for i in 0..s.nlocal {
-            let theta = s.u[i] / cv;
-            if !(theta > 0.0 && theta.is_finite()) && outcome.is_ok() {
-                let e = gendpde_potentials::EosError::NonPositiveTheta { u: s.u[i], n: 0.0, theta };
-                outcome = Err(StepError::eos(s, i, sys.step, e));
+            if let Some(cv) = self.cv {
+                let theta = s.u[i] / cv;
+                if !(theta > 0.0 && theta.is_finite()) && outcome.is_ok() {
+                    let e = gendpde_potentials::EosError::NonPositiveTheta { u: s.u[i], n: 0.0, theta };
+                    outcome = Err(StepError::eos(s, i, sys.step, e));
+                }
+                s.theta[i] = theta;
             }
-            s.theta[i] = theta;
+            if !s.inv_tau.is_empty() {
+                s.inv_tau[i] = 1.0 / s.theta[i];
+            }
         }
         outcome
     }
@@ -127,19 +132,23 @@ impl ClassicDpd {
     fn forces(&self, sys: &mut System, step: u64) {
         let inv_sqrt_dt = 1.0 / self.settings.dt.sqrt();
         let (seed, pairs, s) = (self.seed, &sys.nlist.pairs, &mut sys.store);
+        let inv_rc = match self.force {
+            PairForce::Dpd { rc, .. } | PairForce::Mdpd { rc, .. } => 1.0 / rc,
+        };
         let noise = |s: &Particles, i: usize, j: usize| normal_pair(seed, step, s.tag[i].min(s.tag[j]), s.tag[i].max(s.tag[j]), stream::FORCE).0;
         match self.force {
-            PairForce::Dpd { a0, rc, gamma: 0.0, sigma: 0.0 } => tally(s, pairs, rc, |_, _, _, _, r| {
-                let w = 1.0 - r / rc;
+            // w = 0 beyond rc: no branch to mispredict on the skin's pairs
+            PairForce::Dpd { a0, rc, gamma: 0.0, sigma: 0.0 } => tally::<true>(s, pairs, rc, |_, _, _, _, r| {
+                let w = (1.0 - r * inv_rc).max(0.0);
                 (a0 * w, 0.25 * a0 * rc * w * w)
             }),
-            PairForce::Dpd { a0, rc, gamma, sigma } => tally(s, pairs, rc, |s, i, j, d, r| {
-                let w = 1.0 - r / rc;
+            PairForce::Dpd { a0, rc, gamma, sigma } => tally::<false>(s, pairs, rc, |s, i, j, d, r| {
+                let w = 1.0 - r * inv_rc;
                 let fp = a0 * w - gamma * w * w * dot(d, sub(velocity(s, i), velocity(s, j))) / r + sigma * w * noise(s, i, j) * inv_sqrt_dt;
                 (fp, 0.25 * a0 * rc * w * w)
             }),
-            PairForce::Mdpd { a, b, rc, rd, gamma, sigma, .. } => tally(s, pairs, rc, |s, i, j, d, r| {
-                let wc = 1.0 - r / rc;
+            PairForce::Mdpd { a, b, rc, rd, gamma, sigma, .. } => tally::<false>(s, pairs, rc, |s, i, j, d, r| {
+                let wc = 1.0 - r * inv_rc;
                 let wd = (1.0 - r / rd).max(0.0);
                 let rho = s.rho[i] + s.rho[j];
                 let mut fp = a * wc + b * rho * wd;
@@ -155,21 +164,20 @@ impl ClassicDpd {
     fn sweep(&self, sys: &mut System, p: &ShardlowDpd) {
         let (dt, kb) = (self.settings.dt, self.kb);
         let sqrt_dt = dt.sqrt();
-        let (step, normals) = (sys.step, Normals::get());
+        let (step, normals, inv_rc) = (sys.step, Normals::get(), 1.0 / p.rc);
         for colour in 0..8 {
+            let pairs = sys.sweep.within(colour, &sys.store, p.rc);
             let s = &mut sys.store;
-            for &[i, j] in sys.sweep.colour(colour) {
+            for &[i, j] in pairs {
                 let (i, j) = (i as usize, j as usize);
                 let dr = sub(s.r[i], s.r[j]);
-                let r2 = dot(dr, dr);
-                if r2 >= p.rc * p.rc || r2 < 1e-20 {
-                    continue;
-                }
-                let r = r2.sqrt();
+                let r = dot(dr, dr).sqrt();
                 let inv_r = 1.0 / r;
-                let w = 1.0 - r / p.rc;
-                let (inv_i, inv_j) = (1.0 / s.theta[i], 1.0 / s.theta[j]);
-                let theta_ij = p.temperature.unwrap_or(2.0 / (inv_i + inv_j));
+                let w = 1.0 - r * inv_rc;
+                let (theta_ij, inv_i, inv_j) = match p.temperature {
+                    Some(t) => (t, 0.0, 0.0),
+                    None => (2.0 / (s.inv_tau[i] + s.inv_tau[j]), s.inv_tau[i], s.inv_tau[j]),
+                };
                 let (xi, xibar) = normals.pair(self.seed, step, s.tag[i], s.tag[j], stream::PAIR);
                 // friction from sigma and theta_ij; heat on 1/theta (the Original law reads
                 // `inv_tau`, here set to 1/theta as LAMMPS's dpd/fdt/energy does)
@@ -191,7 +199,8 @@ impl ClassicDpd {
                     s.u_cond[j] -= moved.heat;
                 }
             }
-            let fields = SWEPT | Fields::U_COND;
+            // theta (and 1/theta) stay as they are until the sweep is over
+            let fields = Fields::MOMENTUM | Fields::ENERGY | Fields::U_COND;
             sys.comm.reverse(&mut sys.store, &sys.sweep.ghost_writes[colour], fields);
             sys.comm.forward(&mut sys.store, fields);
         }
@@ -234,7 +243,7 @@ impl Physics for ClassicDpd {
         sys.lay_grid(self.radius()).map_err(SetupError::Grid)?;
         let mut fields = Fields::THETA | Fields::PAIR_ENERGY;
         if self.shardlow.as_ref().is_some_and(|s| s.temperature.is_none()) {
-            fields = fields | Fields::U_COND;
+            fields = fields | Fields::U_COND | Fields::INV_TAU;
         }
         if matches!(self.force, PairForce::Mdpd { .. }) {
             fields = fields | Fields::RHO;
@@ -325,9 +334,10 @@ fn velocity(s: &gendpde_engine::Particles, i: usize) -> [f64; 3] {
 
 /// Sums pair forces, energies and virials over the half list into the owned particles
 /// (see [`gendpde_engine::NeighborList::pairs`]). `pair(s, i, j, r_ij, r)` gives the
-/// scalar force F (f_ij = F e_ij) and the pair energy of a pair closer than `rc`.
+/// scalar force F (f_ij = F e_ij) and the pair energy of a pair closer than `rc`; with
+/// `CLAMPED` it is called for every pair of the list and must give zeros beyond `rc`.
 #[inline(always)]
-fn tally(s: &mut Particles, pairs: &[[u32; 2]], rc: f64, pair: impl Fn(&Particles, usize, usize, Vec3, f64) -> (f64, f64)) {
+fn tally<const CLAMPED: bool>(s: &mut Particles, pairs: &[[u32; 2]], rc: f64, pair: impl Fn(&Particles, usize, usize, Vec3, f64) -> (f64, f64)) {
     let n = s.nlocal;
     s.f[..n].fill([0.0; 3]);
     s.epair[..n].fill(0.0);
@@ -336,12 +346,13 @@ fn tally(s: &mut Particles, pairs: &[[u32; 2]], rc: f64, pair: impl Fn(&Particle
         let (i, j) = (i as usize, j as usize);
         let d = sub(s.r[i], s.r[j]);
         let r2 = dot(d, d);
-        if r2 >= rc * rc || r2 < 1e-20 {
+        if (!CLAMPED && r2 >= rc * rc) || r2 < 1e-20 {
             continue;
         }
         let r = r2.sqrt();
+        let inv_r = 1.0 / r;
         let (fp, e) = pair(s, i, j, d, r);
-        let fpair = fp / r;
+        let fpair = fp * inv_r;
         let df = [fpair * d[0], fpair * d[1], fpair * d[2]];
         let virial = [0.5 * df[0] * d[0], 0.5 * df[1] * d[1], 0.5 * df[2] * d[2]];
         for (k, sign) in [(i, 1.0), (j, -1.0)] {
