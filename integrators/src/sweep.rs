@@ -163,7 +163,7 @@ fn split<E: Eos, H: HeatFlow>(
 }
 
 #[inline(always)]
-fn temps<H: HeatFlow>(s: &Particles, i: usize) -> Temps {
+pub(crate) fn temps<H: HeatFlow>(s: &Particles, i: usize) -> Temps {
     Temps { theta: s.theta[i], inv_tau: if H::NEEDS_INV_TAU { s.inv_tau[i] } else { 0.0 } }
 }
 
@@ -171,14 +171,14 @@ fn temps<H: HeatFlow>(s: &Particles, i: usize) -> Temps {
 #[inline(always)]
 fn refresh<E: Eos, H: HeatFlow>(eos: &E, s: &mut Particles, i: usize, step: u64) -> Result<(), StepError> {
     let n = crate::many_body::density_of(s, i).max(gendpde_potentials::ISOLATED_DENSITY);
-    let theta = eos.theta(s.u[i], n, s.theta[i]);
+    let (theta, cv) = if H::NEEDS_INV_TAU { eos.theta_cv(s.u[i], n, s.theta[i]) } else { (eos.theta(s.u[i], n, s.theta[i]), 0.0) };
     if !(theta > 0.0 && theta.is_finite()) {
         let e = gendpde_potentials::EosError::NonPositiveTheta { u: s.u[i], n, theta };
         return Err(StepError::eos(s, i, step, e));
     }
     s.theta[i] = theta;
     if H::NEEDS_INV_TAU {
-        s.inv_tau[i] = eos.inv_tau(theta, eos.cv(theta, n));
+        s.inv_tau[i] = eos.inv_tau(theta, cv);
     }
     Ok(())
 }

@@ -175,10 +175,12 @@ impl LennardJones {
         t * (a_hs + virial) + sum
     }
 
-    /// Bracketed Newton solve of u(theta, n) = u on [THETA_MIN, THETA_MAX] (see module doc).
-    fn solve_theta(&self, u: f64, n: f64, guess: f64) -> f64 {
+    /// Bracketed Newton solve of u(theta, n) = u on [THETA_MIN, THETA_MAX] (see module doc);
+    /// with theta, C_V at the last Newton iterate (within TOL of theta; NaN when the
+    /// solve ended otherwise).
+    fn solve_theta(&self, u: f64, n: f64, guess: f64) -> (f64, f64) {
         if !(u.is_finite() && n.is_finite() && n >= 0.0) {
-            return f64::NAN;
+            return (f64::NAN, f64::NAN);
         }
         let (mut lo, mut hi) = (Self::THETA_MIN, Self::THETA_MAX);
         // whether an in-domain point with u(x) < u (resp. > u) has been seen
@@ -202,7 +204,7 @@ impl LennardJones {
                 let (ux, cvx) = self.u_and_cv(x, n);
                 let r = ux - u;
                 if r == 0.0 {
-                    return x;
+                    return (x, cvx);
                 }
                 if r < 0.0 {
                     lo = x;
@@ -213,7 +215,7 @@ impl LennardJones {
                 }
                 next = x - r / cvx;
                 if (next - x).abs() <= Self::TOL * x && next > 0.0 {
-                    return next;
+                    return (next, cvx);
                 }
             } else {
                 // x in [THETA_MIN, THETA_MAX] is out of the domain only by eta > ETA_MAX:
@@ -228,12 +230,13 @@ impl LennardJones {
             }
             x = next;
         }
-        match (lo_hit, hi_hit) {
+        let theta = match (lo_hit, hi_hit) {
             (true, true) => 0.5 * (lo + hi),
             (false, true) => 0.0, // u below the ground state at this density
             (true, false) => f64::INFINITY, // u above u(THETA_MAX, n)
             (false, false) => f64::NAN, // eta > ETA_MAX at every theta: n too high
-        }
+        };
+        (theta, f64::NAN)
     }
 }
 
@@ -246,7 +249,15 @@ impl Eos for LennardJones {
     }
     #[inline]
     fn theta(&self, u: f64, n: f64, guess: f64) -> f64 {
-        self.solve_theta(u, n, guess)
+        self.solve_theta(u, n, guess).0
+    }
+    /// C_V from the solve's last Newton evaluation: one evaluation of f_res saved.
+    #[inline]
+    fn theta_cv(&self, u: f64, n: f64, guess: f64) -> (f64, f64) {
+        match self.solve_theta(u, n, guess) {
+            (theta, cv) if cv.is_finite() => (theta, cv),
+            (theta, _) => (theta, self.cv(theta, n)),
+        }
     }
     #[inline]
     fn u(&self, theta: f64, n: f64) -> f64 {
@@ -261,7 +272,7 @@ impl Eos for LennardJones {
         self.cv - theta * Self::eval(theta, n).ftt
     }
     fn entropy(&self, u: f64, n: f64) -> Option<f64> {
-        let theta = self.solve_theta(u, n, f64::NAN);
+        let theta = self.solve_theta(u, n, f64::NAN).0;
         (theta > 0.0 && theta.is_finite()).then(|| self.cv * theta.ln() - Self::eval(theta, n).ft)
     }
     /// 1.5: above it the fit loses thermodynamic stability (see the module doc).

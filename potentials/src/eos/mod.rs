@@ -72,6 +72,15 @@ pub trait Eos: Send + Sync {
     /// Largest local density the model accepts for an initial state (None: unbounded).
     fn max_density(&self) -> Option<f64>;
 
+    /// theta(u, n) and C_V there, for callers that need both (the sweep's refresh of
+    /// 1/tau after each pair update); models that get C_V from the same evaluation as
+    /// theta override it (equal to `cv(theta(u, n), n)` up to round-off).
+    #[inline]
+    fn theta_cv(&self, u: f64, n: f64, guess: f64) -> (f64, f64) {
+        let theta = self.theta(u, n, guess);
+        (theta, self.cv(theta, n))
+    }
+
     /// theta, pi/n^2 and C_V at (u, n), with the isolated-particle rule applied.
     /// A non-finite result (an absurd density or energy) is an error, never a value.
     #[inline]

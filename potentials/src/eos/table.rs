@@ -721,6 +721,14 @@ impl<E: Eos> Eos for Tabulated<E> {
             None => f64::NAN,
         }
     }
+    /// One cell lookup for both.
+    #[inline]
+    fn theta_cv(&self, u: f64, n: f64, guess: f64) -> (f64, f64) {
+        match self.solve(u, n, guess) {
+            Some((l, c)) => (self.theta_at(l.i, l.t), slope(&c, l.t) * self.inv_h[l.i]),
+            None => (f64::NAN, f64::NAN),
+        }
+    }
     /// Interpolated u; NaN outside the table.
     #[inline]
     fn u(&self, theta: f64, n: f64) -> f64 {

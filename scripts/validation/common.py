@@ -1,0 +1,111 @@
+"""Shared helpers of the validation scenes: running gendpde, reading its thermo output
+and H5MD dumps, the analytic EOS through `gendpde eos`, and the results file.
+
+Every scene script writes its numbers into docs/validation/results.json (one entry per
+scene, merged) and its figure into docs/validation/<scene>.png; docs/VALIDATION.md quotes
+them.
+"""
+import json
+import os
+import re
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+GENDPDE = os.environ.get("GENDPDE", str(ROOT / "target" / "release" / "gendpde"))
+OUT = ROOT / "docs" / "validation"
+LJ_TABLE = "table 0.3 8.0 121 0.0 1.2 129"  # the grid the LJ scans use (see fix_eos.md)
+
+
+def run(example, variables, workdir, ranks=1):
+    """Runs examples/<example>/in.<example> with `-var` pairs in `workdir`; returns
+    (thermo blocks, wall seconds)."""
+    workdir = Path(workdir)
+    workdir.mkdir(parents=True, exist_ok=True)
+    script = ROOT / "examples" / example / f"in.{example}"
+    cmd = [GENDPDE, "run", str(script), "-log", "log.gendpde"]
+    for k, v in variables.items():
+        cmd += ["-var", k, str(v)]
+    if ranks > 1:
+        cmd = ["mpirun", "--oversubscribe", "-np", str(ranks)] + cmd
+    start = time.time()
+    out = subprocess.run(cmd, cwd=workdir, capture_output=True, text=True)
+    wall = time.time() - start
+    if out.returncode != 0:
+        sys.exit(f"gendpde failed in {workdir}:\n{' '.join(cmd)}\n{out.stdout[-3000:]}\n{out.stderr[-3000:]}")
+    return thermo_blocks(out.stdout), wall
+
+
+def thermo_blocks(text):
+    """The thermo tables of a LAMMPS-style output, one dict of column lists per run."""
+    blocks, header, rows = [], None, []
+    for line in text.splitlines():
+        words = line.split()
+        if words[:1] == ["Step"]:
+            header, rows = words, []
+        elif header and words[:2] == ["Loop", "time"]:
+            blocks.append({h: [r[k] for r in rows] for k, h in enumerate(header)})
+            header = None
+        elif header and len(words) == len(header):
+            try:
+                rows.append([float(w) for w in words])
+            except ValueError:
+                pass
+    return blocks
+
+
+def mean_sem(values, blocks=10):
+    """Mean and its standard error from `blocks` block averages."""
+    import numpy as np
+    v = np.asarray(values, dtype=float)
+    nb = max(2, min(blocks, len(v) // 2))
+    b = np.array([c.mean() for c in np.array_split(v, nb)])
+    return float(v.mean()), float(b.std(ddof=1) / np.sqrt(nb))
+
+
+def drift_rate(time_values, edrift):
+    """Slope of a linear fit of (E(t) - E(0))/E(0) against t (SPEC sec 6)."""
+    import numpy as np
+    return float(np.polyfit(np.asarray(time_values), np.asarray(edrift), 1)[0])
+
+
+def eos(model, theta, n):
+    """`gendpde eos MODEL --theta T --n N` as a dict."""
+    out = subprocess.run([GENDPDE, "eos", *model.split(), "--theta", str(theta), "--n", str(n)],
+                         capture_output=True, text=True, check=True)
+    return {k: float(v) for k, v in (line.split() for line in out.stdout.splitlines())}
+
+
+def h5md_frames(path, field):
+    """[frames, N, ...] values of /particles/all/<field>/value."""
+    import h5py
+    with h5py.File(path, "r") as f:
+        return f[f"particles/all/{field}/value"][()]
+
+
+def lattice_cells(rho, rc, skin=0.4, minimum=None):
+    """Lattice cells per side of an sc box at density rho that holds 4 list cells."""
+    import math
+    n = math.ceil(4 * (rc + skin) * rho ** (1 / 3) + 1e-9)
+    return max(n, minimum or 0)
+
+
+def save(scene, entry):
+    """Merges `entry` under `scene` into docs/validation/results.json."""
+    OUT.mkdir(parents=True, exist_ok=True)
+    path = OUT / "results.json"
+    data = json.loads(path.read_text()) if path.exists() else {}
+    data[scene] = entry
+    path.write_text(json.dumps(data, indent=1, sort_keys=True) + "\n")
+
+
+def figure_path(scene):
+    OUT.mkdir(parents=True, exist_ok=True)
+    return OUT / f"{scene}.png"
+
+
+def workdir(scene, tag):
+    base = Path(os.environ.get("VALIDATION_WORK", "/tmp/gendpde-validation"))
+    return base / scene / re.sub(r"[^A-Za-z0-9_.-]", "_", tag)

@@ -1,0 +1,52 @@
+#!/usr/bin/env python3
+"""Fig 7 of the 2019 paper: flash heating of a box-centred slab holding half of the
+particles to T = 5 after equilibration at T = 1.5 (LJ GenDPDE, rho = 0.5).
+
+    python3 scripts/validation/flash.py [--n 30] [--steps 5000] [--eos "lj 60.0"]
+
+Reports the steady-state <T_kin> and <T_int> (second half of the run) and their relative
+difference (paper: below 0.01 %), and the relative energy drift over the run (paper: 1e-7).
+"""
+import argparse
+
+import common
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--n", type=int, default=30)
+    ap.add_argument("--equil", type=int, default=1000)
+    ap.add_argument("--steps", type=int, default=5000)
+    ap.add_argument("--eos", default=f"lj 60.0 {common.LJ_TABLE}")
+    args = ap.parse_args()
+    wd = common.workdir("flash", f"n{args.n}")
+    v = {"n": args.n, "equil": args.equil, "steps": args.steps, "eos": args.eos, "every": 10}
+    blocks, wall = common.run("flash-heating", v, wd)
+    run = blocks[-1]
+    half = len(run["Step"]) // 2
+    tk, tk_err = common.mean_sem(run["Temp"][half:])
+    ti, ti_err = common.mean_sem(run["Tint"][half:])
+    drift = max(abs(e) for e in run["Edrift"])
+    entry = {"N": args.n ** 3, "steps": args.steps, "eos": args.eos, "T_kin": tk, "T_kin_err": tk_err, "T_int": ti,
+             "T_int_err": ti_err, "rel_diff": (tk - ti) / ti, "max_rel_energy_drift": drift,
+             "drift_rate": common.drift_rate(run["Time"], run["Edrift"]), "wall_s": round(wall, 1)}
+    print(entry)
+
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, a = plt.subplots(figsize=(7, 4.5))
+    a.plot(run["Time"], run["Temp"], "k", lw=0.8, label=r"$T_{kin}$")
+    a.plot(run["Time"], run["Tint"], "r", lw=0.8, label=r"$T_{int}$")
+    a.plot(run["Time"], run["Press"], "b", lw=0.8, label="P")
+    a.set_xlabel("t")
+    a.set_title(f"Fig 7: flash heating, N = {args.n ** 3}; steady state "
+                f"T_kin/T_int - 1 = {100 * (tk / ti - 1):.3f} %, |dE/E| <= {drift:.1e}", fontsize=9)
+    a.legend()
+    fig.tight_layout()
+    fig.savefig(common.figure_path("flash"), dpi=80)
+    common.save("flash", entry)
+
+
+if __name__ == "__main__":
+    main()

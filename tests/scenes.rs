@@ -1,0 +1,77 @@
+//! Reduced variants of the 2019 paper's LJ scenes (examples/lj-fluid, flash-heating):
+//! the virial pressure against the Kolafa-Nezbeda EOS pressure, and kinetic against
+//! internal temperature, at rest and after a flash heating. Full-size runs:
+//! scripts/validation/, results in docs/VALIDATION.md.
+//!
+//! The LJ EOS runs through the table of scripts/validation (errors below 1e-6 in theta
+//! and 5e-5 in pi/n^2, docs/commands/fix_eos.md): the analytic model costs five times as
+//! much per step.
+
+mod common;
+
+use common::stats::mean;
+use gendpde::Observables;
+use gendpde_potentials::LennardJones;
+
+const TABLE: &str = "lj 60.0 table 0.3 8.0 121 0.0 1.2 129";
+
+/// Mean and standard error of `x` from 10 block averages.
+fn mean_sem(x: &[f64]) -> (f64, f64) {
+    let blocks: Vec<f64> = x.chunks(x.len().div_ceil(10)).map(mean).collect();
+    let m = mean(&blocks);
+    let var = blocks.iter().map(|b| (b - m) * (b - m)).sum::<f64>() / (blocks.len() - 1) as f64;
+    (mean(x), (var / blocks.len() as f64).sqrt())
+}
+
+/// Samples (T_kin, T_int, P, E) every `every` steps over `steps` steps.
+fn sample(it: &mut gendpde::Interpreter, steps: u64, every: u64) -> [Vec<f64>; 4] {
+    let physics = it.dynamics().unwrap();
+    let sys = it.system().unwrap();
+    let mut out: [Vec<f64>; 4] = Default::default();
+    for k in 1..=steps {
+        physics.step(sys).unwrap();
+        if k % every == 0 {
+            let o = Observables::measure(sys);
+            for (v, x) in out.iter_mut().zip([o.temperature(1.0), o.theta / o.atoms, o.pressure(), o.energy()]) {
+                v.push(x);
+            }
+        }
+    }
+    out
+}
+
+/// LJ, T = 1.5, rho = 0.5, rc = 4, N = 14^3 (the smallest box of 4 cells): the virial
+/// pressure within 2 % of the EOS pressure at the measured temperature, and <T_kin> within
+/// 0.5 % of <T_int>.
+#[test]
+fn lj_virial_pressure_matches_the_eos_and_temperatures_agree() {
+    let vars = [("n", "14"), ("eos", TABLE), ("equil", "400"), ("steps", "0")];
+    let mut it = common::run_example("lj-fluid", &vars);
+    let [tk, ti, p, _] = sample(&mut it, 3000, 5);
+    let ((tk, tk_err), (ti, _), (p, p_err)) = (mean_sem(&tk), mean_sem(&ti), mean_sem(&p));
+    let p_eos = LennardJones::new(60.0).pressure(ti, 0.5);
+    eprintln!("LJ T = 1.5, rho = 0.5: P = {p:.5} +- {p_err:.5}, EOS P({ti:.4}) = {p_eos:.5} ({:+.2} %)", 100.0 * (p / p_eos - 1.0));
+    eprintln!("<T_kin> = {tk:.5} +- {tk_err:.5}, <T_int> = {ti:.5} ({:+.3} %)", 100.0 * (tk / ti - 1.0));
+    assert!(tk_err < 0.0015 * ti, "the run is too short to test 0.5 %: SEM {tk_err}");
+    assert!((p / p_eos - 1.0).abs() < 0.02);
+    assert!((tk / ti - 1.0).abs() < 0.005);
+}
+
+/// Flash heating (examples/flash-heating, N = 14^3): half of the particles heated to
+/// T = 5; after relaxing, <T_kin> within 0.5 % of <T_int>, and the total energy drifts
+/// by less than 1e-5 relative over the run.
+#[test]
+fn flash_heating_relaxes_to_equal_temperatures_and_keeps_energy() {
+    let vars = [("n", "14"), ("eos", TABLE), ("equil", "300"), ("steps", "0")];
+    let mut it = common::run_example("flash-heating", &vars);
+    let [_, _, _, e0] = sample(&mut it, 1, 1);
+    let [tk, ti, _, e] = sample(&mut it, 3000, 5);
+    let half = tk.len() / 3;
+    let ((tk, tk_err), (ti, _)) = (mean_sem(&tk[half..]), mean_sem(&ti[half..]));
+    let drift = e.iter().map(|x| (x / e0[0] - 1.0).abs()).fold(0.0, f64::max);
+    eprintln!("flash heating: <T_kin> = {tk:.5} +- {tk_err:.5}, <T_int> = {ti:.5} ({:+.3} %), max |dE/E| = {drift:.2e}", 100.0 * (tk / ti - 1.0));
+    assert!(ti > 2.5, "the slab was not heated: T_int = {ti}");
+    assert!(tk_err < 0.0015 * ti, "the run is too short to test 0.5 %: SEM {tk_err}");
+    assert!((tk / ti - 1.0).abs() < 0.005);
+    assert!(drift < 1e-5);
+}
