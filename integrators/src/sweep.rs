@@ -34,16 +34,12 @@ pub fn sweep<E: Eos, H: HeatFlow>(eos: &E, d: &Dissipation, sys: &mut System, dt
     let (step, normals) = (sys.step, Normals::get());
     let mut outcome = Ok(());
     for colour in 0..8 {
+        let pairs = if outcome.is_ok() { sys.sweep.within(colour, &sys.store, rc) } else { &[] };
         let s = &mut sys.store;
-        let pairs = if outcome.is_ok() { sys.sweep.colour(colour) } else { &[] };
         for &[i, j] in pairs {
             let (i, j) = (i as usize, j as usize);
             let dr = sub(s.r[i], s.r[j]);
-            let r2 = dot(dr, dr);
-            if r2 >= rc * rc || r2 == 0.0 {
-                continue;
-            }
-            let r = r2.sqrt();
+            let r = dot(dr, dr).sqrt();
             let wd = (1.0 - r * inv_rcd).max(0.0);
             let wh = (1.0 - r * inv_rch).max(0.0);
             let (xi, xibar) = normals.pair(d.seed, step, s.tag[i], s.tag[j], stream::PAIR);

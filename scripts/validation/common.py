@@ -65,6 +65,11 @@ def mean_sem(values, blocks=10):
     return float(v.mean()), float(b.std(ddof=1) / np.sqrt(nb))
 
 
+def relative(energy):
+    """(E(t) - E(0)) / |E(0)| over one run's thermo column."""
+    return [(e - energy[0]) / abs(energy[0]) for e in energy]
+
+
 def drift_rate(time_values, edrift):
     """Slope of a linear fit of (E(t) - E(0))/E(0) against t (SPEC sec 6)."""
     import numpy as np

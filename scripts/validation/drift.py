@@ -20,8 +20,8 @@ def measure(T, rho, dt, args):
     v = {"n": n, "rho": rho, "T": T, "dt": dt, "eos": args.eos, "equil": 200, "steps": steps, "every": max(1, steps // 200)}
     blocks, wall = common.run("lj-fluid", v, wd)
     run = blocks[-1]
-    row = {"T": T, "rho": rho, "dt": dt, "N": n ** 3, "steps": steps, "drift_rate": common.drift_rate(run["Time"], run["Edrift"]),
-           "max_rel_drift": max(abs(e) for e in run["Edrift"]), "wall_s": round(wall, 1),
+    row = {"T": T, "rho": rho, "dt": dt, "N": n ** 3, "steps": steps, "drift_rate": common.drift_rate(run["Time"], common.relative(run["TotEng"])),
+           "max_rel_drift": max(abs(e) for e in common.relative(run["TotEng"])), "wall_s": round(wall, 1),
            "atom_steps_per_s": n ** 3 * (steps + 200) / wall}
     print(row, flush=True)
     return row

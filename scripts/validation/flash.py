@@ -26,10 +26,10 @@ def main():
     half = len(run["Step"]) // 2
     tk, tk_err = common.mean_sem(run["Temp"][half:])
     ti, ti_err = common.mean_sem(run["Tint"][half:])
-    drift = max(abs(e) for e in run["Edrift"])
+    drift = max(abs(e) for e in common.relative(run["TotEng"]))
     entry = {"N": args.n ** 3, "steps": args.steps, "eos": args.eos, "T_kin": tk, "T_kin_err": tk_err, "T_int": ti,
              "T_int_err": ti_err, "rel_diff": (tk - ti) / ti, "max_rel_energy_drift": drift,
-             "drift_rate": common.drift_rate(run["Time"], run["Edrift"]), "wall_s": round(wall, 1)}
+             "drift_rate": common.drift_rate(run["Time"], common.relative(run["TotEng"])), "wall_s": round(wall, 1)}
     print(entry)
 
     import matplotlib

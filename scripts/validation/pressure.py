@@ -50,7 +50,9 @@ def main():
         return [(float(t), float(r)) for g in groups.split() for t, rs in [g.split(":")] for r in rs.split(",")]
 
     iso = [measure(T, rho, 4.0, args) for T, rho in parse(args.states)]
-    cut = [measure(T, rho, float(rc), args) for T, rho in parse(args.rc_states) for rc in args.rc.split(",")]
+    done = {(r["T"], r["rho"], r["rc"]): r for r in iso}
+    cut = [done.get((T, rho, float(rc))) or measure(T, rho, float(rc), args)
+           for T, rho in parse(args.rc_states) for rc in args.rc.split(",")]
 
     import matplotlib
     matplotlib.use("Agg")
