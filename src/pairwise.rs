@@ -133,8 +133,8 @@ pub fn build(cmd: &Command, p: &Pairwise, fixes: &[Fix], settings: Settings, kb:
         FixStyle::Eos(EosModel::Linear(e)) if !gendpde_potentials::Eos::density_dependent(e) && e.q == 0.0 => Some(e.cv),
         _ => None,
     });
-    if has(|s| matches!(s, FixStyle::Verlet | FixStyle::Reservoir { .. })) {
-        return Err(err("fix nve/gendpde and heat/reservoir belong to pair gendpde; LAMMPS's pairwise styles use fix nve, shardlow, eos/cv, mvv/dpd"));
+    if has(|s| matches!(s, FixStyle::Verlet { .. } | FixStyle::VvEuler { .. } | FixStyle::Reservoir { .. })) {
+        return Err(err("fix nve/gendpde, vv/euler and heat/reservoir belong to pair gendpde; LAMMPS's pairwise styles use fix nve, shardlow, eos/cv, mvv/dpd"));
     }
     let integration = match (nve, mvv) {
         (true, None) => Integration::Nve,

@@ -4,8 +4,9 @@
 //! is a new Rust type, one arm in [`build_physics`] (see docs/DESIGN.md).
 
 use crate::args::Args;
-use gendpde_integrators::{Dissipation, GenDpde, HeatModel, Physics, RebuildPolicy, Reservoir, Settings};
+use gendpde_integrators::{Dissipation, FixedEntropy, GenDpde, HeatModel, Motion, Physics, RebuildPolicy, Reservoir, Settings, Work};
 use gendpde_io::{Command, ScriptError};
+use gendpde_potentials::eos::Lth;
 use gendpde_potentials::{CubicSpline, Eos, LennardJones, LinearTheta, Linear, Lucy, Quadratic, TableError, TableErrors, TableGrid, Tabulated, WeightKind};
 
 /// `pair_style gendpde CUTOFF SEED [weight W]` with `pair_coeff * * GAMMA KAPPA [RC_D [RC_H]]`.
@@ -40,8 +41,10 @@ pub struct PairCoeff {
 pub enum EosModel {
     Linear(LinearTheta),
     Lj(LennardJones),
+    Lth(Lth),
     LinearTable(Tabulated<LinearTheta>),
     LjTable(Tabulated<LennardJones>),
+    LthTable(Tabulated<Lth>),
 }
 
 /// Evaluates `$body` with `$e` bound to the concrete EOS of `$model`.
@@ -50,8 +53,10 @@ macro_rules! each_eos {
         match $model {
             EosModel::Linear($e) => $body,
             EosModel::Lj($e) => $body,
+            EosModel::Lth($e) => $body,
             EosModel::LinearTable($e) => $body,
             EosModel::LjTable($e) => $body,
+            EosModel::LthTable($e) => $body,
         }
     };
 }
@@ -78,6 +83,7 @@ impl EosModel {
         match self {
             Self::LinearTable(t) => Some(t.max_error(4)),
             Self::LjTable(t) => Some(t.max_error(4)),
+            Self::LthTable(t) => Some(t.max_error(4)),
             _ => None,
         }
     }
@@ -87,6 +93,7 @@ impl EosModel {
         Ok(match self {
             Self::Linear(e) => Self::LinearTable(Tabulated::new(e, grid)?),
             Self::Lj(e) => Self::LjTable(Tabulated::new(e, grid)?),
+            Self::Lth(e) => Self::LthTable(Tabulated::new(e, grid)?),
             table => table,
         })
     }
@@ -112,8 +119,11 @@ fn describe<E: Eos>(eos: &E, theta: Option<f64>, u: Option<f64>, n: f64) -> Resu
 #[derive(Clone, Debug, PartialEq)]
 pub enum FixStyle {
     Eos(EosModel),
-    /// `fix nve/gendpde`: the reversible velocity-Verlet step with the work split.
-    Verlet,
+    /// `fix nve/gendpde [work split|isentropic]`: the reversible velocity-Verlet step.
+    Verlet { work: Work },
+    /// `fix vv/euler [heat original|fourier]`: velocity Verlet with all pair forces, Euler
+    /// for u (argon paper, sec 4.1).
+    VvEuler { heat: HeatModel },
     /// `fix shardlow [heat original|fourier] [substeps N] [reject yes|no]`.
     Shardlow { heat: HeatModel, substeps: u32, reject: bool },
     /// `fix heat/reservoir T KAPPA SEED [heat original|fourier]`.
@@ -136,7 +146,8 @@ pub struct Fix {
 pub const DEFAULT_SUBSTEPS: u32 = 4;
 pub const MAX_SUBSTEPS: u32 = 8;
 
-pub const FIX_STYLES: &str = "eos/vdw, eos/lj, eos/ideal, eos/cv, eos/density, eos/linear, nve/gendpde, shardlow, heat/reservoir, nve, mvv/dpd";
+pub const FIX_STYLES: &str =
+    "eos/vdw, eos/lj, eos/lth, eos/ideal, eos/cv, eos/density, eos/linear, nve/gendpde, shardlow, vv/euler, heat/reservoir, nve, mvv/dpd";
 
 pub fn parse_pair_style(cmd: &Command) -> Result<PairStyle, ScriptError> {
     let mut a = Args::new(cmd);
@@ -204,7 +215,24 @@ pub fn parse_fix(cmd: &Command, kb: f64) -> Result<Fix, ScriptError> {
     let style_name = a.word("a fix style")?;
     let style = match style_name {
         s if s.starts_with("eos/") => FixStyle::Eos(parse_eos(s, &mut a, kb)?),
-        "nve/gendpde" => FixStyle::Verlet,
+        "nve/gendpde" => {
+            let mut work = Work::Split;
+            while let Some(k) = a.peek() {
+                a.word("keyword")?;
+                match k {
+                    "work" => {
+                        work = match a.word("split or isentropic")? {
+                            "split" => Work::Split,
+                            "isentropic" => Work::Isentropic,
+                            w => return Err(a.err(format!("unknown work rule '{w}'; known: split, isentropic"))),
+                        }
+                    }
+                    _ => return Err(a.err(format!("unknown keyword '{k}'; known: work"))),
+                }
+            }
+            FixStyle::Verlet { work }
+        }
+        "vv/euler" => FixStyle::VvEuler { heat: heat_keyword(&mut a)?.unwrap_or(HeatModel::Original) },
         "nve" => FixStyle::Nve,
         "mvv/dpd" => FixStyle::Mvv { lambda: if a.remaining() > 0 { a.positive("lambda")? } else { 0.5 } },
         "shardlow" => {
@@ -250,7 +278,8 @@ fn heat_keyword(a: &mut Args) -> Result<Option<HeatModel>, ScriptError> {
 }
 
 /// The EOS fixes: `eos/vdw CV A B [excess|full] [cap F]`, `eos/lj CV`, `eos/ideal CV`, `eos/cv CV`,
-/// `eos/density CV c1 [c2 ...]`, `eos/linear CV Q R B [c1 ...]`, each optionally followed by
+/// `eos/density CV c1 [c2 ...]`, `eos/linear CV Q R B [c1 ...]`,
+/// `eos/lth CV ALPHA KAPPA_T PI00 THETA0 N00`, each optionally followed by
 /// `table THETA_MIN THETA_MAX N_THETA N_MIN N_MAX N_N`.
 pub fn parse_eos(style: &str, a: &mut Args, kb: f64) -> Result<EosModel, ScriptError> {
     let model = parse_model(style, a, kb)?;
@@ -298,6 +327,14 @@ fn parse_model(style: &str, a: &mut Args, kb: f64) -> Result<EosModel, ScriptErr
         }
         "eos/lj" if kb != 1.0 => return Err(a.err("eos/lj is in reduced Lennard-Jones units: use units lj")),
         "eos/lj" => return Ok(EosModel::Lj(LennardJones::new(cv))),
+        "eos/lth" => {
+            let alpha = a.f64("the particle expansion coefficient alpha")?;
+            let kappa_t = a.positive("the particle compressibility kappa_T")?;
+            let pi00 = a.f64("the reference particle pressure pi00")?;
+            let theta0 = a.positive("the reference temperature theta0")?;
+            let n00 = a.positive("the reference density n00")?;
+            return Ok(EosModel::Lth(Lth { kb, ..Lth::new(cv, alpha, kappa_t, pi00, theta0, n00) }));
+        }
         "eos/ideal" => LinearTheta::ideal(cv),
         "eos/cv" => LinearTheta::cv_only(cv),
         "eos/density" => LinearTheta::density_only(cv, coefficients(a)?),
@@ -336,12 +373,12 @@ pub fn build_physics(
     let pair = match pair.ok_or_else(|| err("no pair style is defined (pair_style)".into()))? {
         PairStyle::Gendpde(p) => p,
         PairStyle::Pairwise(p) => {
-            let settings = Settings { dt, skin, rebuild, verlet: false, dissipation: None, reservoir: None };
+            let settings = Settings { dt, skin, rebuild, motion: Motion::Fixed, dissipation: None, reservoir: None };
             return crate::pairwise::build(cmd, p, fixes, settings, kb);
         }
     };
     if fixes.iter().any(|f| matches!(f.style, FixStyle::Nve | FixStyle::Mvv { .. })) {
-        return Err(err("pair gendpde integrates with fix nve/gendpde (fix nve and mvv/dpd belong to LAMMPS's pairwise styles)".into()));
+        return Err(err("pair gendpde integrates with fix nve/gendpde or vv/euler (fix nve and mvv/dpd belong to LAMMPS's pairwise styles)".into()));
     }
     let eos: Vec<&EosModel> = fixes.iter().filter_map(|f| if let FixStyle::Eos(e) = &f.style { Some(e) } else { None }).collect();
     let eos = match eos.as_slice() {
@@ -351,22 +388,51 @@ pub fn build_physics(
     };
     let find = |pred: fn(&FixStyle) -> bool| fixes.iter().find(|f| pred(&f.style));
     for (name, pred) in [
-        ("nve/gendpde", (|s: &FixStyle| matches!(s, FixStyle::Verlet)) as fn(&FixStyle) -> bool),
+        ("nve/gendpde", (|s: &FixStyle| matches!(s, FixStyle::Verlet { .. })) as fn(&FixStyle) -> bool),
         ("shardlow", |s| matches!(s, FixStyle::Shardlow { .. })),
+        ("vv/euler", |s| matches!(s, FixStyle::VvEuler { .. })),
         ("heat/reservoir", |s| matches!(s, FixStyle::Reservoir { .. })),
     ] {
         if fixes.iter().filter(|f| pred(&f.style)).count() > 1 {
             return Err(err(format!("more than one fix {name} is defined")));
         }
     }
-    let verlet = find(|s| matches!(s, FixStyle::Verlet)).is_some();
-    let dissipation = match find(|s| matches!(s, FixStyle::Shardlow { .. })) {
-        Some(Fix { style: FixStyle::Shardlow { heat, substeps, reject }, .. }) => {
-            let c = pair.coeff.as_ref().ok_or_else(|| err("fix shardlow needs the pair coefficients (pair_coeff * * GAMMA KAPPA)".into()))?;
-            let (gamma, kappa, heat, substeps, reject) = (c.gamma, c.kappa, *heat, *substeps, *reject);
-            Some(Dissipation { gamma, rc_friction: c.rc_friction, kappa, rc_heat: c.rc_heat, heat, seed: pair.seed, substeps, reject })
+    let coeff = |name: &str| {
+        pair.coeff.as_ref().ok_or_else(|| err(format!("fix {name} needs the pair coefficients (pair_coeff * * GAMMA KAPPA)")))
+    };
+    let dissipation_of = |c: &PairCoeff, heat: HeatModel, substeps: u32, reject: bool| Dissipation {
+        gamma: c.gamma,
+        rc_friction: c.rc_friction,
+        kappa: c.kappa,
+        rc_heat: c.rc_heat,
+        heat,
+        seed: pair.seed,
+        substeps,
+        reject,
+    };
+    let shardlow = find(|s| matches!(s, FixStyle::Shardlow { .. }));
+    let (motion, dissipation) = match (find(|s| matches!(s, FixStyle::Verlet { .. })), find(|s| matches!(s, FixStyle::VvEuler { .. }))) {
+        (Some(v), Some(e)) => {
+            return Err(err(format!("fix {} (nve/gendpde) and fix {} (vv/euler) both move the particles: keep one", v.id, e.id)));
         }
-        _ => None,
+        (_, Some(e)) => {
+            if let Some(f) = shardlow {
+                return Err(err(format!("fix {} (vv/euler) applies friction, noise and heat flow itself: unfix {} (shardlow)", e.id, f.id)));
+            }
+            let FixStyle::VvEuler { heat } = e.style else { unreachable!("matched above") };
+            (Motion::VvEuler, Some(dissipation_of(coeff("vv/euler")?, heat, 0, false)))
+        }
+        (verlet, _) => {
+            let motion = match verlet {
+                Some(Fix { style: FixStyle::Verlet { work }, .. }) => Motion::Verlet(*work),
+                _ => Motion::Fixed,
+            };
+            let dissipation = match shardlow {
+                Some(Fix { style: FixStyle::Shardlow { heat, substeps, reject }, .. }) => Some(dissipation_of(coeff("shardlow")?, *heat, *substeps, *reject)),
+                _ => None,
+            };
+            (motion, dissipation)
+        }
     };
     let reservoir = match find(|s| matches!(s, FixStyle::Reservoir { .. })) {
         Some(Fix { style: FixStyle::Reservoir { temperature, kappa, seed, heat }, .. }) => Some(Reservoir {
@@ -379,15 +445,16 @@ pub fn build_physics(
     };
     if let (Some(d), Some(r)) = (&dissipation, &reservoir) {
         if d.heat != r.heat {
-            return Err(err("fix heat/reservoir and fix shardlow must use the same heat model".into()));
+            let name = if motion == Motion::VvEuler { "vv/euler" } else { "shardlow" };
+            return Err(err(format!("fix heat/reservoir and fix {name} must use the same heat model")));
         }
     }
-    let settings = Settings { dt, skin, rebuild, verlet, dissipation, reservoir };
+    let settings = Settings { dt, skin, rebuild, motion, dissipation, reservoir };
     Ok(each_eos!(eos, e => with_weight(e, pair.weight, pair.cutoff, settings)))
 }
 
 /// Monomorphises the dynamics over the weight function.
-fn with_weight<E: Eos + 'static>(eos: E, kind: WeightKind, rc: f64, settings: Settings) -> Box<dyn Physics> {
+fn with_weight<E: FixedEntropy + 'static>(eos: E, kind: WeightKind, rc: f64, settings: Settings) -> Box<dyn Physics> {
     match kind {
         WeightKind::Quadratic => Box::new(GenDpde { eos, weight: Quadratic::new(rc), settings }),
         WeightKind::Linear => Box::new(GenDpde { eos, weight: Linear::new(rc), settings }),

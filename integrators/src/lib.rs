@@ -1,10 +1,12 @@
 //! GenDPDE integrators: the reversible velocity-Verlet step with the papers' pairwise
-//! work split, the Shardlow (eSSA) pair sweep with its heat-flow models, and the heat
-//! reservoir. Equation numbers: 2019 PCCP paper unless stated.
+//! work split or at fixed entropy, the Shardlow (eSSA) pair sweep with its heat-flow
+//! models, the heat reservoir, and the argon paper's velocity Verlet + Euler scheme.
+//! Equation numbers: 2019 PCCP paper unless stated.
 
 pub mod classic;
 pub mod error;
 pub mod heat;
+pub mod isentropic;
 pub mod many_body;
 pub mod pair_update;
 pub mod physics;
@@ -13,10 +15,12 @@ pub mod settings;
 pub mod sweep;
 pub mod system;
 pub mod verlet;
+pub mod vv_euler;
 
 pub use classic::{ClassicDpd, Integration, PairForce, ShardlowDpd};
 pub use error::StepError;
 pub use heat::HeatModel;
 pub use physics::{GenDpde, Physics, SetupError};
-pub use settings::{Dissipation, RebuildPolicy, Reservoir, Settings};
+pub use isentropic::FixedEntropy;
+pub use settings::{Dissipation, Motion, RebuildPolicy, Reservoir, Settings, Work};
 pub use system::{Snapshot, System};

@@ -6,7 +6,7 @@
 //!
 //! The force pass keeps, per pair, the geometric factor g_ij = w'(r_ij)/([w] r_ij)
 //! and F_ij = -(pi_i/n_i^2 + pi_j/n_j^2) g_ij, so f_ij = F_ij r_ij. After the Shardlow
-//! sweep has changed the particle temperatures, `refresh_forces_and_work` rebuilds F_ij
+//! sweep has changed the particle temperatures, `refresh_forces` rebuilds F_ij
 //! from g_ij and the new pi/n^2 without evaluating the weight again.
 
 use crate::error::StepError;
@@ -128,8 +128,9 @@ pub fn work(sys: &mut System, c: f64) {
 }
 
 /// After the sweep changed theta, and so pi: F_ij from g_ij and the current pi/n^2
-/// (which ghosts must hold), f_i anew, and u_i -= c sum_j v_ij . f_ij in the same pass.
-pub fn refresh_forces_and_work(sys: &mut System, c: f64) {
+/// (which ghosts must hold) and f_i anew; with `work = Some(c)` also
+/// u_i -= c sum_j v_ij . f_ij in the same pass.
+pub fn refresh_forces(sys: &mut System, work: Option<f64>) {
     let s = &mut sys.store;
     let n = s.nlocal;
     let sums = &mut sys.pair_sums;
@@ -143,17 +144,21 @@ pub fn refresh_forces_and_work(sys: &mut System, c: f64) {
         if big_f != 0.0 {
             let d = sub(s.r[i], s.r[j]);
             kick(&mut s.f, n, i, j, big_f, d);
-            add(sums, n, i, j, big_f * dot(sub(velocity(s, i), velocity(s, j)), d));
+            if work.is_some() {
+                add(sums, n, i, j, big_f * dot(sub(velocity(s, i), velocity(s, j)), d));
+            }
         }
     }
-    for i in 0..n {
-        s.u[i] -= c * sums[i];
+    if let Some(c) = work {
+        for i in 0..n {
+            s.u[i] -= c * sums[i];
+        }
     }
 }
 
 /// Adds a symmetric pair term to whichever of i, j is owned (index below `n`).
 #[inline(always)]
-fn add(v: &mut [f64], n: usize, i: usize, j: usize, x: f64) {
+pub(crate) fn add(v: &mut [f64], n: usize, i: usize, j: usize, x: f64) {
     if i < n {
         v[i] += x;
     }
@@ -164,7 +169,7 @@ fn add(v: &mut [f64], n: usize, i: usize, j: usize, x: f64) {
 
 /// f_i += F r_ij, f_j -= F r_ij for the owned ones: the same bits as f_j += F r_ji.
 #[inline(always)]
-fn kick(f: &mut [Vec3], n: usize, i: usize, j: usize, big_f: f64, d: Vec3) {
+pub(crate) fn kick(f: &mut [Vec3], n: usize, i: usize, j: usize, big_f: f64, d: Vec3) {
     let df = [big_f * d[0], big_f * d[1], big_f * d[2]];
     if i < n {
         for c in 0..3 {
@@ -179,7 +184,7 @@ fn kick(f: &mut [Vec3], n: usize, i: usize, j: usize, big_f: f64, d: Vec3) {
 }
 
 #[inline(always)]
-fn velocity(s: &Particles, i: usize) -> Vec3 {
+pub(crate) fn velocity(s: &Particles, i: usize) -> Vec3 {
     let inv_m = 1.0 / s.mass[i];
     [s.p[i][0] * inv_m, s.p[i][1] * inv_m, s.p[i][2] * inv_m]
 }

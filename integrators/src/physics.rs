@@ -1,11 +1,13 @@
 //! One GenDPDE step (eSSA, eq 82): the reversible velocity-Verlet part with the
-//! papers' pairwise work split (eq 84), then the Shardlow sweep and the reservoir.
+//! papers' pairwise work split (eq 84) or at fixed entropy, then the Shardlow sweep and
+//! the reservoir; or the argon paper's velocity Verlet + Euler step, then the reservoir.
 
 use crate::error::StepError;
 use crate::heat::{Fourier, HeatFlow, HeatModel, NoHeat, Original};
-use crate::settings::Settings;
+use crate::isentropic::{self, FixedEntropy};
+use crate::settings::{Motion, Settings, Work};
 use crate::system::System;
-use crate::{many_body, sweep, verlet};
+use crate::{many_body, sweep, verlet, vv_euler};
 use gendpde_engine::Fields;
 use gendpde_potentials::{Eos, Weight};
 
@@ -46,7 +48,7 @@ pub struct GenDpde<E: Eos, W: Weight> {
     pub settings: Settings,
 }
 
-impl<E: Eos, W: Weight> GenDpde<E, W> {
+impl<E: FixedEntropy, W: Weight> GenDpde<E, W> {
     fn many_body(&self) -> bool {
         self.eos.density_dependent()
     }
@@ -56,11 +58,17 @@ impl<E: Eos, W: Weight> GenDpde<E, W> {
         s.dissipation.as_ref().map(|d| d.heat).or(s.reservoir.as_ref().map(|r| r.heat))
     }
 
+    /// Radii of the neighbour list and of the sweep pairs (cutoff plus skin). The pair
+    /// forces of `fix vv/euler` run over the neighbour list, which then reaches them too.
     fn radii(&self) -> (Option<f64>, Option<f64>) {
         let skin = self.settings.skin;
-        let density = self.many_body().then(|| self.weight.cutoff() + skin);
-        let sweep = self.settings.dissipation.as_ref().map(|d| d.cutoff() + skin);
-        (density, sweep)
+        let density = self.many_body().then(|| self.weight.cutoff());
+        let dissipation = self.settings.dissipation.as_ref().map(|d| d.cutoff());
+        if self.settings.motion == Motion::VvEuler {
+            let reach = density.into_iter().chain(dissipation).reduce(f64::max);
+            return (reach.map(|r| r + skin), None);
+        }
+        (density.map(|r| r + skin), dissipation.map(|r| r + skin))
     }
 
     fn rebuild(&self, sys: &mut System, at_step: u64) {
@@ -68,17 +76,19 @@ impl<E: Eos, W: Weight> GenDpde<E, W> {
         sys.rebuild(density, sweep, at_step);
     }
 
-    /// Density, particle state and forces at the current positions and energies.
-    fn conservative(&self, sys: &mut System) -> Result<(), StepError> {
+    /// Density, particle state and forces at the current positions and energies; with
+    /// `entropy_held`, u at the entropies [`isentropic::hold`] kept first.
+    fn conservative(&self, sys: &mut System, entropy_held: bool) -> Result<(), StepError> {
         if self.many_body() {
             many_body::density(&self.weight, sys);
         }
+        let released = if entropy_held { isentropic::release(&self.eos, sys) } else { Ok(()) };
         let state = many_body::refresh_state(&self.eos, sys);
         sys.comm.forward(&mut sys.store, Fields::DENSITY | Fields::PRESSURE | sweep::SWEPT);
         if self.many_body() {
             many_body::forces(&self.weight, sys);
         }
-        state
+        released.and(state)
     }
 
     /// LAMMPS's rule: at most every `every` steps, not within `delay` steps of the last
@@ -91,29 +101,44 @@ impl<E: Eos, W: Weight> GenDpde<E, W> {
         !p.check || 2.0 * sys.comm.max(sys.displacement_since_build()) > self.settings.skin
     }
 
-    /// Velocity-Verlet part (eq 84). The sweep of the previous step changed theta and
-    /// so pi: the first half kick uses forces refreshed for the current state.
-    fn reversible(&self, sys: &mut System) -> Result<(), StepError> {
-        let dt = self.settings.dt;
-        let many_body = self.many_body();
-        let mut before = Ok(());
-        if many_body {
-            before = many_body::refresh_state(&self.eos, sys);
-            sys.comm.forward(&mut sys.store, Fields::PRESSURE);
-            many_body::refresh_forces_and_work(sys, 0.25 * dt);
-        }
-        verlet::kick(sys, 0.5 * dt);
-        let drifted = verlet::drift(sys, dt);
-        sys.settle(before.and(drifted))?;
+    /// Lists for the positions of the next step: rebuilt when due, else positions forwarded.
+    fn relist(&self, sys: &mut System) {
         let next = sys.step + 1;
         if self.needs_rebuild(sys, next) {
             self.rebuild(sys, next);
         } else {
             sys.comm.forward(&mut sys.store, Fields::POSITION);
         }
-        let state = self.conservative(sys);
+    }
+
+    /// Velocity-Verlet part (eq 84). The sweep of the previous step changed theta and
+    /// so pi: the first half kick uses forces refreshed for the current state. `Split`
+    /// moves each pair's work into u_i and u_j in halves; `Isentropic` sets u_i = u(s_i, n_i)
+    /// after the density pass instead.
+    fn reversible(&self, sys: &mut System, work: Work) -> Result<(), StepError> {
+        let dt = self.settings.dt;
+        let many_body = self.many_body();
+        let isentropic = many_body && work == Work::Isentropic;
+        let mut before = Ok(());
+        if many_body {
+            before = many_body::refresh_state(&self.eos, sys);
+            sys.comm.forward(&mut sys.store, Fields::PRESSURE);
+            many_body::refresh_forces(sys, (!isentropic).then_some(0.25 * dt));
+        }
+        verlet::kick(sys, 0.5 * dt);
+        let drifted = verlet::drift(sys, dt);
+        sys.settle(before.and(drifted))?;
+        if isentropic {
+            let held = isentropic::hold(&self.eos, sys);
+            sys.settle(held)?;
+        }
+        self.relist(sys);
+        let state = self.conservative(sys, isentropic);
         verlet::kick(sys, 0.5 * dt);
         sys.comm.forward(&mut sys.store, Fields::MOMENTUM);
+        if isentropic {
+            return state;
+        }
         if many_body {
             many_body::work(sys, 0.25 * dt);
         }
@@ -122,10 +147,29 @@ impl<E: Eos, W: Weight> GenDpde<E, W> {
         state.and(refreshed)
     }
 
+    /// `fix vv/euler` (see [`vv_euler`]).
+    fn vv_euler<H: HeatFlow>(&self, sys: &mut System) -> Result<(), StepError> {
+        let dt = self.settings.dt;
+        let dissipation = self.settings.dissipation.as_ref();
+        vv_euler::start::<H>(dissipation, self.eos.kb(), sys, dt);
+        let drifted = vv_euler::first_half(sys, dt);
+        sys.settle(drifted)?;
+        self.relist(sys);
+        let state = self.conservative(sys, false);
+        if dissipation.is_some_and(|d| d.gamma > 0.0) {
+            verlet::kick(sys, 0.5 * dt);
+            sys.comm.forward(&mut sys.store, Fields::MOMENTUM);
+        }
+        vv_euler::friction(dissipation, sys);
+        vv_euler::second_half(sys, dt);
+        sys.comm.forward(&mut sys.store, Fields::MOMENTUM);
+        state
+    }
+
     fn irreversible<H: HeatFlow>(&self, sys: &mut System) -> Result<(), StepError> {
         let dt = self.settings.dt;
         let mut outcome = Ok(());
-        if let Some(d) = &self.settings.dissipation {
+        if let Some(d) = self.settings.dissipation.as_ref().filter(|_| self.settings.motion != Motion::VvEuler) {
             outcome = sweep::sweep::<E, H>(&self.eos, d, sys, dt);
         }
         if let Some(r) = &self.settings.reservoir {
@@ -133,9 +177,23 @@ impl<E: Eos, W: Weight> GenDpde<E, W> {
         }
         outcome
     }
+
+    fn advance<H: HeatFlow>(&self, sys: &mut System) -> Result<(), StepError> {
+        let moved = match self.settings.motion {
+            Motion::Fixed => Ok(()),
+            Motion::Verlet(work) => self.reversible(sys, work),
+            Motion::VvEuler => self.vv_euler::<H>(sys),
+        };
+        sys.settle(moved)?;
+        let outcome = self.irreversible::<H>(sys);
+        sys.settle(outcome)?;
+        sys.step += 1;
+        sys.time += self.settings.dt;
+        Ok(())
+    }
 }
 
-impl<E: Eos, W: Weight> Physics for GenDpde<E, W> {
+impl<E: FixedEntropy, W: Weight> Physics for GenDpde<E, W> {
     fn settings(&self) -> &Settings {
         &self.settings
     }
@@ -162,30 +220,22 @@ impl<E: Eos, W: Weight> Physics for GenDpde<E, W> {
             many_body::density(&self.weight, sys);
         }
         many_body::resolve_theta(&self.eos, sys);
-        let state = self.conservative(sys);
+        let state = self.conservative(sys, false);
         sys.settle(state).map_err(SetupError::State)
     }
 
     fn step(&self, sys: &mut System) -> Result<(), StepError> {
-        if self.settings.verlet {
-            let outcome = self.reversible(sys);
-            sys.settle(outcome)?;
-        }
         let heat_on = |model| {
             let s = &self.settings;
             s.dissipation.as_ref().is_some_and(|d| d.kappa > 0.0 && d.heat == model)
                 || s.reservoir.as_ref().is_some_and(|r| r.heat == model)
         };
-        let outcome = if heat_on(HeatModel::Original) {
-            self.irreversible::<Original>(sys)
+        if heat_on(HeatModel::Original) {
+            self.advance::<Original>(sys)
         } else if heat_on(HeatModel::Fourier) {
-            self.irreversible::<Fourier>(sys)
+            self.advance::<Fourier>(sys)
         } else {
-            self.irreversible::<NoHeat>(sys)
-        };
-        sys.settle(outcome)?;
-        sys.step += 1;
-        sys.time += self.settings.dt;
-        Ok(())
+            self.advance::<NoHeat>(sys)
+        }
     }
 }

@@ -2,7 +2,8 @@
 
 use crate::heat::HeatModel;
 
-/// `fix shardlow`: friction, momentum noise and pair heat flow (eqs 65-81).
+/// Friction, momentum noise and pair heat flow (eqs 65-81), applied by `fix shardlow`'s
+/// sweep or by `fix vv/euler`'s pair forces.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Dissipation {
     /// Friction amplitude gamma (eq 66) and its cutoff R^D_cut.
@@ -13,10 +14,10 @@ pub struct Dissipation {
     pub rc_heat: f64,
     pub heat: HeatModel,
     pub seed: u64,
-    /// Levels of halving a pair update may use when a temperature would turn
+    /// Levels of halving a sweep pair update may use when a temperature would turn
     /// non-positive (0: stop at once; 4: down to dt/16).
     pub substeps: u32,
-    /// Leave a pair that fails at the last level unchanged for the step instead of
+    /// Leave a sweep pair that fails at the last level unchanged for the step instead of
     /// stopping the run.
     pub reject: bool,
 }
@@ -53,14 +54,35 @@ impl Default for RebuildPolicy {
     }
 }
 
+/// How the particles move.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Motion {
+    /// No integrator fix: particles stay fixed (heat-only scenes), lists never rebuild.
+    Fixed,
+    /// `fix nve/gendpde`: the reversible velocity-Verlet part of the eSSA (eq 84); the
+    /// dissipation, if any, is `fix shardlow`'s sweep.
+    Verlet(Work),
+    /// `fix vv/euler`: velocity Verlet for r and p with all pair forces, forward Euler for
+    /// u (argon paper eqs 19-21); the dissipation acts through the pair forces.
+    VvEuler,
+}
+
+/// How the reversible velocity-Verlet step changes the internal energies.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Work {
+    /// Each pair's work split equally between u_i and u_j (eq 84).
+    Split,
+    /// u_i = u(s_i, n_i) at the entropy s_i of the start of the step (SPEC section 6).
+    Isentropic,
+}
+
 /// Everything the integrator needs besides the EOS and the weight.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Settings {
     pub dt: f64,
     pub skin: f64,
     pub rebuild: RebuildPolicy,
-    /// `fix nve/gendpde`: the reversible step moves the particles; without it they stay fixed.
-    pub verlet: bool,
+    pub motion: Motion,
     pub dissipation: Option<Dissipation>,
     pub reservoir: Option<Reservoir>,
 }

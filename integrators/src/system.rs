@@ -2,7 +2,7 @@
 
 use crate::error::StepError;
 use gendpde_engine::cells::CellBins;
-use gendpde_engine::{dot, sub, CellGrid, Comm, Domain, build_lists, ListRequest, NeighborList, Particles, SweepPairs};
+use gendpde_engine::{dot, sub, CellGrid, Comm, Domain, build_lists, ListRequest, NeighborList, Particles, SweepPairs, Vec3};
 
 /// State that the step mutates.
 pub struct System {
@@ -21,6 +21,10 @@ pub struct System {
     pub pair_geometry: Vec<f64>,
     /// Per-particle sums of the pair passes (scratch).
     pub pair_sums: Vec<f64>,
+    /// Friction force and random impulse of the owned particles (`fix vv/euler`, scratch
+    /// within one step).
+    pub friction: Vec<Vec3>,
+    pub noise: Vec<Vec3>,
     pub step: u64,
     pub time: f64,
     /// Step of the last list build.
@@ -51,6 +55,8 @@ impl System {
             pair_force: Vec::new(),
             pair_geometry: Vec::new(),
             pair_sums: Vec::new(),
+            friction: Vec::new(),
+            noise: Vec::new(),
             step: 0,
             time: 0.0,
             last_build: 0,

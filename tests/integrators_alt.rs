@@ -1,0 +1,232 @@
+//! The alternative integrators on the vdW scene of examples/vdw-equilibrium (N = 1331,
+//! rc = 3, equilibrated by 300 eSSA steps first): `fix vv/euler` (argon paper sec 4.1)
+//! and `fix nve/gendpde work isentropic` (SPEC section 6); and `fix eos/lth`.
+
+mod common;
+
+use common::stats::mean;
+use gendpde::Observables;
+use gendpde_potentials::{Eos, LinearTheta};
+
+const T: f64 = 1.5;
+const VV_EULER: &str = "unfix rev\nunfix ssa\nfix vv all vv/euler\n";
+
+/// The equilibrated vdW scene, then `switch` (fix changes, timestep) executed.
+fn scene(switch: &str) -> gendpde::Interpreter {
+    let mut it = common::run_example("vdw-equilibrium", &[("n", "11"), ("rc", "3.0"), ("steps", "300")]);
+    it.execute_str("switch.in", switch).unwrap();
+    it
+}
+
+/// (t, (E(t) - E(0))/E(0)) over `duration` time units at timestep `dt`.
+fn energy_series(switch: &str, dt: f64, duration: f64) -> Vec<(f64, f64)> {
+    let mut it = scene(&format!("{switch}timestep {dt}\n"));
+    let physics = it.dynamics().unwrap();
+    let sys = it.system().unwrap();
+    let e0 = Observables::measure(sys).energy();
+    let steps = (duration / dt).round() as u64;
+    (1..=steps)
+        .map(|k| {
+            physics.step(sys).unwrap();
+            (k as f64 * dt, (Observables::measure(sys).energy() - e0) / e0)
+        })
+        .collect()
+}
+
+/// Least-squares slope of y against t.
+fn slope(series: &[(f64, f64)]) -> f64 {
+    let n = series.len() as f64;
+    let (mt, my) = (series.iter().map(|p| p.0).sum::<f64>() / n, series.iter().map(|p| p.1).sum::<f64>() / n);
+    let sxy: f64 = series.iter().map(|p| (p.0 - mt) * (p.1 - my)).sum();
+    let sxx: f64 = series.iter().map(|p| (p.0 - mt) * (p.0 - mt)).sum();
+    sxy / sxx
+}
+
+fn max_abs(series: &[(f64, f64)]) -> f64 {
+    series.iter().map(|p| p.1.abs()).fold(0.0, f64::max)
+}
+
+#[test]
+fn vv_euler_conserves_momentum_to_round_off() {
+    for heat in ["original", "fourier"] {
+        let mut it = scene(&VV_EULER.replace("vv/euler", &format!("vv/euler heat {heat}")));
+        let physics = it.dynamics().unwrap();
+        let sys = it.system().unwrap();
+        let p0 = Observables::measure(sys).momentum;
+        let scale: f64 = sys.store.p[..sys.store.nlocal].iter().map(|p| p.iter().map(|x| x.abs()).sum::<f64>()).sum();
+        let mut worst: f64 = 0.0;
+        for _ in 0..200 {
+            physics.step(sys).unwrap();
+            let p = Observables::measure(sys).momentum;
+            worst = worst.max((0..3).map(|c| (p[c] - p0[c]).abs()).fold(0.0, f64::max) / scale);
+        }
+        eprintln!("vv/euler heat {heat}: largest total-momentum change over 200 steps {worst:.2e} of sum |p|");
+        assert!(worst < 1e-14, "momentum changed by {worst:e}");
+    }
+}
+
+/// Without friction and noise the error of K + sum u is bounded and first order: eq 21
+/// takes the work with the velocities of the start of the step. With friction, noise and
+/// heat flow the mean drift is second order (the Ito term of eq 21 removes the O(dt)
+/// kinetic energy of the noise; see integrators/src/vv_euler.rs).
+#[test]
+fn vv_euler_energy_error_orders() {
+    let conservative = VV_EULER.to_string() + "pair_coeff * * 0.0 0.0\n";
+    let e: Vec<f64> = [0.02, 0.01, 0.005].iter().map(|&dt| max_abs(&energy_series(&conservative, dt, 2.0))).collect();
+    eprintln!(
+        "gamma = kappa = 0, max |dE/E| over 2 time units: dt 0.02 {:.3e}, 0.01 {:.3e}, 0.005 {:.3e}; ratios {:.2} {:.2}",
+        e[0], e[1], e[2], e[0] / e[1], e[1] / e[2]
+    );
+    for r in [e[0] / e[1], e[1] / e[2]] {
+        assert!((1.7..=2.4).contains(&r), "first order expected, ratio {r}");
+    }
+    let d: Vec<f64> = [0.02, 0.01, 0.005].iter().map(|&dt| slope(&energy_series(VV_EULER, dt, 4.0))).collect();
+    eprintln!(
+        "gamma 4.5, kappa 1, drift of dE/E per time unit: dt 0.02 {:.3e}, 0.01 {:.3e}, 0.005 {:.3e}; ratios {:.2} {:.2}",
+        d[0], d[1], d[2], d[0] / d[1], d[1] / d[2]
+    );
+    for r in [d[0] / d[1], d[1] / d[2]] {
+        assert!((3.0..=6.0).contains(&r), "second order expected, ratio {r}");
+    }
+}
+
+/// Mean and batch-means standard error (10 batches).
+fn mean_and_error(x: &[f64]) -> (f64, f64) {
+    let batches: Vec<f64> = x.chunks(x.len() / 10).take(10).map(mean).collect();
+    let m = mean(&batches);
+    let var = batches.iter().map(|b| (b - m) * (b - m)).sum::<f64>() / 9.0;
+    (mean(x), (var / 10.0).sqrt())
+}
+
+/// With a reservoir at T (kappa 50, relaxation time ~3) at dt = 0.005, where the energy
+/// drift (-2.6e-4 of E per time unit) shifts <T_int> by ~0.001 against the reservoir.
+#[test]
+fn vv_euler_equilibrium_temperatures() {
+    let mut it = scene(&format!("{VV_EULER}fix bath all heat/reservoir {T} 50.0 777\ntimestep 0.005\n"));
+    let physics = it.dynamics().unwrap();
+    let sys = it.system().unwrap();
+    let (mut tk, mut ti) = (vec![], vec![]);
+    for k in 1..=4000 {
+        physics.step(sys).unwrap();
+        if k > 1000 && k % 10 == 0 {
+            let o = Observables::measure(sys);
+            tk.push(o.temperature(1.0));
+            ti.push(o.theta / o.atoms);
+        }
+    }
+    let ((mk, ek), (mi, ei)) = (mean_and_error(&tk), mean_and_error(&ti));
+    eprintln!("vv/euler + reservoir, dt 0.005: <T_kin> = {mk:.5} +- {ek:.5}, <T_int> = {mi:.5} +- {ei:.5} (T = {T})");
+    assert!(ek < 0.003 * T && ei < 0.003 * T, "statistical errors {ek}, {ei} too large to test anything");
+    assert!((mk - T).abs() < 3.0 * ek, "<T_kin> = {mk} +- {ek}");
+    assert!((mi - T).abs() < 3.0 * ei, "<T_int> = {mi} +- {ei}");
+}
+
+#[test]
+fn vv_euler_is_refused_with_nve_gendpde_or_shardlow() {
+    let mut it = common::run_example("vdw-equilibrium", &[("n", "11"), ("rc", "3.0"), ("steps", "0")]);
+    it.execute_str("a.in", "fix vv all vv/euler\n").unwrap();
+    let e = it.execute_str("b.in", "run 1\n").unwrap_err().to_string();
+    eprintln!("{e}");
+    assert!(e.contains("b.in") && e.contains("both move the particles"), "{e}");
+    it.execute_str("c.in", "unfix rev\n").unwrap();
+    let e = it.execute_str("d.in", "run 1\n").unwrap_err().to_string();
+    eprintln!("{e}");
+    assert!(e.contains("d.in") && e.contains("unfix ssa"), "{e}");
+}
+
+/// Entropy of every particle by tag, at its current density.
+fn entropies(sys: &gendpde_integrators::System) -> Vec<(u64, f64)> {
+    let eos = LinearTheta::vdw_excess(60.0, 2.4682, 1.4142);
+    let s = &sys.store;
+    let mut out: Vec<(u64, f64)> = (0..s.nlocal).map(|i| (s.tag[i], eos.entropy(s.u[i], s.n[i]).unwrap())).collect();
+    out.sort_by_key(|x| x.0);
+    out
+}
+
+/// With gamma = kappa = 0 nothing but the reversible step changes u: at fixed entropy
+/// every particle keeps its s (to round-off), while the work split changes it by O(dt^3)
+/// per step.
+#[test]
+fn isentropic_step_keeps_every_entropy() {
+    let mut change = vec![];
+    for work in ["isentropic", "split"] {
+        let mut it = scene(&format!("unfix ssa\nfix rev all nve/gendpde work {work}\n"));
+        let physics = it.dynamics().unwrap();
+        let sys = it.system().unwrap();
+        let before = entropies(sys);
+        for _ in 0..200 {
+            physics.step(sys).unwrap();
+        }
+        let after = entropies(sys);
+        let worst = before.iter().zip(&after).map(|(a, b)| (a.1 - b.1).abs()).fold(0.0, f64::max);
+        eprintln!("work {work}: largest entropy change of a particle over 200 steps {worst:.2e} k_B");
+        change.push(worst);
+    }
+    assert!(change[0] < 1e-11, "isentropic step changed an entropy by {:e}", change[0]);
+    assert!(change[1] > 1e-6, "the split should change entropies measurably: {:e}", change[1]);
+}
+
+/// The isentropic step is velocity Verlet on the potential sum_i u(s_i, n_i(r)): energy
+/// error O(dt^2), like the split's.
+#[test]
+fn isentropic_energy_error_is_second_order() {
+    for work in ["split", "isentropic"] {
+        let switch = format!("unfix ssa\nfix rev all nve/gendpde work {work}\n");
+        let e: Vec<f64> = [0.01, 0.005, 0.0025].iter().map(|&dt| max_abs(&energy_series(&switch, dt, 2.0))).collect();
+        eprintln!(
+            "work {work}, max |dE/E| over 2 time units: dt 0.01 {:.3e}, 0.005 {:.3e}, 0.0025 {:.3e}; ratios {:.2} {:.2}",
+            e[0], e[1], e[2], e[0] / e[1], e[1] / e[2]
+        );
+        for r in [e[0] / e[1], e[1] / e[2]] {
+            assert!((3.0..=5.0).contains(&r), "work {work}: second order expected, ratio {r}");
+        }
+    }
+}
+
+/// Runs the vdW example with `fixes` replacing its two integration fixes on 1 and 2 ranks
+/// (mpirun, as tests/mpi.rs) and compares the thermo lines and the final particles.
+#[cfg(feature = "mpi")]
+fn same_on_1_and_2_ranks(name: &str, fixes: &str) {
+    use std::process::Command;
+    let dir = std::env::temp_dir().join(format!("gendpde-alt-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let script = std::fs::read_to_string(common::example("vdw-equilibrium"))
+        .unwrap()
+        .replace("fix          rev all nve/gendpde\n", fixes)
+        .replace("fix          ssa all shardlow heat original\n", "")
+        .replace("thermo       100", "thermo       20")
+        + "write_dump all custom final.dump id x y z px py pz u theta\n";
+    std::fs::write(dir.join("in.test"), script).unwrap();
+    let mut runs = vec![];
+    for np in [1, 2] {
+        let out = Command::new("mpirun")
+            .args(["--oversubscribe", "-np", &np.to_string(), env!("CARGO_BIN_EXE_gendpde")])
+            .args(["run", "in.test", "-log", "none", "-var", "n", "11", "-var", "rc", "3.0", "-var", "steps", "200"])
+            .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
+            .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
+            .current_dir(&dir)
+            .output()
+            .expect("mpirun runs (scripts/test.sh installs OpenMPI)");
+        assert!(out.status.success(), "{name} on {np} ranks failed:\n{}", String::from_utf8_lossy(&out.stderr));
+        let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
+        let rows: Vec<String> = stdout.lines().filter(|l| l.trim_start().starts_with(|c: char| c.is_ascii_digit())).map(String::from).collect();
+        assert_eq!(rows.len(), 11, "{name}: thermo every 20 steps");
+        runs.push((rows, std::fs::read_to_string(dir.join("final.dump")).unwrap()));
+    }
+    assert_eq!(runs[0].0, runs[1].0, "{name}: thermo on 2 ranks differs from 1 rank");
+    assert!(runs[0].1 == runs[1].1, "{name}: final particles on 2 ranks differ from 1 rank");
+    eprintln!("{name}: 2 ranks identical to 1 rank, last thermo line {}", runs[0].0[10]);
+}
+
+#[cfg(feature = "mpi")]
+#[test]
+fn vv_euler_is_identical_on_1_and_2_ranks() {
+    same_on_1_and_2_ranks("vv-euler", "fix          vv all vv/euler heat fourier\n");
+}
+
+/// The entropies ride in theta through the migration of the list rebuilds.
+#[cfg(feature = "mpi")]
+#[test]
+fn isentropic_step_is_identical_on_1_and_2_ranks() {
+    same_on_1_and_2_ranks("isentropic", "fix          rev all nve/gendpde work isentropic\nfix          ssa all shardlow\n");
+}
