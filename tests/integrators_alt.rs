@@ -230,3 +230,61 @@ fn vv_euler_is_identical_on_1_and_2_ranks() {
 fn isentropic_step_is_identical_on_1_and_2_ranks() {
     same_on_1_and_2_ranks("isentropic", "fix          rev all nve/gendpde work isentropic\nfix          ssa all shardlow\n");
 }
+
+/// An LTh liquid (argon paper Table 1 with C_V of eq 108, reduced units, R* = 2.1564) of
+/// 1000 particles at n* = 1 with the EOS of `fix eos/lth` (`extra` appended to its line).
+fn lth_scene(extra: &str, dt: f64) -> gendpde::Interpreter {
+    common::run_script(&format!(
+        "units lj\nlattice sc 1.0\nregion box block 0 10 0 10 0 10\ncreate_box 1 box\ncreate_atoms 1 box\nmass 1 1.0\n\
+         velocity all create 0.0111 4928459 dist gaussian\nset group all theta 0.0111\n\
+         pair_style gendpde 2.1564 4928459\npair_coeff * * 0.0 0.0\n\
+         fix eos all eos/lth 11.008 29.345 1.0112 0.11606 0.011054 1.0 {extra}\nfix rev all nve/gendpde\n\
+         timestep {dt}\nneighbor 0.3 bin\nrun 0\n"
+    ))
+}
+
+#[test]
+fn lth_eos_fix_conserves_energy_and_tabulates() {
+    use gendpde_potentials::eos::Lth;
+    let cmd = |args: &str| gendpde_io::Command {
+        name: "fix".into(),
+        args: args.split_whitespace().map(String::from).collect(),
+        loc: gendpde_io::Location { file: "lth.in".into(), line: 7 },
+    };
+    let lth = Lth::new(11.008, 29.345, 1.0112, 0.11606, 0.011054, 1.0);
+    let analytic = gendpde::styles::parse_fix(&cmd("eos all eos/lth 11.008 29.345 1.0112 0.11606 0.011054 1.0"), 1.0).unwrap();
+    let table = gendpde::styles::parse_fix(&cmd("eos all eos/lth 11.008 29.345 1.0112 0.11606 0.011054 1.0 table 0.005 0.03 61 0.5 1.5 65"), 1.0).unwrap();
+    // the table within the largest errors it measured against the model over its grid
+    for fix in [analytic, table] {
+        let gendpde::styles::FixStyle::Eos(model) = fix.style else { panic!("an EOS fix") };
+        let d: std::collections::HashMap<_, _> = model.describe(Some(0.0121), None, 0.93).unwrap().into_iter().collect();
+        let (u, pi) = (lth.u(0.0121, 0.93), lth.pressure(0.0121, 0.93));
+        let (tol_u, tol_pi) = (d.get("table_error_u").copied().unwrap_or(1e-15), d.get("table_error_pn2").copied().unwrap_or(1e-15));
+        eprintln!("eos/lth at theta 0.0121, n 0.93: u {} (eq 52: {u}), pi {} (eq 41: {pi}); table errors {tol_u:.1e} {tol_pi:.1e}", d["u"], d["pi"]);
+        assert!(tol_u < 1e-3 && tol_pi < 1e-3, "table errors {tol_u} {tol_pi}");
+        assert!((d["u"] - u).abs() <= tol_u * u.abs() && (d["pi"] - pi).abs() <= tol_pi * pi.abs(), "{d:?}");
+    }
+    let e = gendpde::styles::parse_fix(&cmd("eos all eos/lth 11.008 29.345 0.0 0.11606 0.011054 1.0"), 1.0).unwrap_err().to_string();
+    assert!(e.contains("lth.in:7") && e.contains("kappa_T"), "{e}");
+
+    // O(dt^2) energy error of the reversible step: pi/n^2 = du/dn at fixed s (eqs 41, 52-58)
+    let energy_error = |extra: &str, dt: f64| {
+        let mut it = lth_scene(extra, dt);
+        let physics = it.dynamics().unwrap();
+        let sys = it.system().unwrap();
+        let e0 = Observables::measure(sys).energy();
+        let mut worst: f64 = 0.0;
+        for _ in 0..(2.0 / dt).round() as u64 {
+            physics.step(sys).unwrap();
+            worst = worst.max(((Observables::measure(sys).energy() - e0) / e0).abs());
+        }
+        (worst, Observables::measure(sys).theta / 1000.0)
+    };
+    let ((e1, t1), (e2, t2)) = (energy_error("", 0.004), energy_error("", 0.002));
+    let (e3, t3) = energy_error("table 0.005 0.03 61 0.5 1.5 65", 0.002);
+    eprintln!("eos/lth, max |dE/E| over 2 time units: dt 0.004 {e1:.3e}, 0.002 {e2:.3e} (ratio {:.2}); table at 0.002 {e3:.3e}", e1 / e2);
+    eprintln!("<theta> after 2 time units: analytic {t2:.9} (dt 0.004: {t1:.9}), table {t3:.9}");
+    assert!((3.0..=5.0).contains(&(e1 / e2)), "ratio {}", e1 / e2);
+    assert!(e3 < 2.0 * e2, "the table conserves energy as well as the model: {e3:e}");
+    assert!((t3 - t2).abs() < 1e-6 * t2, "table and model part: {t3} vs {t2}");
+}
