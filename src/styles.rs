@@ -7,14 +7,18 @@ use crate::args::Args;
 use gendpde_integrators::{Dissipation, FixedEntropy, GenDpde, HeatModel, Motion, Physics, RebuildPolicy, Reservoir, Settings, Work};
 use gendpde_io::{Command, ScriptError};
 use gendpde_potentials::eos::Lth;
+use gendpde_potentials::volume::PartitionVolume;
 use gendpde_potentials::{CubicSpline, Eos, LennardJones, LinearTheta, Linear, Lucy, Quadratic, TableError, TableErrors, TableGrid, Tabulated, WeightKind};
 
-/// `pair_style gendpde CUTOFF SEED [weight W]` with `pair_coeff * * GAMMA KAPPA [RC_D [RC_H]]`.
+/// `pair_style gendpde CUTOFF SEED [weight W] [volume plain|corrected FCUT]` with
+/// `pair_coeff * * GAMMA KAPPA [RC_D [RC_H]]`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PairGendpde {
     pub cutoff: f64,
     pub seed: u64,
     pub weight: WeightKind,
+    /// f_cut of the corrected particle volume (argon paper eqs 2-3); None: n = n^b.
+    pub volume: Option<f64>,
     pub coeff: Option<PairCoeff>,
 }
 
@@ -157,14 +161,14 @@ pub fn parse_pair_style(cmd: &Command) -> Result<PairStyle, ScriptError> {
     }
 }
 
-/// `pair_style gendpde CUTOFF SEED [weight W]`.
+/// `pair_style gendpde CUTOFF SEED [weight W] [volume plain|corrected FCUT]`.
 fn parse_gendpde(a: &mut Args) -> Result<PairGendpde, ScriptError> {
     let cutoff = a.positive("the density cutoff")?;
     let seed = a.u64("the random seed")?;
     if seed == 0 {
         return Err(a.err("the random seed must be positive"));
     }
-    let mut weight = WeightKind::Quadratic;
+    let (mut weight, mut volume) = (WeightKind::Quadratic, None);
     while let Some(key) = a.peek() {
         a.word("keyword")?;
         match key {
@@ -172,10 +176,17 @@ fn parse_gendpde(a: &mut Args) -> Result<PairGendpde, ScriptError> {
                 let w = a.word("a weight function")?;
                 weight = WeightKind::parse(w).ok_or_else(|| a.err(format!("unknown weight '{w}'; known: quadratic, linear, lucy, spline")))?;
             }
-            _ => return Err(a.err(format!("unknown keyword '{key}'; known: weight"))),
+            "volume" => {
+                volume = match a.word("plain or corrected")? {
+                    "plain" => None,
+                    "corrected" => Some(a.positive("the cutoff scaling factor f_cut")?),
+                    v => return Err(a.err(format!("unknown particle volume '{v}'; known: plain, corrected FCUT"))),
+                }
+            }
+            _ => return Err(a.err(format!("unknown keyword '{key}'; known: weight, volume"))),
         }
     }
-    Ok(PairGendpde { cutoff, seed, weight, coeff: None })
+    Ok(PairGendpde { cutoff, seed, weight, volume, coeff: None })
 }
 
 /// `pair_coeff` for the pair style in force.
@@ -450,15 +461,17 @@ pub fn build_physics(
         }
     }
     let settings = Settings { dt, skin, rebuild, motion, dissipation, reservoir };
-    Ok(each_eos!(eos, e => with_weight(e, pair.weight, pair.cutoff, settings)))
+    Ok(each_eos!(eos, e => with_weight(e, pair, settings)))
 }
 
 /// Monomorphises the dynamics over the weight function.
-fn with_weight<E: FixedEntropy + 'static>(eos: E, kind: WeightKind, rc: f64, settings: Settings) -> Box<dyn Physics> {
-    match kind {
-        WeightKind::Quadratic => Box::new(GenDpde { eos, weight: Quadratic::new(rc), settings }),
-        WeightKind::Linear => Box::new(GenDpde { eos, weight: Linear::new(rc), settings }),
-        WeightKind::Lucy => Box::new(GenDpde { eos, weight: Lucy::new(rc), settings }),
-        WeightKind::CubicSpline => Box::new(GenDpde { eos, weight: CubicSpline::new(rc), settings }),
+fn with_weight<E: FixedEntropy + 'static>(eos: E, pair: &PairGendpde, settings: Settings) -> Box<dyn Physics> {
+    let rc = pair.cutoff;
+    let volume = pair.volume.map(|fcut| PartitionVolume::new(rc, fcut));
+    match pair.weight {
+        WeightKind::Quadratic => Box::new(GenDpde { eos, weight: Quadratic::new(rc), volume, settings }),
+        WeightKind::Linear => Box::new(GenDpde { eos, weight: Linear::new(rc), volume, settings }),
+        WeightKind::Lucy => Box::new(GenDpde { eos, weight: Lucy::new(rc), volume, settings }),
+        WeightKind::CubicSpline => Box::new(GenDpde { eos, weight: CubicSpline::new(rc), volume, settings }),
     }
 }

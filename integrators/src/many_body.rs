@@ -1,21 +1,26 @@
 //! The many-body conservative passes over the half pair list (each pair once; the sums
 //! of every owned particle come out as over its full list, see
-//! [`gendpde_engine::NeighborList`]): local density (eq 2),
+//! [`gendpde_engine::NeighborList`]): local density (eq 2, or the corrected density of
+//! the argon paper, eqs 2-3),
 //! particle state from the EOS, force (eq 51) with the virial (eq 52), and the
 //! reversible work split (eq 84): u_i -= c sum_j v_ij . f_ij.
 //!
 //! The force pass keeps, per pair, the geometric factor g_ij = w'(r_ij)/([w] r_ij)
-//! and F_ij = -(pi_i/n_i^2 + pi_j/n_j^2) g_ij, so f_ij = F_ij r_ij. After the Shardlow
+//! and F_ij = -(pi_i/n_i^2 + pi_j/n_j^2) g_ij, so f_ij = F_ij r_ij; with the corrected
+//! volume pi_i/n_i^2 carries the factor zeta_i = dn_i/dn^b_i (argon paper eq 27). After the Shardlow
 //! sweep has changed the particle temperatures, `refresh_forces` rebuilds F_ij
 //! from g_ij and the new pi/n^2 without evaluating the weight again.
 
 use crate::error::StepError;
 use crate::system::System;
 use gendpde_engine::{dot, sub, Particles, Vec3};
+use gendpde_potentials::volume::PartitionVolume;
 use gendpde_potentials::{Eos, Weight, ISOLATED_DENSITY};
 
-/// n_i = sum_j w(r_ij)/[w] for owned particles.
-pub fn density<W: Weight>(w: &W, sys: &mut System) {
+/// n_i = sum_j w(r_ij)/[w] for owned particles (eq 2), or with `volume` the corrected
+/// n_i = 1/Vol(n^b_i) of the argon paper (eqs 2-3) from that sum n^b_i, keeping
+/// zeta_i = dn_i/dn^b_i (eq 24) in `sys.zeta` for [`refresh_state`].
+pub fn density<W: Weight>(w: &W, volume: Option<&PartitionVolume>, sys: &mut System) {
     let rc2 = w.cutoff() * w.cutoff();
     let s = &mut sys.store;
     let n = s.nlocal;
@@ -27,6 +32,15 @@ pub fn density<W: Weight>(w: &W, sys: &mut System) {
         if r2 < rc2 {
             let wij = w.eval(r2.sqrt()).0;
             add(&mut s.n, n, i, j, wij);
+        }
+    }
+    let zeta = &mut sys.zeta;
+    zeta.clear();
+    if let Some(v) = volume {
+        zeta.resize(n, 0.0);
+        for (nb, z) in s.n[..n].iter_mut().zip(zeta.iter_mut()) {
+            let d = v.density(*nb);
+            (*nb, *z) = (d.n, d.zeta);
         }
     }
 }
@@ -48,11 +62,12 @@ pub fn resolve_theta<E: Eos>(eos: &E, sys: &mut System) {
     }
 }
 
-/// theta, pi/n^2 (where kept) and 1/tau (where kept) of owned particles from (u, n).
-/// On a failure it carries on and reports the first failing particle.
+/// theta, the force factor pi/n^2 (times zeta_i with the corrected volume, eq 27; where
+/// kept) and 1/tau (where kept) of owned particles from (u, n). On a failure it carries on
+/// and reports the first failing particle.
 pub fn refresh_state<E: Eos>(eos: &E, sys: &mut System) -> Result<(), StepError> {
     let step = sys.step;
-    let s = &mut sys.store;
+    let (s, zeta) = (&mut sys.store, &sys.zeta);
     let (keep_pressure, keep_tau) = (!s.pn2.is_empty(), !s.inv_tau.is_empty());
     let mut first = Ok(());
     for i in 0..s.nlocal {
@@ -60,7 +75,7 @@ pub fn refresh_state<E: Eos>(eos: &E, sys: &mut System) -> Result<(), StepError>
             Ok(st) => {
                 s.theta[i] = st.theta;
                 if keep_pressure {
-                    s.pn2[i] = st.pn2;
+                    s.pn2[i] = if zeta.is_empty() { st.pn2 } else { st.pn2 * zeta[i] };
                 }
                 if keep_tau {
                     s.inv_tau[i] = eos.inv_tau(st.theta, st.cv);

@@ -9,6 +9,7 @@ use crate::settings::{Motion, Settings, Work};
 use crate::system::System;
 use crate::{many_body, sweep, verlet, vv_euler};
 use gendpde_engine::Fields;
+use gendpde_potentials::volume::PartitionVolume;
 use gendpde_potentials::{Eos, Weight};
 
 /// A scene's dynamics, monomorphised over its EOS and weight function.
@@ -45,6 +46,8 @@ impl std::error::Error for SetupError {}
 pub struct GenDpde<E: Eos, W: Weight> {
     pub eos: E,
     pub weight: W,
+    /// The corrected particle volume of the argon paper (eqs 2-3), if chosen.
+    pub volume: Option<PartitionVolume>,
     pub settings: Settings,
 }
 
@@ -80,7 +83,7 @@ impl<E: FixedEntropy, W: Weight> GenDpde<E, W> {
     /// `entropy_held`, u at the entropies [`isentropic::hold`] kept first.
     fn conservative(&self, sys: &mut System, entropy_held: bool) -> Result<(), StepError> {
         if self.many_body() {
-            many_body::density(&self.weight, sys);
+            many_body::density(&self.weight, self.volume.as_ref(), sys);
         }
         let released = if entropy_held { isentropic::release(&self.eos, sys) } else { Ok(()) };
         let state = many_body::refresh_state(&self.eos, sys);
@@ -217,7 +220,7 @@ impl<E: FixedEntropy, W: Weight> Physics for GenDpde<E, W> {
         sys.store.enable(fields);
         self.rebuild(sys, sys.step);
         if self.many_body() {
-            many_body::density(&self.weight, sys);
+            many_body::density(&self.weight, self.volume.as_ref(), sys);
         }
         many_body::resolve_theta(&self.eos, sys);
         let state = self.conservative(sys, false);

@@ -21,6 +21,9 @@ pub struct System {
     pub pair_geometry: Vec<f64>,
     /// Per-particle sums of the pair passes (scratch).
     pub pair_sums: Vec<f64>,
+    /// zeta_i = dn_i/dn^b_i of the owned particles at the last density pass (corrected
+    /// particle volume only; empty otherwise).
+    pub zeta: Vec<f64>,
     /// Friction force and random impulse of the owned particles (`fix vv/euler`, scratch
     /// within one step).
     pub friction: Vec<Vec3>,
@@ -55,6 +58,7 @@ impl System {
             pair_force: Vec::new(),
             pair_geometry: Vec::new(),
             pair_sums: Vec::new(),
+            zeta: Vec::new(),
             friction: Vec::new(),
             noise: Vec::new(),
             step: 0,
