@@ -183,25 +183,19 @@ fn isentropic_energy_error_is_second_order() {
     }
 }
 
-/// Runs the vdW example with `fixes` replacing its two integration fixes on 1 and 2 ranks
-/// (mpirun, as tests/mpi.rs) and compares the thermo lines and the final particles.
+/// Runs `script` (thermo every 20 steps, 200 steps) on 1 and 2 ranks (mpirun, as
+/// tests/mpi.rs) and compares the thermo lines and the final particles.
 #[cfg(feature = "mpi")]
-fn same_on_1_and_2_ranks(name: &str, fixes: &str) {
+fn same_on_1_and_2_ranks(name: &str, script: &str) {
     use std::process::Command;
     let dir = std::env::temp_dir().join(format!("gendpde-alt-{name}-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let script = std::fs::read_to_string(common::example("vdw-equilibrium"))
-        .unwrap()
-        .replace("fix          rev all nve/gendpde\n", fixes)
-        .replace("fix          ssa all shardlow heat original\n", "")
-        .replace("thermo       100", "thermo       20")
-        + "write_dump all custom final.dump id x y z px py pz u theta\n";
-    std::fs::write(dir.join("in.test"), script).unwrap();
+    std::fs::write(dir.join("in.test"), format!("{script}write_dump all custom final.dump id x y z px py pz u theta\n")).unwrap();
     let mut runs = vec![];
     for np in [1, 2] {
         let out = Command::new("mpirun")
             .args(["--oversubscribe", "-np", &np.to_string(), env!("CARGO_BIN_EXE_gendpde")])
-            .args(["run", "in.test", "-log", "none", "-var", "n", "11", "-var", "rc", "3.0", "-var", "steps", "200"])
+            .args(["run", "in.test", "-log", "none"])
             .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
             .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
             .current_dir(&dir)
@@ -218,17 +212,41 @@ fn same_on_1_and_2_ranks(name: &str, fixes: &str) {
     eprintln!("{name}: 2 ranks identical to 1 rank, last thermo line {}", runs[0].0[10]);
 }
 
+/// The vdW example (N = 1331, rc = 3) with `fixes` replacing its two integration fixes.
+#[cfg(feature = "mpi")]
+fn vdw_script(fixes: &str) -> String {
+    std::fs::read_to_string(common::example("vdw-equilibrium"))
+        .unwrap()
+        .replace("fix          rev all nve/gendpde\n", fixes)
+        .replace("fix          ssa all shardlow heat original\n", "")
+        .replace("thermo       100", "thermo       20")
+        .replace("index 15 ", "index 11 ")
+        .replace("index 500", "index 200")
+        .replace("index 4.0 ", "index 3.0 ")
+}
+
 #[cfg(feature = "mpi")]
 #[test]
 fn vv_euler_is_identical_on_1_and_2_ranks() {
-    same_on_1_and_2_ranks("vv-euler", "fix          vv all vv/euler heat fourier\n");
+    same_on_1_and_2_ranks("vv-euler", &vdw_script("fix          vv all vv/euler heat fourier\n"));
 }
 
 /// The entropies ride in theta through the migration of the list rebuilds.
 #[cfg(feature = "mpi")]
 #[test]
 fn isentropic_step_is_identical_on_1_and_2_ranks() {
-    same_on_1_and_2_ranks("isentropic", "fix          rev all nve/gendpde work isentropic\nfix          ssa all shardlow\n");
+    same_on_1_and_2_ranks("isentropic", &vdw_script("fix          rev all nve/gendpde work isentropic\nfix          ssa all shardlow\n"));
+}
+
+/// The LTh liquid with the corrected volume, the isentropic step and the sweep (argon
+/// paper Tables 1-4).
+#[cfg(feature = "mpi")]
+#[test]
+fn corrected_volume_is_identical_on_1_and_2_ranks() {
+    let script = lth_script("volume corrected 1.33", "", 0.002)
+        .replace("pair_coeff * * 0.0 0.0", "pair_coeff * * 2.14 0.00072")
+        .replace("run 0", "fix ssa all shardlow\nthermo 20\nrun 200");
+    same_on_1_and_2_ranks("corrected-volume", &script);
 }
 
 /// An LTh liquid (argon paper Table 1 with C_V of eq 108, reduced units, R* = 2.1564) of
@@ -236,13 +254,17 @@ fn isentropic_step_is_identical_on_1_and_2_ranks() {
 /// its energy is conserved to O(dt^2) only if the forces are minus the gradient of
 /// sum_i u(s_i, n_i(r)), which tests the EOS (pi = n^2 du/dn at fixed s) and the density.
 fn lth_scene(pair_extra: &str, eos_extra: &str, dt: f64) -> gendpde::Interpreter {
-    common::run_script(&format!(
+    common::run_script(&lth_script(pair_extra, eos_extra, dt))
+}
+
+fn lth_script(pair_extra: &str, eos_extra: &str, dt: f64) -> String {
+    format!(
         "units lj\nlattice sc 1.0\nregion box block 0 10 0 10 0 10\ncreate_box 1 box\ncreate_atoms 1 box\nmass 1 1.0\n\
          velocity all create 0.0111 4928459 dist gaussian\nset group all theta 0.0111\n\
          pair_style gendpde 2.1564 4928459 {pair_extra}\npair_coeff * * 0.0 0.0\n\
          fix eos all eos/lth 11.008 29.345 1.0112 0.11606 0.011054 1.0 {eos_extra}\nfix rev all nve/gendpde work isentropic\n\
          timestep {dt}\nneighbor 0.3 bin\nrun 0\n"
-    ))
+    )
 }
 
 /// Largest |E(t) - E(0)|/E(0) over 2 time units of [`lth_scene`], mean theta and n at the end.

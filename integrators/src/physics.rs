@@ -160,6 +160,7 @@ impl<E: FixedEntropy, W: Weight> GenDpde<E, W> {
         self.relist(sys);
         let state = self.conservative(sys, false);
         if dissipation.is_some_and(|d| d.gamma > 0.0) {
+            // the prediction of p(t+dt) for the friction: first_half added dt/2 F^D(t)
             verlet::kick(sys, 0.5 * dt);
             sys.comm.forward(&mut sys.store, Fields::MOMENTUM);
         }

@@ -16,16 +16,14 @@
 //!    prediction p_i + dt/2 (F^C_i(t+dt) + F^D_i(t)) of p_i(t+dt);
 //! 5. p_i += dt/2 (F^C_i + F^D_i), with F^D from step 4.
 //!
-//! The prediction of v(t+dt) matters: with the momenta after step 3 alone (all the noise,
-//! half the deterministic kick) the friction of step 5 lags, and the vdW scene of
-//! examples/vdw-equilibrium lost 1 % of its energy per time unit at dt = 0.01 (first
-//! order in dt); with the prediction above the drift is second order in dt and 3.5 times
-//! smaller at dt = 0.01.
-//!
 //! The double sum of eq 21 (the Ito term) removes the kinetic energy the noise adds at
-//! O(dt) per step; what remains of the energy error per step is O(dt^2) in the mean, so
-//! K + sum u drifts at O(dt) (measured in tests/integrators_alt.rs). Momentum is
-//! conserved pair by pair.
+//! O(dt) per step. Measured (tests/integrators_alt.rs): without friction and noise the
+//! error of K + sum u is bounded and O(dt) (the work is taken at the velocities of t);
+//! with them the mean drift per time unit is O(dt^2). The prediction of v(t+dt) matters:
+//! with the momenta after step 3 alone (all the noise, half the deterministic kick) the
+//! friction of step 5 lags, and the vdW scene of examples/vdw-equilibrium lost 1 % of
+//! its energy per time unit at dt = 0.01, first order in dt; with it, 0.11 %. Momentum
+//! is conserved pair by pair.
 //!
 //! Every pair term is evaluated in the orientation of increasing tag and added to the
 //! owned particle(s) of the half list, so the sums do not depend on the decomposition
