@@ -5,8 +5,8 @@
 //! particle state from the EOS, force (eq 51) with the virial (eq 52), and the
 //! reversible work split (eq 84): u_i -= c sum_j v_ij . f_ij.
 //!
-//! The force pass keeps, per pair, the geometric factor g_ij = w'(r_ij)/([w] r_ij)
-//! and F_ij = -(pi_i/n_i^2 + pi_j/n_j^2) g_ij, so f_ij = F_ij r_ij; with the corrected
+//! The density pass keeps, per pair, the geometric factor g_ij = w'(r_ij)/([w] r_ij);
+//! the force pass F_ij = -(pi_i/n_i^2 + pi_j/n_j^2) g_ij, so f_ij = F_ij r_ij; with the corrected
 //! volume pi_i/n_i^2 carries the factor zeta_i = dn_i/dn^b_i (argon paper eq 27). After the Shardlow
 //! sweep has changed the particle temperatures, `refresh_forces` rebuilds F_ij
 //! from g_ij and the new pi/n^2 without evaluating the weight again.
@@ -17,7 +17,8 @@ use gendpde_engine::{dot, sub, Particles, Vec3};
 use gendpde_potentials::volume::PartitionVolume;
 use gendpde_potentials::{Eos, Weight, ISOLATED_DENSITY};
 
-/// n_i = sum_j w(r_ij)/[w] for owned particles (eq 2), or with `volume` the corrected
+/// n_i = sum_j w(r_ij)/[w] for owned particles (eq 2), keeping g_ij = w'(r_ij)/([w] r_ij)
+/// per pair for the force pass, or with `volume` the corrected
 /// n_i = 1/Vol(n^b_i) of the argon paper (eqs 2-3) from that sum n^b_i, keeping
 /// zeta_i = dn_i/dn^b_i (eq 24) in `sys.zeta` for [`refresh_state`].
 pub fn density<W: Weight>(w: &W, volume: Option<&PartitionVolume>, sys: &mut System) {
@@ -25,14 +26,20 @@ pub fn density<W: Weight>(w: &W, volume: Option<&PartitionVolume>, sys: &mut Sys
     let s = &mut sys.store;
     let n = s.nlocal;
     s.n[..n].fill(0.0);
-    for &[i, j] in &sys.nlist.pairs {
+    for (k, &[i, j]) in sys.nlist.pairs.iter().enumerate() {
         let (i, j) = (i as usize, j as usize);
         let d = sub(s.r[i], s.r[j]);
         let r2 = dot(d, d);
+        let mut g = 0.0;
         if r2 < rc2 {
-            let wij = w.eval(r2.sqrt()).0;
+            let r = r2.sqrt();
+            let (wij, dw) = w.eval(r);
             add(&mut s.n, n, i, j, wij);
+            if r2 > 0.0 {
+                g = dw / r;
+            }
         }
+        sys.pair_geometry[k] = g;
     }
     let zeta = &mut sys.zeta;
     zeta.clear();
@@ -91,10 +98,9 @@ pub fn refresh_state<E: Eos>(eos: &E, sys: &mut System) -> Result<(), StepError>
     first
 }
 
-/// f_i = sum_j F_ij r_ij (eq 51), keeping g_ij and F_ij per pair and the per-particle
-/// diagonal virial sum_j F_ij (x_ij^2, y_ij^2, z_ij^2) / 2 (eq 52).
-pub fn forces<W: Weight>(w: &W, sys: &mut System) {
-    let rc2 = w.cutoff() * w.cutoff();
+/// f_i = sum_j F_ij r_ij (eq 51) from the g_ij of the density pass, keeping F_ij per pair
+/// and the per-particle diagonal virial sum_j F_ij (x_ij^2, y_ij^2, z_ij^2) / 2 (eq 52).
+pub fn forces(sys: &mut System) {
     let s = &mut sys.store;
     let n = s.nlocal;
     s.f[..n].fill([0.0; 3]);
@@ -102,20 +108,13 @@ pub fn forces<W: Weight>(w: &W, sys: &mut System) {
     for (k, &[i, j]) in sys.nlist.pairs.iter().enumerate() {
         let (i, j) = (i as usize, j as usize);
         let d = sub(s.r[i], s.r[j]);
-        let r2 = dot(d, d);
-        let mut g = 0.0;
-        if r2 < rc2 && r2 > 0.0 {
-            let r = r2.sqrt();
-            g = w.eval(r).1 / r;
-        }
-        let big_f = -(s.pn2[i] + s.pn2[j]) * g;
+        let big_f = -(s.pn2[i] + s.pn2[j]) * sys.pair_geometry[k];
         kick(&mut s.f, n, i, j, big_f, d);
         for o in [i, j].into_iter().filter(|&o| o < n) {
             for c in 0..3 {
                 s.virial[o][c] += big_f * d[c] * d[c];
             }
         }
-        sys.pair_geometry[k] = g;
         sys.pair_force[k] = big_f;
     }
     for v in &mut s.virial[..n] {
@@ -127,14 +126,14 @@ pub fn forces<W: Weight>(w: &W, sys: &mut System) {
 pub fn work(sys: &mut System, c: f64) {
     let s = &mut sys.store;
     let n = s.nlocal;
-    let sums = &mut sys.pair_sums;
+    let (sums, v) = (&mut sys.pair_sums, velocities(s, &mut sys.velocity));
     sums.clear();
     sums.resize(n, 0.0);
     for (k, &[i, j]) in sys.nlist.pairs.iter().enumerate() {
         let big_f = sys.pair_force[k];
         if big_f != 0.0 {
             let (i, j) = (i as usize, j as usize);
-            add(sums, n, i, j, big_f * dot(sub(velocity(s, i), velocity(s, j)), sub(s.r[i], s.r[j])));
+            add(sums, n, i, j, big_f * dot(sub(v[i], v[j]), sub(s.r[i], s.r[j])));
         }
     }
     for i in 0..n {
@@ -151,6 +150,7 @@ pub fn refresh_forces(sys: &mut System, work: Option<f64>) {
     let sums = &mut sys.pair_sums;
     sums.clear();
     sums.resize(n, 0.0);
+    let v = if work.is_some() { velocities(s, &mut sys.velocity) } else { &[] };
     s.f[..n].fill([0.0; 3]);
     for (k, &[i, j]) in sys.nlist.pairs.iter().enumerate() {
         let (i, j) = (i as usize, j as usize);
@@ -160,7 +160,7 @@ pub fn refresh_forces(sys: &mut System, work: Option<f64>) {
             let d = sub(s.r[i], s.r[j]);
             kick(&mut s.f, n, i, j, big_f, d);
             if work.is_some() {
-                add(sums, n, i, j, big_f * dot(sub(velocity(s, i), velocity(s, j)), d));
+                add(sums, n, i, j, big_f * dot(sub(v[i], v[j]), d));
             }
         }
     }
@@ -196,6 +196,14 @@ pub(crate) fn kick(f: &mut [Vec3], n: usize, i: usize, j: usize, big_f: f64, d: 
             f[j][c] -= df[c];
         }
     }
+}
+
+/// The velocities of all particles (owned and ghost) in `buf`: one division per
+/// particle instead of two per pair.
+fn velocities<'a>(s: &Particles, buf: &'a mut Vec<Vec3>) -> &'a [Vec3] {
+    buf.clear();
+    buf.extend((0..s.len()).map(|i| velocity(s, i)));
+    buf
 }
 
 #[inline(always)]

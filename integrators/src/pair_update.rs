@@ -46,9 +46,9 @@ pub struct PairDeltas {
 pub fn pair_update<H: HeatFlow>(s: PairState<'_>, d: &PairDrive, kb: f64, dt: f64, sqrt_dt: f64) -> PairDeltas {
     let e = d.e;
     let (pi, pj) = (*s.p_i, *s.p_j);
-    let k_before = 0.5 * (dot(pi, pi) * s.inv_m_i + dot(pj, pj) * s.inv_m_j);
     let mut qi = pi;
     let mut qj = pj;
+    let mut half_dk = 0.0;
     if d.gamma > 0.0 {
         // both half steps folded into one kick delta = a + b: the relative velocity
         // after the explicit half kick is v.e + mu a, so no intermediate kick (which can
@@ -61,10 +61,12 @@ pub fn pair_update<H: HeatFlow>(s: PairState<'_>, d: &PairDrive, kb: f64, dt: f6
         let a = -0.5 * dt * d.gamma * ve + noise;
         let implicit = 0.5 * dt * d.gamma / (1.0 + 0.5 * mu * d.gamma * dt);
         let b = -implicit * (ve + mu * a + sqrt_dt * mu * sigma * d.xi * 0.5) + noise;
-        kick(&mut qi, &mut qj, e, a + b);
+        let big_a = a + b;
+        kick(&mut qi, &mut qj, e, big_a);
+        // K' - K of p_i + A e, p_j - A e: A (v.e) + A^2 mu / 2, without the cancellation
+        // of two kinetic energies
+        half_dk = 0.5 * big_a * (ve + 0.5 * mu * big_a);
     }
-    let k_after = 0.5 * (dot(qi, qi) * s.inv_m_i + dot(qj, qj) * s.inv_m_j);
-    let half_dk = 0.5 * (k_after - k_before);
     let heat = if H::ACTIVE && d.kappa > 0.0 {
         let (q, alpha) = H::pair(kb, d.kappa, d.ti, d.tj);
         dt * q + sqrt_dt * alpha * d.xibar

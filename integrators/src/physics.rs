@@ -89,7 +89,7 @@ impl<E: FixedEntropy, W: Weight> GenDpde<E, W> {
         let state = many_body::refresh_state(&self.eos, sys);
         sys.comm.forward(&mut sys.store, Fields::DENSITY | Fields::PRESSURE | sweep::SWEPT);
         if self.many_body() {
-            many_body::forces(&self.weight, sys);
+            many_body::forces(sys);
         }
         released.and(state)
     }

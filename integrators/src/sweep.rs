@@ -32,6 +32,9 @@ pub fn sweep<E: Eos, H: HeatFlow>(eos: &E, d: &Dissipation, sys: &mut System, dt
     let rc = d.cutoff();
     let (inv_rcd, inv_rch) = (1.0 / d.rc_friction, 1.0 / d.rc_heat);
     let (step, normals) = (sys.step, Normals::get());
+    let inv_m = &mut sys.inv_mass;
+    inv_m.clear();
+    inv_m.extend(sys.store.mass.iter().map(|m| 1.0 / m));
     let mut outcome = Ok(());
     for colour in 0..8 {
         let pairs = if outcome.is_ok() { sys.sweep.within(colour, &sys.store, rc) } else { &[] };
@@ -48,6 +51,7 @@ pub fn sweep<E: Eos, H: HeatFlow>(eos: &E, d: &Dissipation, sys: &mut System, dt
                 i,
                 j,
                 e: [dr[0] * inv_r, dr[1] * inv_r, dr[2] * inv_r],
+                inv_m: (inv_m[i], inv_m[j]),
                 gamma: d.gamma * wd * wd,
                 kappa: d.kappa * wh * wh,
                 seed: d.seed,
@@ -97,6 +101,8 @@ struct Pair {
     i: usize,
     j: usize,
     e: [f64; 3],
+    /// 1/m_i, 1/m_j.
+    inv_m: (f64, f64),
     gamma: f64,
     kappa: f64,
     seed: u64,
@@ -124,7 +130,7 @@ fn pair_step<E: Eos, H: HeatFlow>(
     let saved = (s.p[i], s.p[j], s.u[i], s.u[j], s.theta[i], s.theta[j]);
     let drive = PairDrive { e: p.e, gamma: p.gamma, kappa: p.kappa, ti: temps::<H>(s, i), tj: temps::<H>(s, j), xi, xibar };
     let (mut p_i, mut p_j, mut u_i, mut u_j) = (s.p[i], s.p[j], s.u[i], s.u[j]);
-    let state = PairState { p_i: &mut p_i, p_j: &mut p_j, u_i: &mut u_i, u_j: &mut u_j, inv_m_i: 1.0 / s.mass[i], inv_m_j: 1.0 / s.mass[j] };
+    let state = PairState { p_i: &mut p_i, p_j: &mut p_j, u_i: &mut u_i, u_j: &mut u_j, inv_m_i: p.inv_m.0, inv_m_j: p.inv_m.1 };
     pair_update::<H>(state, &drive, p.kb, dt, dt.sqrt());
     (s.p[i], s.p[j], s.u[i], s.u[j]) = (p_i, p_j, u_i, u_j);
     let outcome = refresh::<E, H>(eos, s, i, p.step).and_then(|_| refresh::<E, H>(eos, s, j, p.step));

@@ -28,6 +28,10 @@ pub struct System {
     /// within one step).
     pub friction: Vec<Vec3>,
     pub noise: Vec<Vec3>,
+    /// Velocities of all particles for the work passes (scratch).
+    pub velocity: Vec<Vec3>,
+    /// 1/m of all particles for the sweep (scratch).
+    pub inv_mass: Vec<f64>,
     pub step: u64,
     pub time: f64,
     /// Step of the last list build.
@@ -61,6 +65,8 @@ impl System {
             zeta: Vec::new(),
             friction: Vec::new(),
             noise: Vec::new(),
+            velocity: Vec::new(),
+            inv_mass: Vec::new(),
             step: 0,
             time: 0.0,
             last_build: 0,
