@@ -1,0 +1,182 @@
+#!/usr/bin/env python3
+"""Writes docs/VALIDATION.md from docs/validation/results.json (the numbers the scene
+drivers of this folder stored). Run after any of them: python3 scripts/validation/report.py
+"""
+import json
+
+import common
+
+HEAD = """# Validation against the papers
+
+Each scene of the 2019 GenDPDE paper has an input script in `examples/`, a driver in
+`scripts/validation/` that runs it and draws the figure beside the paper's reference (theory
+curves, the EOS, the values the paper quotes), and a reduced variant in the test suite
+(`tests/vdw_equilibrium.rs`, `tests/scenes.rs`, `tests/energy_conservation.rs`,
+`tests/integrators_alt.rs`). The drivers store their numbers in
+`docs/validation/results.json` and their figures in `docs/validation/*.png`;
+`python3 scripts/validation/report.py` writes this page from them.
+
+Paper parameters unless stated: C_V = 60, gamma = 4.5, kappa = 1, rc = 4 (quadratic
+density weight, linear friction and heat kernels), dt = 0.01, simple cubic start, NVE
+(no reservoir). The paper equilibrates 5 10^5 steps and averages over 5 10^5 more at
+N = 27000. That is out of reach here: the vdW model runs about 10^5 atom-steps/s on one core,
+so one such run would take three days, and the LJ model runs at a fifth of that. Every row
+therefore states its own N and run length, and the wall times are those of a 2-core machine
+shared with other work. The LJ runs use the tabulated Kolafa-Nezbeda EOS
+(`table 0.3 8.0 121 0.0 1.2 129`: errors below 1e-6 in u and theta(u), 5e-5 in pi/n^2, see
+docs/commands/fix_eos.md), five times faster than the analytic model.
+"""
+
+
+def pct(x):
+    return f"{100 * x:+.2f} %"
+
+
+def main():
+    d = json.loads((common.OUT / "results.json").read_text())
+    rows, parts = [], []
+
+    if "distributions" in d:
+        r = d["distributions"]
+        u, t, p = r["u"], r["theta"], r["p"]
+        rows.append(f"| Fig 1: u, theta, p distributions, vdW T = 1.5, rho = 0.5 | eqs 89-91 | "
+                    f"variances u {u['var']:.2f} (eq 90: {u['theory_var']:.2f}), theta {t['var']:.5f} ({t['theory_var']:.5f}), "
+                    f"p {p['var']:.4f} ({p['theory_var']:.4f}); <n> = {r['n']['mean']:.4f} | N = {r['N']}, {r['steps']} steps after 1000, {r['wall_s']:.0f} s |")
+        cv = r["fig6"]
+        rows.append("| Fig 6: theta against C_V | eq 91, var T^2/C_V | " + "; ".join(
+            f"C_V {k}: var {v['var']:.4f} ({v['theory_var']:.4f})" for k, v in sorted(cv.items(), key=lambda kv: float(kv[0])))
+            + f" | N = {next(iter(cv.values()))['N']}, 500 steps after 1000 each |")
+        parts.append(f"""### Fig 1 and Fig 6: equilibrium distributions (`distributions.py`)
+
+![distributions](validation/distributions.png)
+
+N = {r['N']}, {r['frames']} snapshots over {r['steps']} steps after 1000 of equilibration. Means
+and variances (all snapshots) against eqs 89-91 with the mean-field density n = rho:
+u {u['mean']:.3f} / {u['var']:.2f} (eq 90: {u['theory_mean']:.3f} / {u['theory_var']:.2f}), theta {t['mean']:.5f} /
+{t['var']:.5f} (eq 91: {t['theory_mean']:.4f} / {t['theory_var']:.5f}), p_alpha {p['mean']:.1e} / {p['var']:.4f} (eq 89: 0 /
+{p['theory_var']:.4f}). Pearson chi^2 over 30 equiprobable bins of one snapshot (27000
+independent particles): p-values u {u['p_value']:.3f}, theta {t['p_value']:.3f}, p {p['p_value']:.3f}. The small but
+resolved shift of u (+{u['mean'] - u['theory_mean']:.3f}) is the mean-field assumption of eq 90: the local
+density has a correlation hole, <n> = {r['n']['mean']:.4f} instead of rho = 0.5, and u = C_V theta - a n
+moves by a (rho - <n>) = {2.4682 * (0.5 - r['n']['mean']):.3f}; with 27000 samples the chi^2 test sees it. Eq 92
+(the Monte Carlo of the configurational integral for n) was not done; the n histogram is
+shown with rho.
+""")
+
+    if "pressure" in d:
+        iso, cut = d["pressure"]["isotherms"], d["pressure"]["cutoff"]
+        r = next((x for x in iso if x["T"] == 1.5 and x["rho"] == 0.5), None)
+        if r:
+            rows.append(f"| Fig 4: virial vs LJ EOS pressure, T = 1.5, rho = 0.5 | 'excellent agreement' | "
+                        f"P = {r['P_virial']:.4f} +- {r['P_err']:.4f}, EOS {r['P_eos']:.4f} ({pct(r['rel_dev'])}) | N = {r['N']}, {r['steps']} steps after 300 |")
+        rows.append("| Fig 5: cutoff dependence, T = 1.5, rho = 0.8 | converges to the EOS with rc | " + "; ".join(
+            f"rc {x['rc']:g}: {pct(x['rel_dev'])}" for x in sorted(cut, key=lambda x: x["rc"])) + " | N by box, 600 steps |")
+        table = "\n".join(f"| {x['T']:g} | {x['rho']:g} | {x['rc']:g} | {x['N']} | {x['P_virial']:.4f} +- {x['P_err']:.4f} | "
+                          f"{x['P_eos']:.4f} | {pct(x['rel_dev'])} | {x['T_kin']:.4f} | {x['T_int']:.4f} | {x['wall_s']:.0f} |"
+                          for x in iso + [c for c in cut if c not in iso])
+        parts.append(f"""### Figs 4 and 5: virial pressure against the LJ EOS (`pressure.py`)
+
+![pressure](validation/pressure.png)
+
+| T | rho | rc | N | P virial | P EOS (at <T_int>) | deviation | <T_kin> | <T_int> | wall s |
+|---|---|---|---|---|---|---|---|---|---|
+{table}
+
+Each state ran 300 steps of equilibration and 600 of sampling (thermo every 10 steps) in
+the smallest box that holds the cell grid; the EOS pressure is evaluated at the measured
+<T_int> (NVE from a lattice settles near, not at, the initial T; in these short runs T_kin
+and T_int have not fully equalised, hence their 0.5-1.6 % differences). On the plot's scale
+(the paper's) the agreement looks as the paper describes; the numbers show deviations of
+-15 % to +5 % at rc = 4 that shrink as rc grows (Fig 5: -13.6, -6.9, -5.1 % at rc = 3, 4, 5
+for T = 1.5, rho = 0.8), as the paper says of its Fig 5. The reason is the local density:
+n_i excludes the particle itself and the fluid has a correlation hole, so <n_i> < rho (0.485
+for the vdW fluid at rho = 0.5, rc = 4, Fig 1) and the particle pressures are evaluated at a
+lower density than the system's. The issue's acceptance asked for 2 % at T = 1.5, rho = 0.5;
+at rc = 4 the longer run of the test suite measures +7.8 +- 0.8 %, so that is not met, and
+the test asserts the convergence with rc instead (tests/scenes.rs).
+""")
+
+    if "drift" in d:
+        by_dt, by_rho = d["drift"]["by_dt"], d["drift"]["by_rho"]
+        table = "\n".join(f"| {x['T']:g} | {x['rho']:g} | {x['dt']:g} | {x['N']} | {x['steps']} | {x['drift_rate']:.2e} | {x['max_rel_drift']:.1e} | {x['wall_s']:.0f} |"
+                          for x in by_dt + by_rho)
+        worst = max(by_dt, key=lambda x: abs(x["drift_rate"]))
+        rows.append(f"| Figs 2-3: energy drift rate vs dt and rho (LJ) | negligible up to dt 0.05 | largest |rate| {abs(worst['drift_rate']):.1e} per time unit "
+                    f"(T = {worst['T']:g}, dt = {worst['dt']:g}) | N = 2744 (rho 0.5), {d['drift']['time']:g} time units each |")
+        parts.append(f"""### Figs 2 and 3: energy drift (`drift.py`)
+
+![drift](validation/drift.png)
+
+| T | rho | dt | N | steps | drift rate (1/time) | max |dE/E| | wall s |
+|---|---|---|---|---|---|---|---|
+{table}
+
+The drift rate is the slope of a linear fit of (E(t) - E(0))/E(0) against t (thermo of the
+production run, 15 digits); each run is {d['drift']['time']:g} time units after 200 steps of equilibration at
+its own dt. The paper measures over 5000 time units: these short runs resolve rates down to
+about 1e-10 per time unit, and the numbers are upper bounds on a drift the runs are too
+short to separate from the O(dt^2) energy fluctuation of the reversible step.
+""")
+
+    if "flash" in d:
+        r = d["flash"]
+        rows.append(f"| Fig 7: flash heating (LJ, slab to T = 5) | T_kin = T_int within 0.01 %, drift 1e-7 | "
+                    f"T_kin/T_int - 1 = {pct(r['rel_diff'])} +- {100 * r['T_kin_err'] / r['T_int']:.2f} %, max |dE/E| = {r['max_rel_energy_drift']:.1e} | N = {r['N']}, {r['steps']} steps, {r['wall_s']:.0f} s |")
+        parts.append(f"""### Fig 7: flash heating (`flash.py`)
+
+![flash](validation/flash.png)
+
+N = {r['N']} (the paper: 27000), equilibrated 500 steps at T = 1.5, then a centred slab of
+half the lattice planes along x gets velocities and theta of T = 5 and the isolated system
+runs {r['steps']} steps. Over the second half: <T_kin> = {r['T_kin']:.4f} +- {r['T_kin_err']:.4f}, <T_int> =
+{r['T_int']:.4f} +- {r['T_int_err']:.5f} ({pct(r['rel_diff'])}; the paper's 0.01 % needs its longer averages at
+N = 27000: our standard error alone is {100 * r['T_kin_err'] / r['T_int']:.2f} %). The total energy stays within
+{r['max_rel_energy_drift']:.1e} of its value after the heating over the run (the paper: 1e-7).
+""")
+
+    if "vapour_liquid" in d:
+        r = d["vapour_liquid"]
+        e = r["eos_coexistence"]
+        rows.append(f"| Figs 8-9: vapour-liquid, LJ T = 1, rho = 0.2 | P_sat 0.029(22), sigma 0.18 | "
+                    f"rho_v {r['rho_vapour']:.3f}, rho_l {r['rho_liquid']:.3f} (KN EOS: {e['rho_vapour']:.3f}, {e['rho_liquid']:.3f}); "
+                    f"P = {r['P'][0]:.4f} +- {r['P'][1]:.4f}; sigma = {r['surface_tension'][0]:.3f} +- {r['surface_tension'][1]:.3f} | "
+                    f"box {r['box'][0]:g} x {r['box'][1]:g} x {r['box'][2]:g}, N = {r['N']}, {r['steps']} steps, {r['wall_s']:.0f} s |")
+        parts.append(f"""### Figs 8 and 9: vapour-liquid separation (`vapour_liquid.py`)
+
+![vapour-liquid](validation/vapour_liquid.png)
+
+Box {r['box'][0]:g} x {r['box'][1]:g} x {r['box'][2]:g} (the paper's x length; y and z reduced from 38.5 x 51.3
+so that the run fits this session), N = {r['N']}, {r['steps']} steps from the lattice quench.
+Coexistence densities from the final profiles (means of the densest and the most dilute
+quarter of 40 bins, the slab centred): vapour {r['rho_vapour']:.4f}, liquid {r['rho_liquid']:.4f}; the
+Kolafa-Nezbeda EOS itself (Maxwell's equal areas on its T = 1 isotherm) gives
+{e['rho_vapour']:.4f} and {e['rho_liquid']:.4f} with P_sat = {e['P_sat']:.4f} (the paper's reference: 0.029(22)).
+Over the second half: P = {r['P'][0]:.4f} +- {r['P'][1]:.4f}, T_kin = {r['T_kin'][0]:.4f}, T_int = {r['T_int'][0]:.4f};
+surface tension (Lx/2)<Pxx - (Pyy + Pzz)/2> = {r['surface_tension'][0]:.3f} +- {r['surface_tension'][1]:.3f}
+(paper: about 0.18). A run this short has not finished the separation (the paper shows
+profiles up to late times), so these are not coexistence values yet.
+""")
+
+    if "isothermal" in d:
+        r = d["isothermal"]
+        rd = r["rel_diff"]
+        rows.append(f"| Sec 5.1: isothermal equivalence (vdW, theta held at T) | T_kin and P within 0.1 % | "
+                    f"eSSA vs VV: T_kin {pct(rd['T_kin'])}, P {pct(rd['P'])} | N = {r['N']}, {r['steps']} steps each |")
+        parts.append(f"""### Sec 5.1: isothermal equivalence (`isothermal.py`)
+
+vdW fluid, T = 1.5, rho = 0.5, C_V = 1e8 (theta moves by u/C_V ~ 1e-8: held at T), N =
+{r['N']}, {r['steps']} steps after 500, dt = {r['dt']:g}: eSSA (nve/gendpde + shardlow) gives <T_kin> =
+{r['essa']['T_kin'][0]:.4f} +- {r['essa']['T_kin'][1]:.4f} and P = {r['essa']['P'][0]:.4f} +- {r['essa']['P'][1]:.4f}; velocity Verlet with
+all pair forces (fix vv/euler, standard isothermal DPD integration) gives {r['vv']['T_kin'][0]:.4f} +-
+{r['vv']['T_kin'][1]:.4f} and {r['vv']['P'][0]:.4f} +- {r['vv']['P'][1]:.4f}: differences {pct(rd['T_kin'])} and {pct(rd['P'])}. The
+paper's 0.1 % needs longer runs than these standard errors allow (and VV's O(dt)
+temperature error of DPD enters at dt = 0.01).
+""")
+
+    text = HEAD + "\n## Summary\n\n| scene | paper | gendpde | run |\n|---|---|---|---|\n" + "\n".join(rows) + "\n\n## Scenes\n\n" + "\n".join(parts)
+    (common.ROOT / "docs" / "VALIDATION.md").write_text(text)
+    print(text)
+
+
+if __name__ == "__main__":
+    main()
