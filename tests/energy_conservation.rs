@@ -10,15 +10,7 @@ use gendpde::Observables;
 fn energy_error(dt: f64) -> f64 {
     let mut it = common::run_example("vdw-equilibrium", &[("n", "11"), ("rc", "3.0"), ("steps", "300")]);
     it.execute_str("nve.in", &format!("unfix ssa\ntimestep {dt}\n")).unwrap();
-    let physics = it.dynamics().unwrap();
-    let sys = it.system().unwrap();
-    let e0 = Observables::measure(sys).energy();
-    let mut worst: f64 = 0.0;
-    for _ in 0..(2.0 / dt).round() as u64 {
-        physics.step(sys).unwrap();
-        worst = worst.max(((Observables::measure(sys).energy() - e0) / e0).abs());
-    }
-    worst
+    common::worst_energy_error(&mut it, (2.0 / dt).round() as u64)
 }
 
 #[test]

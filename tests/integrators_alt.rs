@@ -270,14 +270,8 @@ fn lth_script(pair_extra: &str, eos_extra: &str, dt: f64) -> String {
 /// Largest |E(t) - E(0)|/E(0) over 2 time units of [`lth_scene`], mean theta and n at the end.
 fn lth_energy_error(pair_extra: &str, eos_extra: &str, dt: f64) -> (f64, f64, f64) {
     let mut it = lth_scene(pair_extra, eos_extra, dt);
-    let physics = it.dynamics().unwrap();
+    let worst = common::worst_energy_error(&mut it, (2.0 / dt).round() as u64);
     let sys = it.system().unwrap();
-    let e0 = Observables::measure(sys).energy();
-    let mut worst: f64 = 0.0;
-    for _ in 0..(2.0 / dt).round() as u64 {
-        physics.step(sys).unwrap();
-        worst = worst.max(((Observables::measure(sys).energy() - e0) / e0).abs());
-    }
     let s = &sys.store;
     (worst, Observables::measure(sys).theta / 1000.0, mean(&s.n[..s.nlocal]))
 }

@@ -32,3 +32,17 @@ pub fn run_script(text: &str) -> Interpreter {
     }
     it
 }
+
+/// Largest |E(t) - E(0)|/|E(0)| of the total energy over `steps` steps of the interpreter's
+/// dynamics.
+pub fn worst_energy_error(it: &mut Interpreter, steps: u64) -> f64 {
+    let physics = it.dynamics().unwrap();
+    let sys = it.system().unwrap();
+    let e0 = gendpde::Observables::measure(sys).energy();
+    let mut worst: f64 = 0.0;
+    for _ in 0..steps {
+        physics.step(sys).unwrap();
+        worst = worst.max(((gendpde::Observables::measure(sys).energy() - e0) / e0).abs());
+    }
+    worst
+}

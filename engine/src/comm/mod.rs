@@ -297,12 +297,12 @@ impl Comm {
 /// Number of f64 per particle for `fields`.
 fn record_width(store: &Particles, fields: Fields) -> usize {
     let mut w = 0;
-    for (f, n) in [(Fields::POSITION, 3), (Fields::MOMENTUM, 3), (Fields::ENERGY, 1), (Fields::THETA, 1)] {
+    for (f, n) in [(Fields::POSITION, 3), (Fields::MOMENTUM, 3)] {
         if fields.contains(f) {
             w += n;
         }
     }
-    for (f, v) in exchanged(store) {
+    for (f, v) in scalars(store) {
         if fields.contains(f) && !v.is_empty() {
             w += 1;
         }
@@ -310,9 +310,11 @@ fn record_width(store: &Particles, fields: Fields) -> usize {
     w
 }
 
-/// The optional per-particle scalars that ghosts carry.
-fn exchanged(s: &Particles) -> [(Fields, &Vec<f64>); 5] {
+/// The per-particle scalars ghosts carry, in record order (u and theta always exist).
+fn scalars(s: &Particles) -> [(Fields, &Vec<f64>); 7] {
     [
+        (Fields::ENERGY, &s.u),
+        (Fields::THETA, &s.theta),
         (Fields::DENSITY, &s.n),
         (Fields::PRESSURE, &s.pn2),
         (Fields::INV_TAU, &s.inv_tau),
@@ -332,13 +334,7 @@ fn pack_fields(store: &Particles, i: usize, fields: Fields, shift: Option<(usize
     if fields.contains(Fields::MOMENTUM) {
         buf.extend_from_slice(&store.p[i]);
     }
-    if fields.contains(Fields::ENERGY) {
-        buf.push(store.u[i]);
-    }
-    if fields.contains(Fields::THETA) {
-        buf.push(store.theta[i]);
-    }
-    for (f, v) in exchanged(store) {
+    for (f, v) in scalars(store) {
         if fields.contains(f) && !v.is_empty() {
             buf.push(v[i]);
         }
@@ -363,21 +359,26 @@ fn copy_fields(store: &mut Particles, moves: impl Iterator<Item = (usize, usize)
             store.p[j] = store.p[i];
         }
     }
-    for (f, v) in [
-        (Fields::ENERGY, &mut store.u),
-        (Fields::THETA, &mut store.theta),
-        (Fields::DENSITY, &mut store.n),
-        (Fields::PRESSURE, &mut store.pn2),
-        (Fields::INV_TAU, &mut store.inv_tau),
-        (Fields::U_COND, &mut store.u_cond),
-        (Fields::RHO, &mut store.rho),
-    ] {
+    for (f, v) in scalars_mut(store) {
         if fields.contains(f) && !v.is_empty() {
             for (i, j) in moves.clone() {
                 v[j] = v[i];
             }
         }
     }
+}
+
+/// [`scalars`], writable.
+fn scalars_mut(s: &mut Particles) -> [(Fields, &mut Vec<f64>); 7] {
+    [
+        (Fields::ENERGY, &mut s.u),
+        (Fields::THETA, &mut s.theta),
+        (Fields::DENSITY, &mut s.n),
+        (Fields::PRESSURE, &mut s.pn2),
+        (Fields::INV_TAU, &mut s.inv_tau),
+        (Fields::U_COND, &mut s.u_cond),
+        (Fields::RHO, &mut s.rho),
+    ]
 }
 
 fn unpack_fields(store: &mut Particles, i: usize, fields: Fields, rec: &[f64]) {
@@ -390,21 +391,7 @@ fn unpack_fields(store: &mut Particles, i: usize, fields: Fields, rec: &[f64]) {
         store.p[i] = [rec[k], rec[k + 1], rec[k + 2]];
         k += 3;
     }
-    if fields.contains(Fields::ENERGY) {
-        store.u[i] = rec[k];
-        k += 1;
-    }
-    if fields.contains(Fields::THETA) {
-        store.theta[i] = rec[k];
-        k += 1;
-    }
-    for (f, v) in [
-        (Fields::DENSITY, &mut store.n),
-        (Fields::PRESSURE, &mut store.pn2),
-        (Fields::INV_TAU, &mut store.inv_tau),
-        (Fields::U_COND, &mut store.u_cond),
-        (Fields::RHO, &mut store.rho),
-    ] {
+    for (f, v) in scalars_mut(store) {
         if fields.contains(f) && !v.is_empty() {
             v[i] = rec[k];
             k += 1;
