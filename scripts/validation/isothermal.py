@@ -32,7 +32,7 @@ def main():
     out["rel_diff"] = {"T_kin": e["T_kin"][0] / v["T_kin"][0] - 1, "P": e["P"][0] / v["P"][0] - 1}
     out.update({"N": args.n ** 3, "steps": args.steps, "dt": args.dt})
     print(out["rel_diff"])
-    common.save("isothermal", out)
+    common.save(f"isothermal_dt{args.dt:g}", out)
 
 
 if __name__ == "__main__":

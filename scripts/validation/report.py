@@ -157,12 +157,12 @@ surface tension (Lx/2)<Pxx - (Pyy + Pzz)/2> = {r['surface_tension'][0]:.3f} +- {
 profiles up to late times), so these are not coexistence values yet.
 """)
 
-    if "isothermal" in d:
-        r = d["isothermal"]
+    for key in sorted(k for k in d if k.startswith("isothermal")):
+        r = d[key]
         rd = r["rel_diff"]
-        rows.append(f"| Sec 5.1: isothermal equivalence (vdW, theta held at T) | T_kin and P within 0.1 % | "
+        rows.append(f"| Sec 5.1: isothermal equivalence (vdW, theta held at T), dt = {r['dt']:g} | T_kin and P within 0.1 % | "
                     f"eSSA vs VV: T_kin {pct(rd['T_kin'])}, P {pct(rd['P'])} | N = {r['N']}, {r['steps']} steps each |")
-        parts.append(f"""### Sec 5.1: isothermal equivalence (`isothermal.py`)
+        parts.append(f"""### Sec 5.1: isothermal equivalence, dt = {r['dt']:g} (`isothermal.py`)
 
 vdW fluid, T = 1.5, rho = 0.5, C_V = 1e8 (theta moves by u/C_V ~ 1e-8: held at T), N =
 {r['N']}, {r['steps']} steps after 500, dt = {r['dt']:g}: eSSA (nve/gendpde + shardlow) gives <T_kin> =
