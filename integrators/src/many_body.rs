@@ -26,12 +26,14 @@ pub fn density<W: Weight>(w: &W, volume: Option<&PartitionVolume>, sys: &mut Sys
     let s = &mut sys.store;
     let n = s.nlocal;
     s.n[..n].fill(0.0);
+    sys.active.clear();
     for (k, &[i, j]) in sys.nlist.pairs.iter().enumerate() {
         let (i, j) = (i as usize, j as usize);
         let d = sub(s.r[i], s.r[j]);
         let r2 = dot(d, d);
         let mut g = 0.0;
         if r2 < rc2 {
+            sys.active.push(k as u32);
             let r = r2.sqrt();
             let (wij, dw) = w.eval(r);
             add(&mut s.n, n, i, j, wij);
@@ -105,7 +107,10 @@ pub fn forces(sys: &mut System) {
     let n = s.nlocal;
     s.f[..n].fill([0.0; 3]);
     s.virial[..n].fill([0.0; 3]);
-    for (k, &[i, j]) in sys.nlist.pairs.iter().enumerate() {
+    sys.pair_force.fill(0.0);
+    for &k in &sys.active {
+        let k = k as usize;
+        let [i, j] = sys.nlist.pairs[k];
         let (i, j) = (i as usize, j as usize);
         let d = sub(s.r[i], s.r[j]);
         let big_f = -(s.pn2[i] + s.pn2[j]) * sys.pair_geometry[k];
@@ -129,9 +134,10 @@ pub fn work(sys: &mut System, c: f64) {
     let (sums, v) = (&mut sys.pair_sums, velocities(s, &mut sys.velocity));
     sums.clear();
     sums.resize(n, 0.0);
-    for (k, &[i, j]) in sys.nlist.pairs.iter().enumerate() {
-        let big_f = sys.pair_force[k];
+    for &k in &sys.active {
+        let big_f = sys.pair_force[k as usize];
         if big_f != 0.0 {
+            let [i, j] = sys.nlist.pairs[k as usize];
             let (i, j) = (i as usize, j as usize);
             add(sums, n, i, j, big_f * dot(sub(v[i], v[j]), sub(s.r[i], s.r[j])));
         }
@@ -152,7 +158,9 @@ pub fn refresh_forces(sys: &mut System, work: Option<f64>) {
     sums.resize(n, 0.0);
     let v = if work.is_some() { velocities(s, &mut sys.velocity) } else { &[] };
     s.f[..n].fill([0.0; 3]);
-    for (k, &[i, j]) in sys.nlist.pairs.iter().enumerate() {
+    for &k in &sys.active {
+        let k = k as usize;
+        let [i, j] = sys.nlist.pairs[k];
         let (i, j) = (i as usize, j as usize);
         let big_f = -(s.pn2[i] + s.pn2[j]) * sys.pair_geometry[k];
         sys.pair_force[k] = big_f;

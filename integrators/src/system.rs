@@ -19,6 +19,10 @@ pub struct System {
     pub pair_force: Vec<f64>,
     /// w'(r_ij)/([w] r_ij) of each pair of the neighbour list, from the last force pass.
     pub pair_geometry: Vec<f64>,
+    /// Indices of the neighbour pairs closer than the density cutoff at the last density
+    /// pass, in list order: the pairs the force and work passes visit (the others, in the
+    /// skin, contribute exact zeros).
+    pub active: Vec<u32>,
     /// Per-particle sums of the pair passes (scratch).
     pub pair_sums: Vec<f64>,
     /// zeta_i = dn_i/dn^b_i of the owned particles at the last density pass (corrected
@@ -61,6 +65,7 @@ impl System {
             sweep: SweepPairs::default(),
             pair_force: Vec::new(),
             pair_geometry: Vec::new(),
+            active: Vec::new(),
             pair_sums: Vec::new(),
             zeta: Vec::new(),
             friction: Vec::new(),

@@ -43,7 +43,7 @@ def cases():
         case("classic DPDE + shardlow, rho 3, rc 1, N 8000", "in.dpde", CLASSIC_RC1),
         case("classic DPDE + shardlow, rho 0.5, rc 4, N 27000", "in.dpde", CLASSIC_RC4),
         case("GenDPDE vdW, rho 0.5, rc 4, N 27000 (LAMMPS: DPDE)", "in.gendpde",
-             {"eos": VDW, "n": 30, "steps": 20}, CLASSIC_RC4),
+             {"eos": VDW, "n": 30, "steps": 40, "warm": 10}, CLASSIC_RC4),
         case("GenDPDE LJ, rho 0.5, rc 4, N 27000 (LAMMPS: DPDE)", "in.gendpde",
              {"eos": "lj 60.0", "n": 30, "steps": 5, "warm": 2}, CLASSIC_RC4),
         case("GenDPDE LJ tabulated, rho 0.5, rc 4, N 27000 (LAMMPS: DPDE)", "in.gendpde",
