@@ -553,6 +553,7 @@ mod tests {
             "print $(",
             "include ",
         ];
+        let mut errors = 0;
         for _ in 0..400 {
             let len = rand() % 60;
             let mut text: String = prefixes[rand() % prefixes.len()].into();
@@ -567,11 +568,17 @@ mod tests {
                         let _ = vars.define(&cmd);
                         let _ = vars.value("v", &none);
                     }
+                    Err(e) => {
+                        // a rejected line names where it is
+                        assert!(e.to_string().contains("junk.in:"), "error without its location: {e}");
+                        errors += 1;
+                    }
                     _ => {}
                 }
             }
             let _ = crate::expr::evaluate(&text, &vars, &none);
             let _ = crate::format::format_printf(&text, 1.5);
         }
+        assert!(errors > 0, "no garbage line was rejected");
     }
 }

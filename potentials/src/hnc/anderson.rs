@@ -49,8 +49,8 @@ pub(super) fn fixed_point(
         if history.len() > DEPTH + 1 {
             history.pop_front();
         }
-        x = anderson_step(&history, opts.mixing);
-        good = Some((history.back().unwrap().0.clone(), f));
+        let next = anderson_step(&history, opts.mixing);
+        good = Some((std::mem::replace(&mut x, next), f));
     }
     Err(HncError::NotConverged { iterations: opts.max_iter, residual })
 }
@@ -58,7 +58,7 @@ pub(super) fn fixed_point(
 /// x_k + beta f_k - sum_i c_i (dx_i + beta df_i), with c minimising |f_k - sum_i c_i df_i|
 /// over the differences of consecutive iterates in `h` (last entry = current iterate).
 fn anderson_step(h: &VecDeque<(Vec<f64>, Vec<f64>)>, beta: f64) -> Vec<f64> {
-    let (xk, fk) = h.back().unwrap();
+    let (xk, fk) = h.back().expect("the history holds the current iterate");
     let m = h.len() - 1;
     let diffs: Vec<(Vec<f64>, Vec<f64>)> = (0..m)
         .map(|i| {
@@ -93,7 +93,7 @@ fn anderson_step(h: &VecDeque<(Vec<f64>, Vec<f64>)>, beta: f64) -> Vec<f64> {
 fn gauss_solve(a: &mut [Vec<f64>], b: &mut [f64]) -> Vec<f64> {
     let m = b.len();
     for col in 0..m {
-        let p = (col..m).max_by(|&i, &j| a[i][col].abs().total_cmp(&a[j][col].abs())).unwrap();
+        let p = (col..m).max_by(|&i, &j| a[i][col].abs().total_cmp(&a[j][col].abs())).expect("col < m");
         a.swap(col, p);
         b.swap(col, p);
         if a[col][col] == 0.0 {
