@@ -10,6 +10,7 @@ mod groups;
 mod h5md_out;
 mod restart;
 pub mod lattice;
+pub mod lth_macro;
 mod memory;
 pub mod output;
 pub mod run;

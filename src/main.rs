@@ -57,6 +57,30 @@ enum Cmd {
         #[arg(long)]
         n: f64,
     },
+    /// Macroscopic state of an LTh fluid (argon paper eqs 78, 85-91, 99) from a g(r) file
+    /// (`--gr FILE`: lines `r g`, or LAMMPS's compute rdf via fix ave/time) or from the
+    /// self-consistent HNC of eqs 119-120 (`--hnc`).
+    LthMacro {
+        /// CV ALPHA KAPPA_T PI00 THETA0 N00, as `fix eos/lth`.
+        #[arg(num_args = 6, allow_negative_numbers = true)]
+        params: Vec<f64>,
+        /// Density cutoff R_cut (quadratic weight).
+        #[arg(long)]
+        rc: f64,
+        /// f_cut of the corrected volume (R~ = R_cut / f_cut).
+        #[arg(long)]
+        fcut: f64,
+        /// Bulk number density c.
+        #[arg(long)]
+        density: f64,
+        /// Temperature (k_B = 1 units of theta).
+        #[arg(long)]
+        temperature: f64,
+        #[arg(long, conflicts_with = "hnc", required_unless_present = "hnc")]
+        gr: Option<PathBuf>,
+        #[arg(long)]
+        hnc: bool,
+    },
     /// Reduced LTh model parameters of argon (argon paper, eqs 101-117; Tables 1, 2, 9).
     LthParams {
         /// liquid or supercritical.
@@ -80,6 +104,25 @@ fn lth_params(state: &str) -> ExitCode {
         println!("{name} {}", gendpde_io::format_g(value, 8));
     }
     ExitCode::SUCCESS
+}
+
+/// `gendpde lth-macro`: one `name value` line per quantity.
+fn lth_macro(p: &[f64], rc: f64, fcut: f64, density: f64, temperature: f64, gr: Option<PathBuf>) -> ExitCode {
+    use gendpde::lth_macro::{evaluate, fluid, Source};
+    let eos = gendpde_potentials::eos::Lth::new(p[0], p[1], p[2], p[3], p[4], p[5]);
+    let source = gr.as_deref().map_or(Source::Hnc, Source::File);
+    match fluid(eos, rc, fcut, density, temperature).and_then(|f| evaluate(&f, source)) {
+        Ok(lines) => {
+            for (name, value) in lines {
+                println!("{name} {}", gendpde_io::format_g(value, 10));
+            }
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("ERROR: {e}");
+            ExitCode::FAILURE
+        }
+    }
 }
 
 /// `gendpde eos`: one `name value` line per quantity.
@@ -145,6 +188,9 @@ fn main() -> ExitCode {
         Cmd::Check { script } => (script, Mode::Check, None),
         Cmd::Eos { model, params, theta, u, n } => return eos(model, params, theta, u, n),
         Cmd::LthParams { state } => return lth_params(&state),
+        Cmd::LthMacro { params, rc, fcut, density, temperature, gr, .. } => {
+            return lth_macro(&params, rc, fcut, density, temperature, gr)
+        }
         Cmd::H5mdRepair { file } => {
             return match gendpde_io::h5md::repair_h5md(&file).and_then(|_| gendpde_io::check_h5md(&file)) {
                 Ok(summary) => {

@@ -2,6 +2,7 @@
 //!
 //! temp = sum p^2/m / (3N - 3) k_B; tint = mean theta; press = the virial pressure of
 //! the conservative force (eq 52; dissipative and random forces are not included);
+//! nmean = mean local density n_i (the density the EOS reads);
 //! pe = sum u for GenDPDE (the internal energy holds the EOS's configurational energy),
 //! the pair energy for LAMMPS's pairwise styles (whose u = uCond + uMech is reported by
 //! compute dpd, c_ID[1..5]);
@@ -51,6 +52,8 @@ pub struct Observables {
     /// sum uCond (classic DPDE) and sum 1/theta.
     pub u_cond: f64,
     pub inv_theta: f64,
+    /// sum of the local densities n_i the EOS reads (zero for pairwise styles).
+    pub n: f64,
 }
 
 impl Observables {
@@ -63,7 +66,7 @@ impl Observables {
             let (u_cond, epair) = (opt(&s.u_cond, i), opt(&s.epair, i));
             let w = s.virial.get(i).copied().unwrap_or_default();
             let q = [p[0] * p[0] / m, p[1] * p[1] / m, p[2] * p[2] / m];
-            [1.0, q[0], q[1], q[2], s.u[i], s.theta[i], m, w[0], w[1], w[2], p[0], p[1], p[2], epair, u_cond, 1.0 / s.theta[i]]
+            [1.0, q[0], q[1], q[2], s.u[i], s.theta[i], m, w[0], w[1], w[2], p[0], p[1], p[2], epair, u_cond, 1.0 / s.theta[i], opt(&s.n, i)]
         });
         let sums = exact_sums(sys.comm.transport(), rows);
         Self {
@@ -80,6 +83,7 @@ impl Observables {
             epair: sums[13],
             u_cond: sums[14],
             inv_theta: sums[15],
+            n: sums[16],
         }
     }
 
@@ -134,6 +138,7 @@ impl ThermoContext<'_> {
             "atoms" => o.atoms,
             "temp" => o.temperature(self.units.kb),
             "tint" => if o.atoms > 0.0 { o.theta / o.atoms } else { 0.0 },
+            "nmean" => if o.atoms > 0.0 { o.n / o.atoms } else { 0.0 },
             "press" => o.pressure(),
             "pxx" => o.pressure_component(0),
             "pyy" => o.pressure_component(1),
@@ -197,6 +202,7 @@ pub fn heading(name: &str) -> String {
         "atoms" => "Atoms".into(),
         "temp" => "Temp".into(),
         "tint" => "Tint".into(),
+        "nmean" => "Nmean".into(),
         "press" => "Press".into(),
         "pxx" => "Pxx".into(),
         "pyy" => "Pyy".into(),

@@ -123,3 +123,52 @@ fn unknown_state_is_an_error() {
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("liquid or supercritical"));
 }
+
+/// `gendpde lth-macro` with a g(r) file; the LTh liquid of Table 1 at R* = 2.1564.
+fn lth_macro(extra: &[&str]) -> Result<HashMap<String, f64>, String> {
+    let out = Command::new(env!("CARGO_BIN_EXE_gendpde"))
+        .args(["lth-macro", "12.51", "29.345", "1.0112", "0.11606", "0.011054", "1.0"])
+        .args(["--rc", "2.1564", "--fcut", "1.33", "--density", "1", "--temperature", "0.011054"])
+        .args(extra)
+        .output()
+        .unwrap();
+    if !out.status.success() {
+        return Err(String::from_utf8_lossy(&out.stderr).into_owned());
+    }
+    Ok(String::from_utf8(out.stdout)
+        .unwrap()
+        .lines()
+        .map(|l| {
+            let (k, v) = l.split_once(' ').unwrap();
+            (k.to_string(), v.parse().unwrap())
+        })
+        .collect())
+}
+
+/// A g = 1 table gives the mean field at n^b = c (the primitive density of an ideal
+/// structure is the bulk density), read alike from two columns and from the last block of
+/// LAMMPS's `fix ave/time ... mode vector` output of `compute rdf`; a bad line is named.
+#[test]
+fn lth_macro_reads_g_tables() {
+    let dir = std::env::temp_dir().join(format!("gendpde-lth-macro-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let rows: Vec<f64> = (0..500).map(|i| (i as f64 + 0.5) * 0.01).collect();
+    let plain = dir.join("g.txt");
+    std::fs::write(&plain, rows.iter().map(|r| format!("{r} 1.0\n")).collect::<String>()).unwrap();
+    let block = |step: u32, g: f64| {
+        format!("{step} 500\n") + &rows.iter().enumerate().map(|(k, r)| format!("{} {r} {g} 0\n", k + 1)).collect::<String>()
+    };
+    let lammps = dir.join("g.lammps");
+    std::fs::write(&lammps, format!("# Time-averaged data\n# TimeStep Number-of-rows\n{}{}", block(0, 0.0), block(100, 1.0))).unwrap();
+    let a = lth_macro(&["--gr", plain.to_str().unwrap()]).unwrap();
+    let b = lth_macro(&["--gr", lammps.to_str().unwrap()]).unwrap();
+    assert_eq!(a, b);
+    assert!((a["nb"] - 1.0).abs() < 1e-4, "n^b = {}", a["nb"]);
+    assert_eq!(a["p_ex_triplet"], 0.0);
+    let hnc = lth_macro(&["--hnc"]).unwrap();
+    assert!(hnc["n"] > 1.0 && hnc["pressure"] > 0.127, "{hnc:?}");
+    let bad = dir.join("bad.txt");
+    std::fs::write(&bad, "0.1 1.0\n0.2 x\n").unwrap();
+    let err = lth_macro(&["--gr", bad.to_str().unwrap()]).unwrap_err();
+    assert!(err.contains("bad.txt:2") && err.contains("expected numbers"), "{err}");
+}
