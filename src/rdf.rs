@@ -87,7 +87,8 @@ impl Rdf {
         let n = total[nbin] as f64;
         let [lx, ly, lz] = sys.domain.len();
         let constant = 4.0 * std::f64::consts::PI / (3.0 * lx * ly * lz);
-        let normfac = if n > 0.0 { n - n / n } else { 0.0 };
+        // LAMMPS's jcount - duplicates/icount, N - N/N
+        let normfac = if n > 0.0 { n - 1.0 } else { 0.0 };
         let mut coord = 0.0;
         Ok((0..nbin)
             .map(|k| {
