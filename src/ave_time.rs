@@ -16,9 +16,8 @@ pub struct AveTime {
     nevery: u64,
     nrepeat: u64,
     nfreq: u64,
-    /// (compute ID, column) of each value, and the values as written (`c_ID[k]`).
+    /// (compute ID, column from 0) of each value.
     columns: Vec<(String, usize)>,
-    names: Vec<String>,
     file: String,
     /// printf format of one value (LAMMPS's default " %g").
     format: String,
@@ -43,7 +42,7 @@ impl AveTime {
                 "Nevery {nevery}, Nrepeat {nrepeat}, Nfreq {nfreq}: all must be positive, Nfreq a multiple of Nevery and (Nrepeat - 1) Nevery < Nfreq"
             )));
         }
-        let (mut columns, mut names, mut nbin) = (Vec::new(), Vec::new(), None);
+        let (mut columns, mut nbin) = (Vec::new(), None);
         while let Some(v) = a.peek().filter(|w| w.starts_with("c_")) {
             a.word("a value")?;
             let (cid, k) = v[2..].strip_suffix(']').and_then(|r| r.split_once('[')).ok_or_else(|| a.err(format!("value '{v}': expected c_ID[k] or c_ID[*] of a compute rdf")))?;
@@ -58,10 +57,7 @@ impl AveTime {
                     _ => return Err(a.err(format!("value '{v}': the column must be 1..{COLUMNS} or *"))),
                 },
             };
-            for k in ks {
-                columns.push((cid.to_string(), k - 1));
-                names.push(format!("c_{cid}[{k}]"));
-            }
+            columns.extend(ks.into_iter().map(|k| (cid.to_string(), k - 1)));
         }
         if columns.is_empty() {
             return Err(a.err(format!("expected values c_ID[k] or c_ID[*] of a compute rdf, got {}", a.peek().map_or("nothing".into(), |w| format!("'{w}'")))));
@@ -89,7 +85,7 @@ impl AveTime {
         if !vector {
             return Err(a.err("missing keyword: mode vector (mode scalar is not supported)"));
         }
-        let mut fix = Self { id, nevery, nrepeat, nfreq, columns, names, file, format, out: None, sums: Vec::new(), samples: 0, next: 0 };
+        let mut fix = Self { id, nevery, nrepeat, nfreq, columns, file, format, out: None, sums: Vec::new(), samples: 0, next: 0 };
         fix.next = fix.next_block(step);
         Ok(fix)
     }
@@ -159,7 +155,8 @@ impl AveTime {
         let mut text = String::new();
         if self.out.is_none() {
             self.out = Some(BufWriter::new(File::create(&self.file)?));
-            text += &format!("# Time-averaged data for fix {}\n# TimeStep Number-of-rows\n# Row {}\n", self.id, self.names.join(" "));
+            let names: Vec<String> = self.columns.iter().map(|(id, k)| format!("c_{id}[{}]", k + 1)).collect();
+            text += &format!("# Time-averaged data for fix {}\n# TimeStep Number-of-rows\n# Row {}\n", self.id, names.join(" "));
         }
         text += &format!("{step} {nrow}\n");
         for r in 0..nrow {
