@@ -131,13 +131,18 @@ impl Interpreter {
             "compute" => {
                 let id = a.word("a compute ID")?.to_string();
                 let group = a.word("a group")?;
-                let style = a.word("a compute style (dpd)")?;
-                a.done()?;
-                if group != "all" || style != "dpd" {
-                    return Err(a.err(format!("compute {style} on group {group}: only 'compute ID all dpd' is supported")).into());
+                let style = a.word("a compute style (dpd or rdf)")?;
+                if group != "all" || !matches!(style, "dpd" | "rdf") {
+                    return Err(a.err(format!("compute {style} on group {group}: only 'compute ID all dpd' and 'compute ID all rdf' are supported")).into());
                 }
                 sim.computes.retain(|c| *c != id);
-                sim.computes.push(id);
+                sim.rdfs.retain(|c| c.id != id);
+                if style == "rdf" {
+                    sim.rdfs.push(crate::rdf::Rdf::parse(id, &mut a)?);
+                } else {
+                    a.done()?;
+                    sim.computes.push(id);
+                }
             }
             "dimension" => match a.word("the dimension")? {
                 "3" => a.done()?,
@@ -241,8 +246,26 @@ impl Interpreter {
                 styles::parse_pair_coeff(cmd, pair, sim.ntypes)?;
                 sim.pair_text.push(echo(cmd));
             }
+            "fix" if cmd.args.get(2).map(String::as_str) == Some("ave/time") => {
+                let id = a.word("a fix ID")?.to_string();
+                let group = a.word("a group")?;
+                if group != "all" {
+                    return Err(a.err(format!("group '{group}': fixes act on group all")).into());
+                }
+                a.word("ave/time")?;
+                if sim.fixes.iter().any(|f| f.id == id) {
+                    return Err(a.err(format!("fix ID '{id}' is in use by another style (unfix it first)")).into());
+                }
+                let step = sim.system.as_ref().map_or(0, |s| s.step);
+                let fix = crate::ave_time::AveTime::parse(id, &mut a, &sim.rdfs, step)?;
+                sim.averages.retain(|f| f.id != fix.id);
+                sim.averages.push(fix);
+            }
             "fix" => {
                 let fix = styles::parse_fix(cmd, sim.units.kb)?;
+                if sim.averages.iter().any(|f| f.id == fix.id) {
+                    return Err(a.err(format!("fix ID '{}' is in use by another style (unfix it first)", fix.id)).into());
+                }
                 match sim.fixes.iter_mut().find(|f| f.id == fix.id) {
                     Some(old) if std::mem::discriminant(&old.style) != std::mem::discriminant(&fix.style) => {
                         return Err(a.err(format!("fix ID '{}' is in use by another style (unfix it first)", fix.id)).into());
@@ -255,9 +278,10 @@ impl Interpreter {
             "unfix" => {
                 let id = a.word("a fix ID")?;
                 a.done()?;
-                let before = sim.fixes.len();
+                let before = sim.fixes.len() + sim.averages.len();
                 sim.fixes.retain(|f| f.id != id);
-                if sim.fixes.len() == before {
+                sim.averages.retain(|f| f.id != id);
+                if sim.fixes.len() + sim.averages.len() == before {
                     return Err(a.err(format!("no fix with ID '{id}'")).into());
                 }
             }

@@ -2,6 +2,7 @@
 //! LAMMPS-style input scripts. The binary is a thin CLI over [`Interpreter`].
 
 mod args;
+mod ave_time;
 pub mod commands;
 mod data;
 mod dump;
@@ -19,6 +20,7 @@ pub mod styles;
 pub mod thermo;
 pub mod units;
 mod pairwise;
+mod rdf;
 mod velocity;
 
 pub use commands::{AppError, Interpreter, Mode};

@@ -17,6 +17,13 @@ pub fn prepare(it: &mut Interpreter, cmd: &Command) -> Result<Box<dyn Physics>, 
     if sys.store.nlocal == 0 {
         return Err(err("the box holds no particles (create_atoms)".into()));
     }
+    // the cells must reach the pairs that the computes read by fix ave/time count
+    sys.min_cell = 0.0;
+    for rdf in sim.rdfs.iter().filter(|r| sim.averages.iter().any(|f| f.computes().any(|c| c == r.id))) {
+        let rc = rdf.cutoff_for(sim.pair.as_ref()).unwrap_or(0.0);
+        rdf.check_reach(sys, rc + sim.skin).map_err(err)?;
+        sys.min_cell = sys.min_cell.max(rc + sim.skin);
+    }
     if let Some(i) = (0..sys.store.nlocal).find(|&i| !sys.store.mass[i].is_finite()) {
         return Err(err(format!("the mass of type {} is not set", sys.store.kind[i])));
     }
@@ -168,6 +175,9 @@ fn outputs(it: &mut Interpreter, cmd: &Command, checkpoints: bool) -> Result<(),
         for d in &mut sim.dumps {
             d.maybe_write(sys, natoms, sim.max_tag).map_err(|e| err(format!("dump {}: {e}", d.id)))?;
         }
+    }
+    for f in &mut sim.averages {
+        f.sample(sys, &sim.rdfs, sim.pair.as_ref(), sim.skin).map_err(err)?;
     }
     if let Some((every, file)) = &sim.checkpoint {
         if checkpoints && sys.step % every == 0 {

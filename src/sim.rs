@@ -1,7 +1,9 @@
 //! The model a script builds: box, particles, styles and run settings.
 
+use crate::ave_time::AveTime;
 use crate::h5md_out::H5mdDump;
 use crate::lattice::{Block, Lattice};
+use crate::rdf::Rdf;
 use crate::styles::{Fix, PairStyle};
 use crate::units::Units;
 use crate::thermo::ThermoConfig;
@@ -40,6 +42,10 @@ pub struct Sim {
     pub dumps: Vec<H5mdDump>,
     /// `compute ID all dpd` IDs (thermo `c_ID[1..5]`).
     pub computes: Vec<String>,
+    /// `compute ID all rdf` definitions.
+    pub rdfs: Vec<Rdf>,
+    /// `fix ID all ave/time` outputs.
+    pub averages: Vec<AveTime>,
     /// Group names by bit (an empty name is a free slot).
     pub groups: Vec<String>,
 }
@@ -68,6 +74,8 @@ impl Default for Sim {
             checkpoint: None,
             dumps: Vec::new(),
             computes: Vec::new(),
+            rdfs: Vec::new(),
+            averages: Vec::new(),
             groups: Vec::new(),
         }
     }

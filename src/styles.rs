@@ -30,6 +30,18 @@ pub enum PairStyle {
     Pairwise(crate::pairwise::Pairwise),
 }
 
+impl PairStyle {
+    /// The largest interaction cutoff (LAMMPS's `cutforce`): for gendpde the largest of
+    /// the density, friction and heat cutoffs, for the pairwise styles that of pair_coeff
+    /// (and the mdpd/rhosum kernel).
+    pub fn cutoff(&self) -> f64 {
+        match self {
+            Self::Gendpde(p) => p.coeff.as_ref().map_or(p.cutoff, |c| p.cutoff.max(c.rc_friction).max(c.rc_heat)),
+            Self::Pairwise(p) => p.coeff.as_ref().map_or(p.cutoff, |c| c.rc).max(p.rhosum.unwrap_or(0.0)),
+        }
+    }
+}
+
 /// Dissipation parameters of `pair_coeff`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PairCoeff {
@@ -151,7 +163,7 @@ pub const DEFAULT_SUBSTEPS: u32 = 4;
 pub const MAX_SUBSTEPS: u32 = 8;
 
 pub const FIX_STYLES: &str =
-    "eos/vdw, eos/lj, eos/lth, eos/ideal, eos/cv, eos/density, eos/linear, nve/gendpde, shardlow, vv/euler, heat/reservoir, nve, mvv/dpd";
+    "eos/vdw, eos/lj, eos/lth, eos/ideal, eos/cv, eos/density, eos/linear, nve/gendpde, shardlow, vv/euler, heat/reservoir, nve, mvv/dpd, ave/time";
 
 pub fn parse_pair_style(cmd: &Command) -> Result<PairStyle, ScriptError> {
     let mut a = Args::new(cmd);

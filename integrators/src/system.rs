@@ -51,6 +51,9 @@ pub struct System {
     pub restored: bool,
     /// Cell counts of the grid the restored cells belong to.
     pub restored_grid: Option<[usize; 3]>,
+    /// Smallest cell side the grid must have beyond the styles' own reach (outputs that
+    /// search pairs farther out, e.g. `compute rdf ... cutoff`).
+    pub min_cell: f64,
 }
 
 impl System {
@@ -80,12 +83,14 @@ impl System {
             rejected: 0,
             restored: false,
             restored_grid: None,
+            min_cell: 0.0,
         }
     }
 
-    /// Lays the cell grid for interactions up to `cut` (cutoff plus skin); every rank
-    /// must own at least one cell along each dimension.
+    /// Lays the cell grid for interactions up to `cut` (cutoff plus skin) or `min_cell`,
+    /// whichever is larger; every rank must own at least one cell along each dimension.
     pub fn lay_grid(&mut self, cut: f64) -> Result<(), String> {
+        let cut = cut.max(self.min_cell);
         let grid = CellGrid::new(&self.domain, cut).map_err(|e| e.to_string())?;
         let procs = self.comm.grid.dims;
         for d in 0..3 {
