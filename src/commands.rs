@@ -128,17 +128,7 @@ impl Interpreter {
                 // need (ghost velocities included) and uses full lists; accepted for
                 // compatibility.
             }
-            "compute" => {
-                let id = a.word("a compute ID")?.to_string();
-                let group = a.word("a group")?;
-                let style = a.word("a compute style (dpd)")?;
-                a.done()?;
-                if group != "all" || style != "dpd" {
-                    return Err(a.err(format!("compute {style} on group {group}: only 'compute ID all dpd' is supported")).into());
-                }
-                sim.computes.retain(|c| *c != id);
-                sim.computes.push(id);
-            }
+            "compute" => crate::computes::compute(sim, &mut a)?,
             "dimension" => match a.word("the dimension")? {
                 "3" => a.done()?,
                 d => return Err(a.err(format!("dimension {d}: only 3 is supported")).into()),
@@ -242,7 +232,7 @@ impl Interpreter {
                 sim.pair_text.push(echo(cmd));
             }
             "fix" => {
-                let fix = styles::parse_fix(cmd, sim.units.kb)?;
+                let fix = styles::parse_fix(cmd, sim.units.kb, &sim.groups)?;
                 match sim.fixes.iter_mut().find(|f| f.id == fix.id) {
                     Some(old) if std::mem::discriminant(&old.style) != std::mem::discriminant(&fix.style) => {
                         return Err(a.err(format!("fix ID '{}' is in use by another style (unfix it first)", fix.id)).into());
@@ -526,7 +516,7 @@ fn set(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     let selected: Vec<usize> = match style {
         "group" => {
             let m = group_mask.unwrap_or(0);
-            (0..s.nlocal).filter(|&i| m == u32::MAX || s.groups[i] & m != 0).collect()
+            (0..s.nlocal).filter(|&i| s.in_group(i, m)).collect()
         }
         "type" => {
             let range = a.range("a particle type", sim.ntypes as u64)?;
@@ -592,10 +582,10 @@ fn thermo_style(sim: &mut Sim, vars: &Variables, a: &mut Args) -> Result<(), Scr
     let mut keys = Vec::new();
     while a.remaining() > 0 {
         let k = a.word("a keyword")?;
-        let known = crate::thermo::heading(k) != k || k.starts_with("v_") || k.starts_with("c_");
+        let known = crate::thermo::heading(k) != k || k.starts_with("v_") || k.starts_with("c_") || k.starts_with("f_");
         if !known {
             return Err(a.err(format!(
-                "unknown thermo keyword '{k}'; known: step elapsed time dt cpu atoms temp tint press pe ke etotal edrift vol density lx ly lz pxtot pytot pztot v_NAME c_ID[k]"
+                "unknown thermo keyword '{k}'; known: step elapsed time dt cpu atoms temp tint press pe ke etotal edrift vol density lx ly lz pxtot pytot pztot v_NAME c_ID[k] f_ID"
             )));
         }
         if let Some(name) = k.strip_prefix("v_") {

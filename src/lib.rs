@@ -3,6 +3,7 @@
 
 mod args;
 pub mod commands;
+mod computes;
 mod data;
 mod dump;
 mod gather;

@@ -130,8 +130,9 @@ pub enum FixStyle {
     VvEuler { heat: HeatModel },
     /// `fix shardlow [heat original|fourier] [substeps N] [reject yes|no]`.
     Shardlow { heat: HeatModel, substeps: u32, reject: bool },
-    /// `fix heat/reservoir T KAPPA SEED [heat original|fourier]`.
-    Reservoir { temperature: f64, kappa: f64, seed: u64, heat: Option<HeatModel> },
+    /// `fix ID GROUP heat/reservoir T KAPPA SEED [heat original|fourier]`; `mask` is the
+    /// group's bit (`u32::MAX` for all).
+    Reservoir { temperature: f64, kappa: f64, seed: u64, heat: Option<HeatModel>, mask: u32 },
     /// `fix nve` (LAMMPS's pairwise styles).
     Nve,
     /// `fix mvv/dpd [LAMBDA]` (pair mdpd).
@@ -215,15 +216,16 @@ fn parse_gendpde_coeff(cmd: &Command, pair: &PairGendpde, ntypes: usize) -> Resu
     Ok(PairCoeff { gamma, kappa, rc_friction, rc_heat })
 }
 
-/// `fix ID GROUP STYLE args...`; `kb` is Boltzmann's constant of the units.
-pub fn parse_fix(cmd: &Command, kb: f64) -> Result<Fix, ScriptError> {
+/// `fix ID GROUP STYLE args...`; `kb` is Boltzmann's constant of the units, `groups`
+/// the group names by bit.
+pub fn parse_fix(cmd: &Command, kb: f64, groups: &[String]) -> Result<Fix, ScriptError> {
     let mut a = Args::new(cmd);
     let id = a.word("a fix ID")?.to_string();
     let group = a.word("a group")?;
-    if group != "all" {
-        return Err(a.err(format!("group '{group}': fixes act on group all")));
-    }
     let style_name = a.word("a fix style")?;
+    if group != "all" && style_name != "heat/reservoir" {
+        return Err(a.err(format!("group '{group}': fix {style_name} acts on group all (only heat/reservoir takes a group)")));
+    }
     let style = match style_name {
         s if s.starts_with("eos/") => FixStyle::Eos(parse_eos(s, &mut a, kb)?),
         "nve/gendpde" => {
@@ -268,7 +270,8 @@ pub fn parse_fix(cmd: &Command, kb: f64) -> Result<Fix, ScriptError> {
             let temperature = a.positive("the reservoir temperature")?;
             let kappa = a.positive("the reservoir coupling kappa")?;
             let seed = a.u64("the random seed")?;
-            FixStyle::Reservoir { temperature, kappa, seed, heat: heat_keyword(&mut a)? }
+            let mask = crate::groups::mask_of(groups, group, &a)?;
+            FixStyle::Reservoir { temperature, kappa, seed, heat: heat_keyword(&mut a)?, mask }
         }
         other => return Err(a.err(format!("unknown fix style '{other}'; known: {FIX_STYLES}"))),
     };
@@ -384,7 +387,7 @@ pub fn build_physics(
     let pair = match pair.ok_or_else(|| err("no pair style is defined (pair_style)".into()))? {
         PairStyle::Gendpde(p) => p,
         PairStyle::Pairwise(p) => {
-            let settings = Settings { dt, skin, rebuild, motion: Motion::Fixed, dissipation: None, reservoir: None };
+            let settings = Settings { dt, skin, rebuild, motion: Motion::Fixed, dissipation: None, reservoirs: Vec::new() };
             return crate::pairwise::build(cmd, p, fixes, settings, kb);
         }
     };
@@ -402,7 +405,6 @@ pub fn build_physics(
         ("nve/gendpde", (|s: &FixStyle| matches!(s, FixStyle::Verlet { .. })) as fn(&FixStyle) -> bool),
         ("shardlow", |s| matches!(s, FixStyle::Shardlow { .. })),
         ("vv/euler", |s| matches!(s, FixStyle::VvEuler { .. })),
-        ("heat/reservoir", |s| matches!(s, FixStyle::Reservoir { .. })),
     ] {
         if fixes.iter().filter(|f| pred(&f.style)).count() > 1 {
             return Err(err(format!("more than one fix {name} is defined")));
@@ -445,22 +447,31 @@ pub fn build_physics(
             (motion, dissipation)
         }
     };
-    let reservoir = match find(|s| matches!(s, FixStyle::Reservoir { .. })) {
-        Some(Fix { style: FixStyle::Reservoir { temperature, kappa, seed, heat }, .. }) => Some(Reservoir {
-            temperature: *temperature,
-            kappa: *kappa,
-            seed: *seed,
-            heat: heat.or(dissipation.as_ref().map(|d| d.heat)).unwrap_or(HeatModel::Original),
-        }),
-        _ => None,
-    };
-    if let (Some(d), Some(r)) = (&dissipation, &reservoir) {
-        if d.heat != r.heat {
-            let name = if motion == Motion::VvEuler { "vv/euler" } else { "shardlow" };
-            return Err(err(format!("fix heat/reservoir and fix {name} must use the same heat model")));
+    let pair_heat = dissipation.as_ref().map(|d| d.heat);
+    let reservoirs: Vec<Reservoir> = fixes
+        .iter()
+        .filter_map(|f| match &f.style {
+            FixStyle::Reservoir { temperature, kappa, seed, heat, mask } => Some(Reservoir {
+                id: f.id.clone(),
+                mask: *mask,
+                temperature: *temperature,
+                kappa: *kappa,
+                seed: *seed,
+                heat: heat.or(pair_heat).unwrap_or(HeatModel::Original),
+            }),
+            _ => None,
+        })
+        .collect();
+    if let Some(first) = reservoirs.first() {
+        let (model, other) = match pair_heat {
+            Some(h) => (h, if motion == Motion::VvEuler { "vv/euler" } else { "shardlow" }.to_string()),
+            None => (first.heat, format!("{} (heat/reservoir)", first.id)),
+        };
+        if let Some(r) = reservoirs.iter().find(|r| r.heat != model) {
+            return Err(err(format!("fix {} (heat/reservoir) and fix {other} must use the same heat model", r.id)));
         }
     }
-    let settings = Settings { dt, skin, rebuild, motion, dissipation, reservoir };
+    let settings = Settings { dt, skin, rebuild, motion, dissipation, reservoirs };
     Ok(each_eos!(eos, e => with_weight(e, pair, settings)))
 }
 

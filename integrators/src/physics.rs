@@ -58,7 +58,7 @@ impl<E: FixedEntropy, W: Weight> GenDpde<E, W> {
 
     fn heat_model(&self) -> Option<HeatModel> {
         let s = &self.settings;
-        s.dissipation.as_ref().map(|d| d.heat).or(s.reservoir.as_ref().map(|r| r.heat))
+        s.dissipation.as_ref().map(|d| d.heat).or(s.reservoirs.first().map(|r| r.heat))
     }
 
     /// Radii of the neighbour list and of the sweep pairs (cutoff plus skin). The pair
@@ -176,7 +176,7 @@ impl<E: FixedEntropy, W: Weight> GenDpde<E, W> {
         if let Some(d) = self.settings.dissipation.as_ref().filter(|_| self.settings.motion != Motion::VvEuler) {
             outcome = sweep::sweep::<E, H>(&self.eos, d, sys, dt);
         }
-        if let Some(r) = &self.settings.reservoir {
+        for r in &self.settings.reservoirs {
             outcome = outcome.and(sweep::reservoir::<E, H>(&self.eos, r, sys, dt));
         }
         outcome
@@ -219,6 +219,9 @@ impl<E: FixedEntropy, W: Weight> Physics for GenDpde<E, W> {
             fields = fields | Fields::INV_TAU;
         }
         sys.store.enable(fields);
+        for r in &self.settings.reservoirs {
+            sys.reservoir_tally(&r.id);
+        }
         self.rebuild(sys, sys.step);
         if self.many_body() {
             many_body::density(&self.weight, self.volume.as_ref(), sys);
@@ -232,7 +235,7 @@ impl<E: FixedEntropy, W: Weight> Physics for GenDpde<E, W> {
         let heat_on = |model| {
             let s = &self.settings;
             s.dissipation.as_ref().is_some_and(|d| d.kappa > 0.0 && d.heat == model)
-                || s.reservoir.as_ref().is_some_and(|r| r.heat == model)
+                || s.reservoirs.iter().any(|r| r.heat == model)
         };
         if heat_on(HeatModel::Original) {
             self.advance::<Original>(sys)

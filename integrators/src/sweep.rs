@@ -76,22 +76,30 @@ pub fn sweep<E: Eos, H: HeatFlow>(eos: &E, d: &Dissipation, sys: &mut System, dt
     outcome
 }
 
-/// Heat exchange of every owned particle with the reservoir (eq 72), then a forward
-/// exchange of the new values.
+/// Heat exchange of the owned particles of the reservoir's group with the bath (2019
+/// eq 72; the Fourier form after 2021 eq 62), then a forward exchange of the new values.
+/// The energy put in is added to the reservoir's tally.
 pub fn reservoir<E: Eos, H: HeatFlow>(eos: &E, res: &Reservoir, sys: &mut System, dt: f64) -> Result<(), StepError> {
     let kb = eos.kb();
     let sqrt_dt = dt.sqrt();
     let step = sys.step;
     let s = &mut sys.store;
     let mut outcome = Ok(());
+    let mut added = 0.0;
     for i in 0..s.nlocal {
+        if !s.in_group(i, res.mask) {
+            continue;
+        }
         let (q, alpha) = H::reservoir(kb, res.kappa, temps::<H>(s, i), res.temperature);
         let xi = normal_pair(res.seed, step, s.tag[i], 0, stream::RESERVOIR).0;
-        s.u[i] += dt * q + sqrt_dt * alpha * xi;
+        let du = dt * q + sqrt_dt * alpha * xi;
+        s.u[i] += du;
+        added += du;
         if let Err(e) = refresh::<E, H>(eos, s, i, step) {
             outcome = outcome.and(Err(e));
         }
     }
+    *sys.reservoir_tally(&res.id) += added;
     sys.comm.forward(&mut sys.store, SWEPT);
     outcome
 }
