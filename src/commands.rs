@@ -507,7 +507,20 @@ fn mass(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     Ok(())
 }
 
-/// `set atom|type|group ID KEYWORD VALUE ...` with keywords theta (dpd/theta) and u.
+/// Gives owned particle `i` type `kind` and that type's mass (NaN while unset), keeping
+/// its velocity (p holds the velocity while the mass is unknown, as after read_data).
+fn retype(s: &mut gendpde_engine::Particles, i: usize, kind: u32, masses: &[Option<f64>], mvv2e: f64) {
+    let new = masses[kind as usize - 1].map_or(f64::NAN, |m| m * mvv2e);
+    let old = s.mass[i];
+    let velocity = if old.is_finite() { s.p[i].map(|p| p / old) } else { s.p[i] };
+    s.p[i] = if new.is_finite() { velocity.map(|v| v * new) } else { velocity };
+    s.kind[i] = kind;
+    s.mass[i] = new;
+}
+
+/// `set atom|type|group ID KEYWORD VALUE ...` with keywords theta (dpd/theta), u, type T
+/// and type/fraction T FRACTION SEED (as LAMMPS: each selected particle becomes type T
+/// with probability FRACTION).
 fn set(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     let style = a.word("atom, type or group")?;
     let group_mask = if style == "group" { Some(crate::groups::mask(sim, a.word("a group ID")?, a)?) } else { None };
@@ -548,7 +561,31 @@ fn set(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
                     s.theta_given[i] = false;
                 }
             }
-            k => return Err(a.err(format!("unknown set keyword '{k}'; known: theta, dpd/theta, u"))),
+            "type" => {
+                let t = a.range("a particle type", sim.ntypes as u64)?;
+                if t.start() != t.end() {
+                    return Err(a.err("set type takes one type"));
+                }
+                for &i in &selected {
+                    retype(s, i, *t.start() as u32, &sim.masses, sim.units.mvv2e);
+                }
+            }
+            "type/fraction" => {
+                let t = a.range("a particle type", sim.ntypes as u64)?;
+                let fraction = a.f64("the fraction")?;
+                let seed = a.u64("the random seed")?;
+                if t.start() != t.end() || !(0.0..=1.0).contains(&fraction) || seed == 0 {
+                    return Err(a.err("set type/fraction takes one type, a fraction in [0, 1] and a positive seed"));
+                }
+                for &i in &selected {
+                    // keyed by the tag: the same particles on any number of ranks
+                    let x = gendpde_integrators::rng::uniform4(seed, 0, s.tag[i], 0, gendpde_integrators::rng::stream::SET_TYPE)[0];
+                    if x < fraction {
+                        retype(s, i, *t.start() as u32, &sim.masses, sim.units.mvv2e);
+                    }
+                }
+            }
+            k => return Err(a.err(format!("unknown set keyword '{k}'; known: theta, dpd/theta, u, type, type/fraction"))),
         }
     }
     Ok(())

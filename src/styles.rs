@@ -4,7 +4,7 @@
 //! is a new Rust type, one arm in [`build_physics`] (see docs/DESIGN.md).
 
 use crate::args::Args;
-use gendpde_integrators::{Dissipation, FixedEntropy, GenDpde, HeatModel, Motion, Physics, RebuildPolicy, Reservoir, Settings, Work};
+use gendpde_integrators::{Dissipation, FixedEntropy, GenDpde, HeatModel, Motion, Physics, RebuildPolicy, Reservoir, Settings, Species, Work};
 use gendpde_io::{Command, ScriptError};
 use gendpde_potentials::eos::Lth;
 use gendpde_potentials::volume::PartitionVolume;
@@ -49,6 +49,8 @@ pub enum EosModel {
     LinearTable(Tabulated<LinearTheta>),
     LjTable(Tabulated<LennardJones>),
     LthTable(Tabulated<Lth>),
+    /// `eos/cv CV1 CV2 ...`: one linear EOS per particle type (index type - 1).
+    PerType(Vec<LinearTheta>),
 }
 
 /// Evaluates `$body` with `$e` bound to the concrete EOS of `$model`.
@@ -61,6 +63,11 @@ macro_rules! each_eos {
             EosModel::LinearTable($e) => $body,
             EosModel::LjTable($e) => $body,
             EosModel::LthTable($e) => $body,
+            // describe and bound by type 1 (build_physics takes every type)
+            EosModel::PerType(v) => {
+                let $e = &v[0];
+                $body
+            }
         }
     };
 }
@@ -98,6 +105,7 @@ impl EosModel {
             Self::Linear(e) => Self::LinearTable(Tabulated::new(e, grid)?),
             Self::Lj(e) => Self::LjTable(Tabulated::new(e, grid)?),
             Self::Lth(e) => Self::LthTable(Tabulated::new(e, grid)?),
+            Self::PerType(_) => return Err(TableError::Grid("a table of a per-type EOS (give one C_V)".into())),
             table => table,
         })
     }
@@ -350,7 +358,20 @@ fn parse_model(style: &str, a: &mut Args, kb: f64) -> Result<EosModel, ScriptErr
             return Ok(EosModel::Lth(Lth { kb, ..Lth::new(cv, alpha, kappa_t, pi00, theta0, n00) }));
         }
         "eos/ideal" => LinearTheta::ideal(cv),
-        "eos/cv" => LinearTheta::cv_only(cv),
+        "eos/cv" => {
+            let mut per_type = vec![LinearTheta { kb, ..LinearTheta::cv_only(cv) }];
+            while a.remaining() > 0 && a.peek() != Some("table") {
+                let cv = a.positive("the heat capacity C_V of the next type")?;
+                if cv <= kb {
+                    return Err(a.err(format!("C_V = {cv} must exceed k_B = {kb}")));
+                }
+                per_type.push(LinearTheta { kb, ..LinearTheta::cv_only(cv) });
+            }
+            if per_type.len() > 1 {
+                return Ok(EosModel::PerType(per_type));
+            }
+            LinearTheta::cv_only(cv)
+        }
         "eos/density" => LinearTheta::density_only(cv, coefficients(a)?),
         "eos/linear" => {
             let q = a.f64("the exponent q of n in psi")?;
@@ -472,11 +493,16 @@ pub fn build_physics(
         }
     }
     let settings = Settings { dt, skin, rebuild, motion, dissipation, reservoirs };
-    Ok(each_eos!(eos, e => with_weight(e, pair, settings)))
+    if let EosModel::PerType(v) = eos {
+        return Ok(with_weight(v, pair, settings));
+    }
+    Ok(each_eos!(eos, e => with_weight(vec![e.clone()], pair, settings)))
 }
 
-/// Monomorphises the dynamics over the weight function.
-fn with_weight<E: FixedEntropy + 'static>(eos: E, pair: &PairGendpde, settings: Settings) -> Box<dyn Physics> {
+/// Monomorphises the dynamics over the weight function; `per_type` holds one EOS for
+/// all types or one per type.
+fn with_weight<E: FixedEntropy + 'static>(per_type: Vec<E>, pair: &PairGendpde, settings: Settings) -> Box<dyn Physics> {
+    let Some(eos) = Species::new(per_type) else { unreachable!("an EOS model holds at least one EOS") };
     let rc = pair.cutoff;
     let volume = pair.volume.map(|fcut| PartitionVolume::new(rc, fcut));
     match pair.weight {
