@@ -128,22 +128,7 @@ impl Interpreter {
                 // need (ghost velocities included) and uses full lists; accepted for
                 // compatibility.
             }
-            "compute" => {
-                let id = a.word("a compute ID")?.to_string();
-                let group = a.word("a group")?;
-                let style = a.word("a compute style (dpd or rdf)")?;
-                if group != "all" || !matches!(style, "dpd" | "rdf") {
-                    return Err(a.err(format!("compute {style} on group {group}: only 'compute ID all dpd' and 'compute ID all rdf' are supported")).into());
-                }
-                sim.computes.retain(|c| *c != id);
-                sim.rdfs.retain(|c| c.id != id);
-                if style == "rdf" {
-                    sim.rdfs.push(crate::rdf::Rdf::parse(id, &mut a)?);
-                } else {
-                    a.done()?;
-                    sim.computes.push(id);
-                }
-            }
+            "compute" => crate::computes::compute(sim, &mut a)?,
             "dimension" => match a.word("the dimension")? {
                 "3" => a.done()?,
                 d => return Err(a.err(format!("dimension {d}: only 3 is supported")).into()),
@@ -262,7 +247,7 @@ impl Interpreter {
                 sim.averages.push(fix);
             }
             "fix" => {
-                let fix = styles::parse_fix(cmd, sim.units.kb)?;
+                let fix = styles::parse_fix(cmd, sim.units.kb, &sim.groups)?;
                 if sim.averages.iter().any(|f| f.id == fix.id) {
                     return Err(a.err(format!("fix ID '{}' is in use by another style (unfix it first)", fix.id)).into());
                 }
@@ -541,7 +526,20 @@ fn mass(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     Ok(())
 }
 
-/// `set atom|type|group ID KEYWORD VALUE ...` with keywords theta (dpd/theta) and u.
+/// Gives owned particle `i` type `kind` and that type's mass (NaN while unset), keeping
+/// its velocity (p holds the velocity while the mass is unknown, as after read_data).
+fn retype(s: &mut gendpde_engine::Particles, i: usize, kind: u32, masses: &[Option<f64>], mvv2e: f64) {
+    let new = masses[kind as usize - 1].map_or(f64::NAN, |m| m * mvv2e);
+    let old = s.mass[i];
+    let velocity = if old.is_finite() { s.p[i].map(|p| p / old) } else { s.p[i] };
+    s.p[i] = if new.is_finite() { velocity.map(|v| v * new) } else { velocity };
+    s.kind[i] = kind;
+    s.mass[i] = new;
+}
+
+/// `set atom|type|group ID KEYWORD VALUE ...` with keywords theta (dpd/theta), u, type T
+/// and type/fraction T FRACTION SEED (as LAMMPS: each selected particle becomes type T
+/// with probability FRACTION).
 fn set(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     let style = a.word("atom, type or group")?;
     let group_mask = if style == "group" { Some(crate::groups::mask(sim, a.word("a group ID")?, a)?) } else { None };
@@ -550,7 +548,7 @@ fn set(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     let selected: Vec<usize> = match style {
         "group" => {
             let m = group_mask.unwrap_or(0);
-            (0..s.nlocal).filter(|&i| m == u32::MAX || s.groups[i] & m != 0).collect()
+            (0..s.nlocal).filter(|&i| s.in_group(i, m)).collect()
         }
         "type" => {
             let range = a.range("a particle type", sim.ntypes as u64)?;
@@ -582,7 +580,31 @@ fn set(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
                     s.theta_given[i] = false;
                 }
             }
-            k => return Err(a.err(format!("unknown set keyword '{k}'; known: theta, dpd/theta, u"))),
+            "type" => {
+                let t = a.range("a particle type", sim.ntypes as u64)?;
+                if t.start() != t.end() {
+                    return Err(a.err("set type takes one type"));
+                }
+                for &i in &selected {
+                    retype(s, i, *t.start() as u32, &sim.masses, sim.units.mvv2e);
+                }
+            }
+            "type/fraction" => {
+                let t = a.range("a particle type", sim.ntypes as u64)?;
+                let fraction = a.f64("the fraction")?;
+                let seed = a.u64("the random seed")?;
+                if t.start() != t.end() || !(0.0..=1.0).contains(&fraction) || seed == 0 {
+                    return Err(a.err("set type/fraction takes one type, a fraction in [0, 1] and a positive seed"));
+                }
+                for &i in &selected {
+                    // keyed by the tag: the same particles on any number of ranks
+                    let x = gendpde_integrators::rng::uniform4(seed, 0, s.tag[i], 0, gendpde_integrators::rng::stream::SET_TYPE)[0];
+                    if x < fraction {
+                        retype(s, i, *t.start() as u32, &sim.masses, sim.units.mvv2e);
+                    }
+                }
+            }
+            k => return Err(a.err(format!("unknown set keyword '{k}'; known: theta, dpd/theta, u, type, type/fraction"))),
         }
     }
     Ok(())
@@ -616,10 +638,10 @@ fn thermo_style(sim: &mut Sim, vars: &Variables, a: &mut Args) -> Result<(), Scr
     let mut keys = Vec::new();
     while a.remaining() > 0 {
         let k = a.word("a keyword")?;
-        let known = crate::thermo::heading(k) != k || k.starts_with("v_") || k.starts_with("c_");
+        let known = crate::thermo::heading(k) != k || k.starts_with("v_") || k.starts_with("c_") || k.starts_with("f_");
         if !known {
             return Err(a.err(format!(
-                "unknown thermo keyword '{k}'; known: step elapsed time dt cpu atoms temp tint press pe ke etotal edrift vol density lx ly lz pxtot pytot pztot v_NAME c_ID[k]"
+                "unknown thermo keyword '{k}'; known: step elapsed time dt cpu atoms temp tint press pe ke etotal edrift vol density lx ly lz pxtot pytot pztot v_NAME c_ID[k] f_ID"
             )));
         }
         if let Some(name) = k.strip_prefix("v_") {

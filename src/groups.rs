@@ -83,9 +83,14 @@ pub fn group(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
 
 /// The bit mask selecting group `name` (all bits for `all`).
 pub fn mask(sim: &Sim, name: &str, a: &Args) -> Result<u32, ScriptError> {
+    mask_of(&sim.groups, name, a)
+}
+
+/// The bit mask of group `name` among the group names by bit.
+pub fn mask_of(groups: &[String], name: &str, a: &Args) -> Result<u32, ScriptError> {
     if name == "all" {
         return Ok(u32::MAX);
     }
-    let k = sim.groups.iter().position(|g| g == name).ok_or_else(|| a.err(format!("no group '{name}' (define it with the group command)")))?;
+    let k = groups.iter().position(|g| g == name).ok_or_else(|| a.err(format!("no group '{name}' (define it with the group command)")))?;
     Ok(1 << k)
 }

@@ -4,6 +4,7 @@
 mod args;
 mod ave_time;
 pub mod commands;
+mod computes;
 mod data;
 mod dump;
 mod gather;

@@ -34,7 +34,7 @@ pub fn prepare(it: &mut Interpreter, cmd: &Command) -> Result<Box<dyn Physics>, 
     let bytes = n * neighbours * (crate::memory::NEIGHBOUR_ENTRY_BYTES + 0.5 * crate::memory::SWEEP_PAIR_BYTES);
     crate::memory::check(bytes, &format!("the neighbour lists ({neighbours:.0} neighbours per particle)")).map_err(err)?;
     physics.setup(sys).map_err(|e| match e {
-        SetupError::Grid(g) => err(g),
+        SetupError::Grid(g) | SetupError::Types(g) => err(g),
         SetupError::State(s) => AppError::Step { cmd: cmd.clone(), err: s },
     })?;
     if let Some(grid) = &sys.grid {

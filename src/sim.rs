@@ -40,8 +40,8 @@ pub struct Sim {
     pub checkpoint: Option<(u64, String)>,
     /// `dump ... h5md` outputs.
     pub dumps: Vec<H5mdDump>,
-    /// `compute ID all dpd` IDs (thermo `c_ID[1..5]`).
-    pub computes: Vec<String>,
+    /// `compute` definitions (thermo `c_ID[k]`).
+    pub computes: Vec<crate::computes::Compute>,
     /// `compute ID all rdf` definitions.
     pub rdfs: Vec<Rdf>,
     /// `fix ID all ave/time` outputs.

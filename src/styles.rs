@@ -4,7 +4,7 @@
 //! is a new Rust type, one arm in [`build_physics`] (see docs/DESIGN.md).
 
 use crate::args::Args;
-use gendpde_integrators::{Dissipation, FixedEntropy, GenDpde, HeatModel, Motion, Physics, RebuildPolicy, Reservoir, Settings, Work};
+use gendpde_integrators::{Dissipation, FixedEntropy, GenDpde, HeatModel, Motion, Physics, RebuildPolicy, Reservoir, Settings, Species, Work};
 use gendpde_io::{Command, ScriptError};
 use gendpde_potentials::eos::Lth;
 use gendpde_potentials::volume::PartitionVolume;
@@ -61,6 +61,8 @@ pub enum EosModel {
     LinearTable(Tabulated<LinearTheta>),
     LjTable(Tabulated<LennardJones>),
     LthTable(Tabulated<Lth>),
+    /// `eos/cv CV1 CV2 ...`: one linear EOS per particle type (index type - 1).
+    PerType(Vec<LinearTheta>),
 }
 
 /// Evaluates `$body` with `$e` bound to the concrete EOS of `$model`.
@@ -73,6 +75,11 @@ macro_rules! each_eos {
             EosModel::LinearTable($e) => $body,
             EosModel::LjTable($e) => $body,
             EosModel::LthTable($e) => $body,
+            // describe and bound by type 1 (build_physics takes every type)
+            EosModel::PerType(v) => {
+                let $e = &v[0];
+                $body
+            }
         }
     };
 }
@@ -110,6 +117,7 @@ impl EosModel {
             Self::Linear(e) => Self::LinearTable(Tabulated::new(e, grid)?),
             Self::Lj(e) => Self::LjTable(Tabulated::new(e, grid)?),
             Self::Lth(e) => Self::LthTable(Tabulated::new(e, grid)?),
+            Self::PerType(_) => return Err(TableError::Grid("a table of a per-type EOS (give one C_V)".into())),
             table => table,
         })
     }
@@ -142,8 +150,9 @@ pub enum FixStyle {
     VvEuler { heat: HeatModel },
     /// `fix shardlow [heat original|fourier] [substeps N] [reject yes|no]`.
     Shardlow { heat: HeatModel, substeps: u32, reject: bool },
-    /// `fix heat/reservoir T KAPPA SEED [heat original|fourier]`.
-    Reservoir { temperature: f64, kappa: f64, seed: u64, heat: Option<HeatModel> },
+    /// `fix ID GROUP heat/reservoir T KAPPA SEED [heat original|fourier]`; `mask` is the
+    /// group's bit (`u32::MAX` for all).
+    Reservoir { temperature: f64, kappa: f64, seed: u64, heat: Option<HeatModel>, mask: u32 },
     /// `fix nve` (LAMMPS's pairwise styles).
     Nve,
     /// `fix mvv/dpd [LAMBDA]` (pair mdpd).
@@ -227,15 +236,16 @@ fn parse_gendpde_coeff(cmd: &Command, pair: &PairGendpde, ntypes: usize) -> Resu
     Ok(PairCoeff { gamma, kappa, rc_friction, rc_heat })
 }
 
-/// `fix ID GROUP STYLE args...`; `kb` is Boltzmann's constant of the units.
-pub fn parse_fix(cmd: &Command, kb: f64) -> Result<Fix, ScriptError> {
+/// `fix ID GROUP STYLE args...`; `kb` is Boltzmann's constant of the units, `groups`
+/// the group names by bit.
+pub fn parse_fix(cmd: &Command, kb: f64, groups: &[String]) -> Result<Fix, ScriptError> {
     let mut a = Args::new(cmd);
     let id = a.word("a fix ID")?.to_string();
     let group = a.word("a group")?;
-    if group != "all" {
-        return Err(a.err(format!("group '{group}': fixes act on group all")));
-    }
     let style_name = a.word("a fix style")?;
+    if group != "all" && style_name != "heat/reservoir" {
+        return Err(a.err(format!("group '{group}': fix {style_name} acts on group all (only heat/reservoir takes a group)")));
+    }
     let style = match style_name {
         s if s.starts_with("eos/") => FixStyle::Eos(parse_eos(s, &mut a, kb)?),
         "nve/gendpde" => {
@@ -280,7 +290,8 @@ pub fn parse_fix(cmd: &Command, kb: f64) -> Result<Fix, ScriptError> {
             let temperature = a.positive("the reservoir temperature")?;
             let kappa = a.positive("the reservoir coupling kappa")?;
             let seed = a.u64("the random seed")?;
-            FixStyle::Reservoir { temperature, kappa, seed, heat: heat_keyword(&mut a)? }
+            let mask = crate::groups::mask_of(groups, group, &a)?;
+            FixStyle::Reservoir { temperature, kappa, seed, heat: heat_keyword(&mut a)?, mask }
         }
         other => return Err(a.err(format!("unknown fix style '{other}'; known: {FIX_STYLES}"))),
     };
@@ -359,7 +370,20 @@ fn parse_model(style: &str, a: &mut Args, kb: f64) -> Result<EosModel, ScriptErr
             return Ok(EosModel::Lth(Lth { kb, ..Lth::new(cv, alpha, kappa_t, pi00, theta0, n00) }));
         }
         "eos/ideal" => LinearTheta::ideal(cv),
-        "eos/cv" => LinearTheta::cv_only(cv),
+        "eos/cv" => {
+            let mut per_type = vec![LinearTheta { kb, ..LinearTheta::cv_only(cv) }];
+            while a.remaining() > 0 && a.peek() != Some("table") {
+                let cv = a.positive("the heat capacity C_V of the next type")?;
+                if cv <= kb {
+                    return Err(a.err(format!("C_V = {cv} must exceed k_B = {kb}")));
+                }
+                per_type.push(LinearTheta { kb, ..LinearTheta::cv_only(cv) });
+            }
+            if per_type.len() > 1 {
+                return Ok(EosModel::PerType(per_type));
+            }
+            LinearTheta::cv_only(cv)
+        }
         "eos/density" => LinearTheta::density_only(cv, coefficients(a)?),
         "eos/linear" => {
             let q = a.f64("the exponent q of n in psi")?;
@@ -396,7 +420,7 @@ pub fn build_physics(
     let pair = match pair.ok_or_else(|| err("no pair style is defined (pair_style)".into()))? {
         PairStyle::Gendpde(p) => p,
         PairStyle::Pairwise(p) => {
-            let settings = Settings { dt, skin, rebuild, motion: Motion::Fixed, dissipation: None, reservoir: None };
+            let settings = Settings { dt, skin, rebuild, motion: Motion::Fixed, dissipation: None, reservoirs: Vec::new() };
             return crate::pairwise::build(cmd, p, fixes, settings, kb);
         }
     };
@@ -414,7 +438,6 @@ pub fn build_physics(
         ("nve/gendpde", (|s: &FixStyle| matches!(s, FixStyle::Verlet { .. })) as fn(&FixStyle) -> bool),
         ("shardlow", |s| matches!(s, FixStyle::Shardlow { .. })),
         ("vv/euler", |s| matches!(s, FixStyle::VvEuler { .. })),
-        ("heat/reservoir", |s| matches!(s, FixStyle::Reservoir { .. })),
     ] {
         if fixes.iter().filter(|f| pred(&f.style)).count() > 1 {
             return Err(err(format!("more than one fix {name} is defined")));
@@ -457,27 +480,41 @@ pub fn build_physics(
             (motion, dissipation)
         }
     };
-    let reservoir = match find(|s| matches!(s, FixStyle::Reservoir { .. })) {
-        Some(Fix { style: FixStyle::Reservoir { temperature, kappa, seed, heat }, .. }) => Some(Reservoir {
-            temperature: *temperature,
-            kappa: *kappa,
-            seed: *seed,
-            heat: heat.or(dissipation.as_ref().map(|d| d.heat)).unwrap_or(HeatModel::Original),
-        }),
-        _ => None,
-    };
-    if let (Some(d), Some(r)) = (&dissipation, &reservoir) {
-        if d.heat != r.heat {
-            let name = if motion == Motion::VvEuler { "vv/euler" } else { "shardlow" };
-            return Err(err(format!("fix heat/reservoir and fix {name} must use the same heat model")));
+    let pair_heat = dissipation.as_ref().map(|d| d.heat);
+    let reservoirs: Vec<Reservoir> = fixes
+        .iter()
+        .filter_map(|f| match &f.style {
+            FixStyle::Reservoir { temperature, kappa, seed, heat, mask } => Some(Reservoir {
+                id: f.id.clone(),
+                mask: *mask,
+                temperature: *temperature,
+                kappa: *kappa,
+                seed: *seed,
+                heat: heat.or(pair_heat).unwrap_or(HeatModel::Original),
+            }),
+            _ => None,
+        })
+        .collect();
+    if let Some(first) = reservoirs.first() {
+        let (model, other) = match pair_heat {
+            Some(h) => (h, if motion == Motion::VvEuler { "vv/euler" } else { "shardlow" }.to_string()),
+            None => (first.heat, format!("{} (heat/reservoir)", first.id)),
+        };
+        if let Some(r) = reservoirs.iter().find(|r| r.heat != model) {
+            return Err(err(format!("fix {} (heat/reservoir) and fix {other} must use the same heat model", r.id)));
         }
     }
-    let settings = Settings { dt, skin, rebuild, motion, dissipation, reservoir };
-    Ok(each_eos!(eos, e => with_weight(e, pair, settings)))
+    let settings = Settings { dt, skin, rebuild, motion, dissipation, reservoirs };
+    if let EosModel::PerType(v) = eos {
+        return Ok(with_weight(v, pair, settings));
+    }
+    Ok(each_eos!(eos, e => with_weight(vec![e.clone()], pair, settings)))
 }
 
-/// Monomorphises the dynamics over the weight function.
-fn with_weight<E: FixedEntropy + 'static>(eos: E, pair: &PairGendpde, settings: Settings) -> Box<dyn Physics> {
+/// Monomorphises the dynamics over the weight function; `per_type` holds one EOS for
+/// all types or one per type.
+fn with_weight<E: FixedEntropy + 'static>(per_type: Vec<E>, pair: &PairGendpde, settings: Settings) -> Box<dyn Physics> {
+    let Some(eos) = Species::new(per_type) else { unreachable!("an EOS model holds at least one EOS") };
     let rc = pair.cutoff;
     let volume = pair.volume.map(|fcut| PartitionVolume::new(rc, fcut));
     match pair.weight {

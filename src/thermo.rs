@@ -119,8 +119,8 @@ pub struct ThermoContext<'a> {
     pub units: Units,
     /// `pe` is the pair energy (LAMMPS's pairwise styles) instead of sum u (GenDPDE).
     pub pe_is_pair: bool,
-    /// IDs of `compute dpd`.
-    pub computes: &'a [String],
+    /// The `compute` definitions.
+    pub computes: &'a [crate::computes::Compute],
 }
 
 impl ThermoContext<'_> {
@@ -166,23 +166,23 @@ impl ThermoContext<'_> {
         if self.pe_is_pair { self.obs.epair } else { self.obs.u }
     }
 
-    /// `c_ID[k]` of a `compute dpd`: sum uCond, sum uMech, sum uChem (0), the
-    /// harmonic-mean particle temperature N / sum(1/theta), N (as LAMMPS's compute dpd).
+    /// `c_ID[k]` of a compute (src/computes.rs) or `f_ID` of a `fix heat/reservoir`.
     fn compute(&self, name: &str) -> Option<f64> {
-        let rest = name.strip_prefix("c_")?;
-        let (id, k) = rest.strip_suffix(']')?.split_once('[')?;
-        if !self.computes.iter().any(|c| c == id) {
-            return None;
+        if let Some(id) = name.strip_prefix("f_") {
+            return self.reservoir_heat(id);
         }
         let o = &self.obs;
-        Some(match k {
-            "1" => o.u_cond,
-            "2" => o.u - o.u_cond,
-            "3" => 0.0,
-            "4" => o.atoms / o.inv_theta,
-            "5" => o.atoms,
-            _ => return None,
-        })
+        let totals = crate::computes::Totals { atoms: o.atoms, u: o.u, u_cond: o.u_cond, inv_theta: o.inv_theta };
+        crate::computes::value(self.computes, self.sys, &totals, name)
+    }
+
+    /// Energy reservoir `id` has put into the particles since it was defined, summed over
+    /// the ranks (extensive: per particle with `thermo_modify norm yes`, as LAMMPS's fix
+    /// energies).
+    fn reservoir_heat(&self, id: &str) -> Option<f64> {
+        let local = self.sys.reservoir_heat.iter().find(|(name, _)| name == id)?.1;
+        let [total] = exact_sums(self.sys.comm.transport(), std::iter::once([local]));
+        Some(if self.norm && self.obs.atoms > 0.0 { total / self.obs.atoms } else { total })
     }
 }
 

@@ -50,7 +50,7 @@ pub fn velocity(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     if let Some(i) = (0..s.nlocal).find(|&i| !s.mass[i].is_finite()) {
         return Err(a.err(format!("the mass of type {} is not set", s.kind[i])));
     }
-    let members: Vec<usize> = (0..s.nlocal).filter(|&i| mask == u32::MAX || s.groups[i] & mask != 0).collect();
+    let members: Vec<usize> = (0..s.nlocal).filter(|&i| s.in_group(i, mask)).collect();
     let n = members.len();
     let mut v = vec![[0.0; 3]; n];
     for (k, vi) in v.iter_mut().enumerate() {

@@ -65,6 +65,12 @@ impl Particles {
         self.len() - self.nlocal
     }
 
+    /// Whether owned particle `i` belongs to the group of bit `mask` (`u32::MAX`: group all).
+    #[inline]
+    pub fn in_group(&self, i: usize, mask: u32) -> bool {
+        mask == u32::MAX || self.groups[i] & mask != 0
+    }
+
     /// Appends an owned particle (no ghosts may exist yet).
     pub fn push(&mut self, tag: u64, kind: u32, mass: f64, r: Vec3) {
         debug_assert_eq!(self.nlocal, self.len(), "push before ghosts are built");

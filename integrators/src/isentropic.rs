@@ -11,6 +11,7 @@
 
 use crate::error::StepError;
 use crate::many_body::density_of;
+use crate::species::Species;
 use crate::system::System;
 use gendpde_potentials::eos::Lth;
 use gendpde_potentials::{Eos, EosError, LennardJones, LinearTheta, Tabulated, ISOLATED_DENSITY};
@@ -84,13 +85,13 @@ impl<E: Eos> FixedEntropy for Tabulated<E> {
 }
 
 /// theta_i := s(u_i, n_i) for owned particles, at the densities of the start of the step.
-pub fn hold<E: Eos>(eos: &E, sys: &mut System) -> Result<(), StepError> {
+pub fn hold<E: Eos>(eos: &Species<E>, sys: &mut System) -> Result<(), StepError> {
     let step = sys.step;
     let s = &mut sys.store;
     let mut first = Ok(());
     for i in 0..s.nlocal {
         let n = density_of(s, i).max(ISOLATED_DENSITY);
-        match eos.entropy(s.u[i], n) {
+        match eos.of(s.kind[i]).entropy(s.u[i], n) {
             Some(entropy) => s.theta[i] = entropy,
             None if first.is_ok() => {
                 let e = EosError::NonPositiveTheta { u: s.u[i], n, theta: s.theta[i] };
@@ -103,13 +104,13 @@ pub fn hold<E: Eos>(eos: &E, sys: &mut System) -> Result<(), StepError> {
 }
 
 /// u_i := u(s_i, n_i) and theta_i at the new densities, with s_i from [`hold`].
-pub fn release<E: FixedEntropy>(eos: &E, sys: &mut System) -> Result<(), StepError> {
+pub fn release<E: FixedEntropy>(eos: &Species<E>, sys: &mut System) -> Result<(), StepError> {
     let step = sys.step;
     let s = &mut sys.store;
     let mut first = Ok(());
     for i in 0..s.nlocal {
         let n = density_of(s, i).max(ISOLATED_DENSITY);
-        match eos.at_entropy(s.theta[i], n, s.u[i]) {
+        match eos.of(s.kind[i]).at_entropy(s.theta[i], n, s.u[i]) {
             Some((u, theta)) => (s.u[i], s.theta[i]) = (u, theta),
             None if first.is_ok() => {
                 first = Err(StepError::state(s, i, step, "no internal energy has the particle's entropy at its new density"));

@@ -12,6 +12,7 @@
 //! from g_ij and the new pi/n^2 without evaluating the weight again.
 
 use crate::error::StepError;
+use crate::species::Species;
 use crate::system::System;
 use gendpde_engine::{dot, sub, Particles, Vec3};
 use gendpde_potentials::volume::PartitionVolume;
@@ -61,11 +62,11 @@ pub fn density_of(s: &Particles, i: usize) -> f64 {
 }
 
 /// Derives u from theta where `set theta` asked for it, at the current density.
-pub fn resolve_theta<E: Eos>(eos: &E, sys: &mut System) {
+pub fn resolve_theta<E: Eos>(eos: &Species<E>, sys: &mut System) {
     let s = &mut sys.store;
     for i in 0..s.nlocal {
         if s.theta_given[i] {
-            s.u[i] = eos.u(s.theta[i], density_of(s, i).max(ISOLATED_DENSITY));
+            s.u[i] = eos.of(s.kind[i]).u(s.theta[i], density_of(s, i).max(ISOLATED_DENSITY));
             s.theta_given[i] = false;
         }
     }
@@ -74,12 +75,13 @@ pub fn resolve_theta<E: Eos>(eos: &E, sys: &mut System) {
 /// theta, the force factor pi/n^2 (times zeta_i with the corrected volume, eq 27; where
 /// kept) and 1/tau (where kept) of owned particles from (u, n). On a failure it carries on
 /// and reports the first failing particle.
-pub fn refresh_state<E: Eos>(eos: &E, sys: &mut System) -> Result<(), StepError> {
+pub fn refresh_state<E: Eos>(eos: &Species<E>, sys: &mut System) -> Result<(), StepError> {
     let step = sys.step;
     let (s, zeta) = (&mut sys.store, &sys.zeta);
     let (keep_pressure, keep_tau) = (!s.pn2.is_empty(), !s.inv_tau.is_empty());
     let mut first = Ok(());
     for i in 0..s.nlocal {
+        let eos = eos.of(s.kind[i]);
         match eos.state(s.u[i], density_of(s, i), s.theta[i]) {
             Ok(st) => {
                 s.theta[i] = st.theta;

@@ -6,6 +6,7 @@ use crate::error::StepError;
 use crate::heat::{Fourier, HeatFlow, HeatModel, NoHeat, Original};
 use crate::isentropic::{self, FixedEntropy};
 use crate::settings::{Motion, Settings, Work};
+use crate::species::Species;
 use crate::system::System;
 use crate::{many_body, sweep, verlet, vv_euler};
 use gendpde_engine::Fields;
@@ -28,13 +29,15 @@ pub trait Physics {
 pub enum SetupError {
     /// The box cannot hold the cell grid or be split over the ranks.
     Grid(String),
+    /// Some particle type has no EOS (per-type EOS).
+    Types(String),
     State(StepError),
 }
 
 impl std::fmt::Display for SetupError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            Self::Grid(e) => e.fmt(f),
+            Self::Grid(e) | Self::Types(e) => e.fmt(f),
             Self::State(e) => e.fmt(f),
         }
     }
@@ -44,7 +47,8 @@ impl std::error::Error for SetupError {}
 
 /// The generalised DPDE of the 2019 paper with EOS `E` and density weight `W`.
 pub struct GenDpde<E: Eos, W: Weight> {
-    pub eos: E,
+    /// The EOS of each particle type (or one for all).
+    pub eos: Species<E>,
     pub weight: W,
     /// The corrected particle volume of the argon paper (eqs 2-3), if chosen.
     pub volume: Option<PartitionVolume>,
@@ -58,7 +62,7 @@ impl<E: FixedEntropy, W: Weight> GenDpde<E, W> {
 
     fn heat_model(&self) -> Option<HeatModel> {
         let s = &self.settings;
-        s.dissipation.as_ref().map(|d| d.heat).or(s.reservoir.as_ref().map(|r| r.heat))
+        s.dissipation.as_ref().map(|d| d.heat).or(s.reservoirs.first().map(|r| r.heat))
     }
 
     /// Radii of the neighbour list and of the sweep pairs (cutoff plus skin). The pair
@@ -176,7 +180,7 @@ impl<E: FixedEntropy, W: Weight> GenDpde<E, W> {
         if let Some(d) = self.settings.dissipation.as_ref().filter(|_| self.settings.motion != Motion::VvEuler) {
             outcome = sweep::sweep::<E, H>(&self.eos, d, sys, dt);
         }
-        if let Some(r) = &self.settings.reservoir {
+        for r in &self.settings.reservoirs {
             outcome = outcome.and(sweep::reservoir::<E, H>(&self.eos, r, sys, dt));
         }
         outcome
@@ -210,6 +214,11 @@ impl<E: FixedEntropy, W: Weight> Physics for GenDpde<E, W> {
     fn setup(&self, sys: &mut System) -> Result<(), SetupError> {
         let (density, sweep) = self.radii();
         let cut = density.unwrap_or(0.0).max(sweep.unwrap_or(0.0)).max(self.settings.skin);
+        let max_kind = sys.store.kind[..sys.store.nlocal].iter().copied().max().unwrap_or(1);
+        let max_kind = sys.comm.max(max_kind as f64) as u32;
+        if !self.eos.covers(max_kind) {
+            return Err(SetupError::Types(format!("the EOS fix gives fewer heat capacities than particle types ({max_kind})")));
+        }
         sys.lay_grid(cut).map_err(SetupError::Grid)?;
         let mut fields = Fields::THETA;
         if self.many_body() {
@@ -219,6 +228,9 @@ impl<E: FixedEntropy, W: Weight> Physics for GenDpde<E, W> {
             fields = fields | Fields::INV_TAU;
         }
         sys.store.enable(fields);
+        for r in &self.settings.reservoirs {
+            sys.reservoir_tally(&r.id);
+        }
         self.rebuild(sys, sys.step);
         if self.many_body() {
             many_body::density(&self.weight, self.volume.as_ref(), sys);
@@ -232,7 +244,7 @@ impl<E: FixedEntropy, W: Weight> Physics for GenDpde<E, W> {
         let heat_on = |model| {
             let s = &self.settings;
             s.dissipation.as_ref().is_some_and(|d| d.kappa > 0.0 && d.heat == model)
-                || s.reservoir.as_ref().is_some_and(|r| r.heat == model)
+                || s.reservoirs.iter().any(|r| r.heat == model)
         };
         if heat_on(HeatModel::Original) {
             self.advance::<Original>(sys)

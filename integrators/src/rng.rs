@@ -18,6 +18,8 @@ pub mod stream {
     pub const VELOCITY: u32 = 2;
     /// Random pair forces of `pair dpd` and `pair mdpd`.
     pub const FORCE: u32 = 3;
+    /// `set ... type/fraction`.
+    pub const SET_TYPE: u32 = 4;
     /// Brownian-bridge noises of split pair updates: SUBSTEP + node of the split tree.
     pub const SUBSTEP: u32 = 16;
 }

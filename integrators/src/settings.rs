@@ -31,9 +31,14 @@ impl Dissipation {
     }
 }
 
-/// `fix heat/reservoir`: every particle exchanges heat with a bath at T (eq 72).
+/// `fix heat/reservoir`: every particle of a group exchanges heat with a bath at T
+/// (2019 eq 72; 2021 text after eq 62).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Reservoir {
+    /// The fix ID: the key of the reservoir's energy tally ([`crate::System::reservoir_heat`]).
+    pub id: String,
+    /// Group bit mask of the particles it couples (all bits: group all).
+    pub mask: u32,
     pub temperature: f64,
     pub kappa: f64,
     pub heat: HeatModel,
@@ -84,5 +89,6 @@ pub struct Settings {
     pub rebuild: RebuildPolicy,
     pub motion: Motion,
     pub dissipation: Option<Dissipation>,
-    pub reservoir: Option<Reservoir>,
+    /// Heat baths, each on its own group (applied in this order after the sweep).
+    pub reservoirs: Vec<Reservoir>,
 }

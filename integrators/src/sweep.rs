@@ -18,6 +18,7 @@ use crate::heat::{HeatFlow, Temps};
 use crate::pair_update::{pair_update, PairDrive, PairState};
 use crate::rng::{normal_pair, stream, Normals};
 use crate::settings::{Dissipation, Reservoir};
+use crate::species::Species;
 use crate::system::System;
 use gendpde_engine::{dot, sub, Fields, Particles};
 use gendpde_potentials::Eos;
@@ -27,7 +28,7 @@ pub const SWEPT: Fields = Fields::MOMENTUM.union(Fields::ENERGY).union(Fields::T
 
 /// One full sweep over all pairs of all colours. After a failure this rank stops
 /// updating pairs but keeps taking part in the exchanges, and reports the failure.
-pub fn sweep<E: Eos, H: HeatFlow>(eos: &E, d: &Dissipation, sys: &mut System, dt: f64) -> Result<(), StepError> {
+pub fn sweep<E: Eos, H: HeatFlow>(eos: &Species<E>, d: &Dissipation, sys: &mut System, dt: f64) -> Result<(), StepError> {
     let kb = eos.kb();
     let rc = d.cutoff();
     let (inv_rcd, inv_rch) = (1.0 / d.rc_friction, 1.0 / d.rc_heat);
@@ -76,22 +77,30 @@ pub fn sweep<E: Eos, H: HeatFlow>(eos: &E, d: &Dissipation, sys: &mut System, dt
     outcome
 }
 
-/// Heat exchange of every owned particle with the reservoir (eq 72), then a forward
-/// exchange of the new values.
-pub fn reservoir<E: Eos, H: HeatFlow>(eos: &E, res: &Reservoir, sys: &mut System, dt: f64) -> Result<(), StepError> {
+/// Heat exchange of the owned particles of the reservoir's group with the bath (2019
+/// eq 72; the Fourier form after 2021 eq 62), then a forward exchange of the new values.
+/// The energy put in is added to the reservoir's tally.
+pub fn reservoir<E: Eos, H: HeatFlow>(eos: &Species<E>, res: &Reservoir, sys: &mut System, dt: f64) -> Result<(), StepError> {
     let kb = eos.kb();
     let sqrt_dt = dt.sqrt();
     let step = sys.step;
     let s = &mut sys.store;
     let mut outcome = Ok(());
+    let mut added = 0.0;
     for i in 0..s.nlocal {
+        if !s.in_group(i, res.mask) {
+            continue;
+        }
         let (q, alpha) = H::reservoir(kb, res.kappa, temps::<H>(s, i), res.temperature);
         let xi = normal_pair(res.seed, step, s.tag[i], 0, stream::RESERVOIR).0;
-        s.u[i] += dt * q + sqrt_dt * alpha * xi;
+        let du = dt * q + sqrt_dt * alpha * xi;
+        s.u[i] += du;
+        added += du;
         if let Err(e) = refresh::<E, H>(eos, s, i, step) {
             outcome = outcome.and(Err(e));
         }
     }
+    *sys.reservoir_tally(&res.id) += added;
     sys.comm.forward(&mut sys.store, SWEPT);
     outcome
 }
@@ -116,7 +125,7 @@ struct Pair {
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn pair_step<E: Eos, H: HeatFlow>(
-    eos: &E,
+    eos: &Species<E>,
     s: &mut Particles,
     p: &Pair,
     xi: f64,
@@ -143,7 +152,7 @@ fn pair_step<E: Eos, H: HeatFlow>(
 /// Undoes a failed pair update and does it as two half steps.
 #[cold]
 fn split<E: Eos, H: HeatFlow>(
-    eos: &E,
+    eos: &Species<E>,
     s: &mut Particles,
     p: &Pair,
     saved: ([f64; 3], [f64; 3], f64, f64, f64, f64),
@@ -171,7 +180,8 @@ pub(crate) fn temps<H: HeatFlow>(s: &Particles, i: usize) -> Temps {
 
 /// theta(u, n) at fixed n after a pair update, and 1/tau where the heat law reads it.
 #[inline(always)]
-fn refresh<E: Eos, H: HeatFlow>(eos: &E, s: &mut Particles, i: usize, step: u64) -> Result<(), StepError> {
+fn refresh<E: Eos, H: HeatFlow>(eos: &Species<E>, s: &mut Particles, i: usize, step: u64) -> Result<(), StepError> {
+    let eos = eos.of(s.kind[i]);
     let n = crate::many_body::density_of(s, i).max(gendpde_potentials::ISOLATED_DENSITY);
     let (theta, cv) = if H::NEEDS_INV_TAU { eos.theta_cv(s.u[i], n, s.theta[i]) } else { (eos.theta(s.u[i], n, s.theta[i]), 0.0) };
     if !(theta > 0.0 && theta.is_finite()) {

@@ -46,6 +46,9 @@ pub struct System {
     pub substeps: u64,
     /// Pair updates left out because no split could keep theta positive (`reject yes`).
     pub rejected: u64,
+    /// Energy each `fix heat/reservoir` (by fix ID) has put into the owned particles of
+    /// this rank since the fix was defined (sum over ranks for the total).
+    pub reservoir_heat: Vec<(String, f64)>,
     /// The particles, cells and build positions were read from a restart: the next
     /// build keeps them as stored, so the lists come out as when it was written.
     pub restored: bool,
@@ -81,10 +84,23 @@ impl System {
             builds: 0,
             substeps: 0,
             rejected: 0,
+            reservoir_heat: Vec::new(),
             restored: false,
             restored_grid: None,
             min_cell: 0.0,
         }
+    }
+
+    /// This rank's energy tally of reservoir `id` (created at 0).
+    pub fn reservoir_tally(&mut self, id: &str) -> &mut f64 {
+        let k = match self.reservoir_heat.iter().position(|(name, _)| name == id) {
+            Some(k) => k,
+            None => {
+                self.reservoir_heat.push((id.to_string(), 0.0));
+                self.reservoir_heat.len() - 1
+            }
+        };
+        &mut self.reservoir_heat[k].1
     }
 
     /// Lays the cell grid for interactions up to `cut` (cutoff plus skin) or `min_cell`,
