@@ -111,10 +111,15 @@ fn lth_macro(p: &[f64], rc: f64, fcut: f64, density: f64, temperature: f64, gr: 
     use gendpde::lth_macro::{evaluate, fluid, Source};
     let eos = gendpde_potentials::eos::Lth::new(p[0], p[1], p[2], p[3], p[4], p[5]);
     let source = gr.as_deref().map_or(Source::Hnc, Source::File);
-    match fluid(eos, rc, fcut, density, temperature).and_then(|f| evaluate(&f, source)) {
+    print_lines(fluid(eos, rc, fcut, density, temperature).and_then(|f| evaluate(&f, source)), 10)
+}
+
+/// `name value` lines with `digits` significant digits, or the error on stderr.
+fn print_lines<S: std::fmt::Display>(result: Result<Vec<(S, f64)>, String>, digits: usize) -> ExitCode {
+    match result {
         Ok(lines) => {
             for (name, value) in lines {
-                println!("{name} {}", gendpde_io::format_g(value, 10));
+                println!("{name} {}", gendpde_io::format_g(value, digits));
             }
             ExitCode::SUCCESS
         }
@@ -134,18 +139,7 @@ fn eos(model: String, params: Vec<String>, theta: Option<f64>, u: Option<f64>, n
         gendpde::styles::FixStyle::Eos(m) => m.describe(theta, u, n),
         _ => Err(format!("unknown EOS model '{model}'")),
     });
-    match result {
-        Ok(lines) => {
-            for (name, value) in lines {
-                println!("{name} {}", gendpde_io::format_g(value, 15));
-            }
-            ExitCode::SUCCESS
-        }
-        Err(e) => {
-            eprintln!("ERROR: {e}");
-            ExitCode::FAILURE
-        }
-    }
+    print_lines(result, 15)
 }
 
 /// LAMMPS spells long options with one dash (`-var`, `-log`, `-in`).

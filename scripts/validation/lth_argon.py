@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The LTh argon model (Colella et al., argon paper): Tables 5, 6, 7, 8 and 9, Figs 1-5.
 
-    python3 scripts/validation/lth_argon.py [--n 16] [--scan-n 15] [--equil-t 30]
+    python3 scripts/validation/lth_argon.py [--n 16] [--scan-n 15] [--full-n 30] [--equil-t 30]
         [--prod-t 10] [--jobs 2] [--only NAME,...]
 
 Runs examples/lth-argon for
@@ -54,6 +54,8 @@ def runs(args):
     out = []
     for R, fcut, gamma, kappa, dt in CUTOFFS:
         out.append((f"liquid_R{R}", "table5", liquid(R, fcut, gamma, kappa, dt), args.n))
+    if args.full_n:
+        out.append((f"liquid_R{CUTOFFS[2][0]}_N{args.full_n ** 3}", "table5", liquid(*CUTOFFS[2]), args.full_n))
     tuned = liquid(*CUTOFFS[2], pi00=0.1239)
     out.append(("tuned", "table7", tuned, args.n))
     out.append(("supercritical", "table9", dict(SUPER), args.n))
@@ -140,15 +142,18 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--n", type=int, default=16)
     ap.add_argument("--scan-n", type=int, default=15)
+    ap.add_argument("--full-n", type=int, default=0, help="also R* = 2.1564 with N = full_n^3 (the paper: 30)")
     ap.add_argument("--equil-t", type=float, default=30.0)
     ap.add_argument("--prod-t", type=float, default=10.0)
     ap.add_argument("--frames", type=int, default=10)
     ap.add_argument("--jobs", type=int, default=2)
-    ap.add_argument("--only", default="", help="comma-separated run names")
+    ap.add_argument("--only", default="", help="comma-separated run names: run (and cache) only these, no report")
     args = ap.parse_args()
     todo = [r for r in runs(args) if not args.only or r[0] in args.only.split(",")]
     with ThreadPoolExecutor(args.jobs) as pool:
         rows = list(pool.map(lambda r: simulate(*r, args), todo))
+    if args.only:
+        return
     rows = [with_macro(r) if r["group"] in ("table5", "table7") else r for r in rows]
     refs = {state: reference(state) for state in ("liquid", "supercritical")}
     for r in rows:
@@ -193,7 +198,7 @@ def figure(rows):
     b.errorbar(xs - 0.1, [by[k]["P"] for k in names], [by[k]["P_err"] for k in names], fmt="o", label="gendpde virial")
     b.plot(xs + 0.1, [by[k]["from_g"]["pressure"] for k in names], "s", mfc="none", label="eqs 85-91 from own g (Table 6)")
     b.plot(xs + 0.2, [by[k]["hnc"]["pressure"] for k in names], "^", mfc="none", label="HNC (Table 8)")
-    paper = [PAPER_T5[float(k.split("R")[1])][2] if k.startswith("liquid") else PAPER_T7[2] for k in names]
+    paper = [PAPER_T5[by[k]["vars"]["R"]][2] if k.startswith("liquid") else PAPER_T7[2] for k in names]
     b.plot(xs, paper, "k_", ms=20, label="paper (Tables 5, 7)")
     b.set_xticks(xs, [k.replace("liquid_", "") for k in names])
     b.set_ylabel("P*")

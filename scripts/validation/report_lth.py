@@ -10,7 +10,7 @@ def section(entry):
     runs = {r["name"]: r for r in entry["runs"]}
     paper = entry["paper"]
     t5, t6, t8 = paper["table5"], paper["table6"], paper["table8"]
-    liquid = sorted((r for r in entry["runs"] if r["group"] == "table5"), key=lambda r: r["vars"]["R"])
+    liquid = sorted((r for r in entry["runs"] if r["group"] == "table5"), key=lambda r: (r["vars"]["R"], r["N"]))
     first = liquid[0] if liquid else next(iter(runs.values()))
     length = (f"N = {first['N']}, {first['equil_t']:g} t* with a reservoir then {first['prod_t']:g} t* NVE "
               f"(the paper: N = 27000, 1000 + 2000 t*)")
@@ -20,13 +20,13 @@ def section(entry):
     for r in liquid:
         R = r["vars"]["R"]
         p = t5[str(R)] if str(R) in t5 else t5[R]
-        table5.append(f"| {R:g} | {p[0]} / {p[1]} / {p[2]} / {p[3]} | {pm(r, 'T_kin', 5)} | {pm(r, 'n', 4)} | "
+        table5.append(f"| {R:g} | {r['N']} | {p[0]} / {p[1]} / {p[2]} / {p[3]} | {pm(r, 'T_kin', 5)} | {pm(r, 'n', 4)} | "
                       f"{pm(r, 'P', 4)} | {pm(r, 'U', 4)} | {r['T_int']:.5f} | {r['max_edrift']:.1e} | {r['steps']} | {r['wall_s']:.0f} |")
     if liquid:
         rows.append("| argon Table 5: LTh liquid, three cutoffs (T, n, P, U/N) | " + "; ".join(
             f"R {r['vars']['R']:g}: " + " / ".join(str(x) for x in (t5.get(str(r['vars']['R'])) or t5[r['vars']['R']]))
             for r in liquid) + " | " + "; ".join(
-            f"R {r['vars']['R']:g}: {r['T_kin']:.4f} / {r['n']:.3f} / {r['P']:.3f} / {r['U']:.3f}" for r in liquid)
+            f"R {r['vars']['R']:g} (N {r['N']}): {r['T_kin']:.4f} / {r['n']:.3f} / {r['P']:.3f} / {r['U']:.3f}" for r in liquid)
             + f" | {length} |")
     table68 = []
     for r in liquid + ([runs["tuned"]] if "tuned" in runs else []):
@@ -35,7 +35,7 @@ def section(entry):
         p6 = t6.get(key, ("-",) * 3) if r["group"] == "table5" else ("-",) * 3
         p8 = t8.get(key, ("-",) * 3) if r["group"] == "table5" else ("-",) * 3
         g, h = r["from_g"], r["hnc"]
-        table68.append(f"| {r['name']} | {r['P']:.4f} | {p6[0]} / {p6[1]} / {p6[2]} | {g['n']:.4f} / {g['pressure']:.4f} / "
+        table68.append(f"| {r['name']} (N = {r['N']}) | {r['P']:.4f} | {p6[0]} / {p6[1]} / {p6[2]} | {g['n']:.4f} / {g['pressure']:.4f} / "
                        f"{g['energy']:.4f} | {p8[0]} / {p8[1]} / {p8[2]} | {h['n']:.4f} / {h['pressure']:.4f} / {h['energy']:.4f} |")
     if table68:
         rows.append("| argon Tables 6, 8: macroscopic EOS from g(r) (n, P, U/N) | Table 6 (simulated g) and 8 (HNC) | "
@@ -56,8 +56,8 @@ def section(entry):
         r = runs["supercritical"]
         rows.append(f"| argon Table 9 / Fig 5: supercritical, R* = 2.1564 | P0* = 0.583 | P = {pm(r, 'P', 4)}, "
                     f"n = {r['n']:.4f}, T = {r['T_kin']:.4f} | N = {r['N']} |")
-    lines.append("| R* | paper T / n / P / U/N | T_kin | n | P | U/N | T_int | max dE/E | NVE steps | wall s |")
-    lines.append("|---|---|---|---|---|---|---|---|---|---|")
+    lines.append("| R* | N | paper T / n / P / U/N | T_kin | n | P | U/N | T_int | max dE/E | NVE steps | wall s |")
+    lines.append("|---|---|---|---|---|---|---|---|---|---|---|")
     lines += table5
     text = "\n".join(lines)
     t68 = "\n".join(["| run | virial P | Table 6 n / P / U/N | own g: n / P / U/N | Table 8 n / P / U/N | HNC: n / P / U/N |",
