@@ -159,7 +159,7 @@ def main():
     for r in rows:
         v = r["vars"]
         p0, t0, alpha, kt = refs["liquid" if v["theta0"] < 0.05 else "supercritical"]
-        r["reference_P"] = p0 + (alpha * (v["T"] - t0) + math.log(v.get("c", 1.0))) / kt
+        r["reference_P"] = p0 + (alpha * (r["T_kin"] - t0) + math.log(v.get("c", 1.0))) / kt
     figure(rows)
     for r in rows:
         r.pop("gr", None)
