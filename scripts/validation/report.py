@@ -214,7 +214,9 @@ Against the paper: {offsets}. U/N agrees within the paper's error bar and T with
 and 0.004-0.006 (4 %) in P, with the paper's ordering of n (falling with R*). The P
 offset is what the n offset gives through the model (dP/dn = 1/kappa_T ~ 1), so the
 difference is in the structure: our fluid packs the corrected local density slightly
-higher. What we can say about its origin: (1) the runs are 40 t* against the paper's
+higher. The run at the paper's N = 27000 (R* = 2.1564, last row) gives the same n and P
+as N = 4096, so the offset is not a finite-size effect. What we can say about its
+origin: (1) the runs are 40 t* against the paper's
 3000 t*, and the simple cubic start relaxes slowly (<n_i> rises from 0.98 for some 15 t*,
 overshoots and settles), so a residual drift of the structure is possible; (2) the paper
 gives neither its initial state, its rescaling schedule nor its pair-sweep order; (3) the
