@@ -166,3 +166,21 @@ fn a_system_too_large_for_memory_is_refused_before_allocating() {
     assert!(!out.status.success());
     assert!(err.contains("in.big:5: create_atoms: create_atoms of up to") && err.contains("GiB of memory"), "{err}");
 }
+
+/// A particle that leaves an EOS table (theta beyond its range) stops the run with the
+/// particle, the step and the table's range named, not a bare NaN.
+#[test]
+fn a_particle_leaving_the_eos_table_stops_naming_the_table_range() {
+    let dir = std::env::temp_dir().join(format!("gendpde-table-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let script = vdw(12, 0.5, "fix ssa all shardlow").replace(
+        "eos/vdw 60.0 2.4682 1.4142",
+        "eos/vdw 60.0 2.4682 1.4142 table 1.45 1.55 11 0.0 1.2 65",
+    ) + "run 200\n";
+    std::fs::write(dir.join("in.table"), script).unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_gendpde")).args(["run", "in.table", "-log", "none"]).current_dir(&dir).output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success());
+    assert!(err.contains("run stopped: particle ") && err.contains("lies outside the EOS table"), "{err}");
+    assert!(err.contains("failed.restart.h5") && !err.contains("internal error"), "{err}");
+}

@@ -20,9 +20,14 @@ pub struct StepError {
 impl StepError {
     /// An EOS failure of particle `i`.
     pub fn eos(s: &Particles, i: usize, step: u64, e: EosError) -> Self {
-        let EosError::NonPositiveTheta { u, n, theta } = e;
-        let what = if theta.is_finite() && u.is_finite() { "particle temperature is not positive" } else { "particle state is not finite" };
-        Self { tag: s.tag[i], step, u, n, theta, what: what.into(), elsewhere: false }
+        let (u, n, theta, what) = match e {
+            EosError::NonPositiveTheta { u, n, theta } => {
+                let what = if theta.is_finite() && u.is_finite() { "particle temperature is not positive" } else { "particle state is not finite" };
+                (u, n, theta, what.to_string())
+            }
+            EosError::Outside { u, n, why } => (u, n, f64::NAN, why),
+        };
+        Self { tag: s.tag[i], step, u, n, theta, what, elsewhere: false }
     }
 
     /// Particle `i` reached a state the dynamics cannot continue from.

@@ -185,7 +185,7 @@ fn refresh<E: Eos, H: HeatFlow>(eos: &Species<E>, s: &mut Particles, i: usize, s
     let n = crate::many_body::density_of(s, i).max(gendpde_potentials::ISOLATED_DENSITY);
     let (theta, cv) = if H::NEEDS_INV_TAU { eos.theta_cv(s.u[i], n, s.theta[i]) } else { (eos.theta(s.u[i], n, s.theta[i]), 0.0) };
     if !(theta > 0.0 && theta.is_finite()) {
-        let e = gendpde_potentials::EosError::NonPositiveTheta { u: s.u[i], n, theta };
+        let e = gendpde_potentials::EosError::at(eos, s.u[i], n, theta);
         return Err(StepError::eos(s, i, step, e));
     }
     s.theta[i] = theta;

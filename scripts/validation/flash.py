@@ -11,13 +11,17 @@ import argparse
 
 import common
 
+# The LJ grid of the other scenes (theta 0.3-8, common.LJ_TABLE) with the same spacing up
+# to theta = 16: at N = 27000 single particles of the heated fluid reach theta = 8.
+FLASH_TABLE = "table 0.3 16.0 241 0.0 1.2 129"
+
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--n", type=int, default=30)
     ap.add_argument("--equil", type=int, default=1000)
     ap.add_argument("--steps", type=int, default=5000)
-    ap.add_argument("--eos", default=f"lj 60.0 {common.LJ_TABLE}")
+    ap.add_argument("--eos", default=f"lj 60.0 {FLASH_TABLE}")
     args = ap.parse_args()
     wd = common.workdir("flash", f"n{args.n}")
     v = {"n": args.n, "equil": args.equil, "steps": args.steps, "eos": args.eos, "every": 10}

@@ -38,6 +38,19 @@ pub struct EosState {
 pub enum EosError {
     /// theta(u, n) <= 0 or not finite: u lies below the ground state at this density.
     NonPositiveTheta { u: f64, n: f64, theta: f64 },
+    /// (u, n) lies outside the model's domain (a table's range): `why` says how.
+    Outside { u: f64, n: f64, why: String },
+}
+
+impl EosError {
+    /// The error of a state whose theta(u, n) came out non-positive or not finite: the
+    /// model's reason when (u, n) lies outside its domain, else the bare values.
+    pub fn at<E: Eos + ?Sized>(eos: &E, u: f64, n: f64, theta: f64) -> Self {
+        match eos.outside(u, n) {
+            Some(why) => Self::Outside { u, n, why },
+            None => Self::NonPositiveTheta { u, n, theta },
+        }
+    }
 }
 
 impl fmt::Display for EosError {
@@ -47,6 +60,7 @@ impl fmt::Display for EosError {
                 f,
                 "particle temperature theta = {theta:e} is not positive (u = {u:e}, n = {n:e})"
             ),
+            Self::Outside { why, .. } => write!(f, "{why}"),
         }
     }
 }
@@ -89,7 +103,7 @@ pub trait Eos: Send + Sync {
         let n = if isolated { ISOLATED_DENSITY } else { n };
         let theta = self.theta(u, n, guess);
         if !(theta > 0.0 && theta.is_finite()) || n.is_nan() {
-            return Err(EosError::NonPositiveTheta { u, n, theta });
+            return Err(EosError::at(self, u, n, theta));
         }
         let pn2 = if isolated { 0.0 } else { self.pn2(theta, n) };
         let cv = self.cv(theta, n);
@@ -97,6 +111,12 @@ pub trait Eos: Send + Sync {
             return Err(EosError::NonPositiveTheta { u, n, theta: f64::NAN });
         }
         Ok(EosState { theta, pn2, cv })
+    }
+
+    /// Why (u, n) lies outside the model's domain, if it does (a table's range); None for
+    /// analytic models, which are defined wherever theta(u, n) is.
+    fn outside(&self, _u: f64, _n: f64) -> Option<String> {
+        None
     }
 
     /// 1/tau = (1 - k_B/C_V)/theta, the inverse dressed temperature (eqs 19, 23).

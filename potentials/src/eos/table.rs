@@ -710,6 +710,9 @@ impl<E: Eos> Eos for Tabulated<E> {
     fn kb(&self) -> f64 {
         self.inner.kb()
     }
+    fn outside(&self, u: f64, n: f64) -> Option<String> {
+        self.theta_checked(u, n, f64::NAN).err().map(|e| e.to_string())
+    }
     fn density_dependent(&self) -> bool {
         self.inner.density_dependent()
     }
