@@ -51,7 +51,7 @@ def section(entry):
                                 f"{r['hnc']['n']:.3f} / {r['hnc']['pressure']:.3f}" for r in liquid) + f" | g(r) of the runs above |")
     if "tuned" in runs:
         r, p = runs["tuned"], paper["table7"]
-        rows.append(f"| argon Table 7: tuned pi00* = 0.1239, R* = 2.1564 | {p[0]} / {p[1]} / {p[2]} / {p[3]} | "
+        rows.append(f"| argon Table 7: tuned pi00* = 0.1239, R* = 2.1564 | {p[0]} / {p[1]:.3f} / {p[2]} / {p[3]} | "
                     f"{r['T_kin']:.4f} / {r['n']:.3f} / {r['P']:.3f} / {r['U']:.3f} | N = {r['N']} |")
     scans = [r for r in entry["runs"] if r["group"] in ("fig4", "fig5", "table9") or r["name"] == "tuned"]
     scan_rows = []
