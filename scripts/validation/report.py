@@ -144,11 +144,15 @@ short to separate from the O(dt^2) energy fluctuation of the reversible step.
 
 ![flash](validation/flash.png)
 
-N = {r['N']} (the paper: 27000), equilibrated 500 steps at T = 1.5, then a centred slab of
+N = {r['N']} (the paper: 27000), equilibrated 1000 steps at T = 1.5, then a centred slab of
 half the lattice planes along x gets velocities and theta of T = 5 and the isolated system
 runs {r['steps']} steps. Over the second half: <T_kin> = {r['T_kin']:.4f} +- {r['T_kin_err']:.4f}, <T_int> =
-{r['T_int']:.4f} +- {r['T_int_err']:.5f} ({pct(r['rel_diff'])}; the paper's 0.01 % needs its longer averages at
-N = 27000: our standard error alone is {100 * r['T_kin_err'] / r['T_int']:.2f} %). The total energy stays within
+{r['T_int']:.4f} +- {r['T_int_err']:.5f} ({pct(r['rel_diff'])}, standard error {100 * r['T_kin_err'] / r['T_int']:.2f} %; the paper: below 0.01 %).
+The difference is resolved: {r['steps']} steps are 50 time units, shorter than the time
+the original heat law needs to spread the slab's internal energy at theta ~ 5 (about
+100 time units with kappa = 1, C_V = 60), so the heated particles still carry theta ~ 5
++- 0.65 (a dumped rerun shows single particles at theta = 7-7.7 throughout) and the
+steady state the paper averages over is not reached yet. The total energy stays within
 {r['max_rel_energy_drift']:.1e} of its value after the heating over the run (the paper: 1e-7).
 """)
 
