@@ -25,16 +25,22 @@ fn mean_sem(x: &[f64]) -> (f64, f64) {
     (mean(x), (var / blocks.len() as f64).sqrt())
 }
 
-/// Samples (T_kin, T_int, P, E) every `every` steps over `steps` steps.
-fn sample(it: &mut gendpde::Interpreter, steps: u64, every: u64) -> [Vec<f64>; 4] {
+/// Samples (T_kin, T_int, P, E, P_mf) every `every` steps over `steps` steps, where
+/// P_mf = rho T_kin + rho^2 <pi_i/n_i^2> is the particle EOS averaged over the particles'
+/// own states: the virial with each particle's weight-gradient sum m_i = -sum_j r_ij
+/// w'(r_ij)/3 replaced by its mean-field value rho.
+fn sample(it: &mut gendpde::Interpreter, steps: u64, every: u64) -> [Vec<f64>; 5] {
     let physics = it.dynamics().unwrap();
     let sys = it.system().unwrap();
-    let mut out: [Vec<f64>; 4] = Default::default();
+    let mut out: [Vec<f64>; 5] = Default::default();
     for k in 1..=steps {
         physics.step(sys).unwrap();
         if k % every == 0 {
             let o = Observables::measure(sys);
-            for (v, x) in out.iter_mut().zip([o.temperature(1.0), o.theta / o.atoms, o.pressure(), o.energy()]) {
+            let rho = o.atoms / o.volume;
+            let pn2 = &sys.store.pn2[..sys.store.nlocal];
+            let p_mf = rho * o.temperature(1.0) + rho * rho * pn2.iter().sum::<f64>() / pn2.len().max(1) as f64;
+            for (v, x) in out.iter_mut().zip([o.temperature(1.0), o.theta / o.atoms, o.pressure(), o.energy(), p_mf]) {
                 v.push(x);
             }
         }
@@ -42,33 +48,73 @@ fn sample(it: &mut gendpde::Interpreter, steps: u64, every: u64) -> [Vec<f64>; 4
     out
 }
 
-/// One LJ state at T = 1.5, rho = 0.5 with density cutoff `rc` in a box of n^3 sites:
-/// (P, SEM of P, EOS pressure at the measured <T_int>, <T_kin>, its SEM, <T_int>).
-fn lj_state(n: &str, rc: &str, steps: u64) -> [f64; 6] {
-    let vars = [("n", n), ("rc", rc), ("eos", TABLE), ("equil", "400"), ("steps", "0")];
-    let mut it = common::run_example("lj-fluid", &vars);
-    let [tk, ti, p, _] = sample(&mut it, steps, 5);
-    let ((tk, tk_err), (ti, _), (p, p_err)) = (mean_sem(&tk), mean_sem(&ti), mean_sem(&p));
-    let p_eos = LennardJones::new(60.0).pressure(ti, 0.5);
-    eprintln!("LJ T = 1.5, rho = 0.5, rc = {rc}: P = {p:.5} +- {p_err:.5}, EOS P({ti:.4}) = {p_eos:.5} ({:+.2} %); <T_kin> = {tk:.5} +- {tk_err:.5} ({:+.3} % from <T_int>)", 100.0 * (p / p_eos - 1.0), 100.0 * (tk / ti - 1.0));
-    [p, p_err, p_eos, tk, tk_err, ti]
+/// Means and standard errors of one LJ run (`lj_state`).
+struct LjState {
+    /// Virial pressure and its SEM.
+    p: f64,
+    p_err: f64,
+    /// The EOS pressure at rho and the measured <T_int>.
+    p_eos: f64,
+    /// <P - P_mf> over paired samples and its SEM (see `sample`).
+    p_minus_mf: f64,
+    p_minus_mf_err: f64,
+    tk: f64,
+    tk_err: f64,
+    ti: f64,
 }
 
-/// LJ, T = 1.5, rho = 0.5 (the smallest boxes of 4 cells): <T_kin> within 0.5 % of
-/// <T_int>; the virial pressure lies above the EOS pressure and approaches it as the
-/// density cutoff grows (Fig 5). The issue asked for 2 % at rc = 4; the local densities
-/// fluctuate by 15 % there and pi(n)/n^2 is curved near the critical point, so the
-/// deviation measured at rc = 4 is about +8 % (docs/VALIDATION.md,
-/// scripts/validation/pressure_fluctuations.py), and the 2 % is not asserted here.
+/// One LJ state at rho = 0.5 with density cutoff `rc` and friction `gamma` in a box of n^3
+/// sites.
+fn lj_state(t: &str, n: &str, rc: &str, gamma: &str, steps: u64) -> LjState {
+    let vars = [("T", t), ("n", n), ("rc", rc), ("gamma", gamma), ("eos", TABLE), ("equil", "400"), ("steps", "0")];
+    let mut it = common::run_example("lj-fluid", &vars);
+    let [tk, ti, p, _, p_mf] = sample(&mut it, steps, 5);
+    let diff: Vec<f64> = p.iter().zip(&p_mf).map(|(a, b)| a - b).collect();
+    let ((tk, tk_err), (ti, _), (p, p_err), (d, d_err)) = (mean_sem(&tk), mean_sem(&ti), mean_sem(&p), mean_sem(&diff));
+    let p_eos = LennardJones::new(60.0).pressure(ti, 0.5);
+    eprintln!(
+        "LJ T = {t}, rho = 0.5, rc = {rc}, gamma = {gamma}: P = {p:.5} +- {p_err:.5}, EOS P({ti:.4}) = {p_eos:.5} ({:+.2} %), P - P_mf = {d:.5} +- {d_err:.5}; <T_kin> = {tk:.5} +- {tk_err:.5} ({:+.3} % from <T_int>)",
+        100.0 * (p / p_eos - 1.0),
+        100.0 * (tk / ti - 1.0)
+    );
+    LjState { p, p_err, p_eos, p_minus_mf: d, p_minus_mf_err: d_err, tk, tk_err, ti }
+}
+
+/// LJ at the paper's parameters, T = 1.5, rho = 0.5, rc = 4, gamma = 4.5 (N = 14^3):
+/// <T_kin> within 0.5 % of <T_int>.
 #[test]
-fn lj_temperatures_agree_and_the_virial_pressure_converges_with_the_cutoff() {
-    let [p4, e4, eos4, tk, tk_err, ti] = lj_state("14", "4.0", 3000);
-    assert!(tk_err < 0.0015 * ti, "the run is too short to test 0.5 %: SEM {tk_err}");
-    assert!((tk / ti - 1.0).abs() < 0.005);
-    let [p3, e3, eos3, ..] = lj_state("11", "3.0", 1500);
-    let (d3, d4) = (p3 / eos3 - 1.0, p4 / eos4 - 1.0);
-    let sigma = (e3 / eos3).hypot(e4 / eos4);
-    assert!(d4 > 0.0 && d3 - d4 > 4.0 * sigma, "no convergence with rc: {d3} (rc 3) vs {d4} (rc 4) +- {sigma}");
+fn lj_kinetic_and_internal_temperatures_agree() {
+    let s = lj_state("1.5", "14", "4.0", "4.5", 3000);
+    assert!(s.tk_err < 0.0015 * s.ti, "the run is too short to test 0.5 %: SEM {}", s.tk_err);
+    assert!((s.tk / s.ti - 1.0).abs() < 0.005);
+}
+
+/// LJ, T = 1.5, rho = 0.5, rc = 4 (N = 14^3): the virial pressure lies 7 % above the EOS
+/// pressure, not within the 2 % the issue asked for, and the test shows why. The particle
+/// EOS averaged over the particles' own states (P_mf of `sample`) accounts for most of the
+/// excess: at rc = 4 the local densities fluctuate by 15 % (the counting noise of ~70
+/// weighted neighbours) and pi(n)/n^2 is curved, so the mean of the particle pressures is
+/// not the EOS at the mean density; the rest is the correlation of n_i with the weight
+/// gradient sum m_i, a fluctuation term of the same order. The excess falls as 1/rc^3 and
+/// reaches 2 % near rc = 6 (docs/VALIDATION.md, Figs 4 and 5, runs too long for the
+/// suite). At T = 3, where pi(n)/n^2 is nearly linear, the virial is within 2 % of the EOS
+/// at rc = 4. The friction is 0.45, not 4.5: the statics do not depend on it (eq 88), and
+/// with 4.5 the local densities that carry the pressure decorrelate ten times more slowly,
+/// too slowly for a short run to have an honest error bar.
+#[test]
+fn lj_virial_pressure_excess_comes_from_the_local_density_fluctuations() {
+    let s = lj_state("1.5", "14", "4.0", "0.45", 4000);
+    let excess = s.p - s.p_eos;
+    assert!(excess > 4.0 * s.p_err, "no excess: P = {} +- {}, EOS {}", s.p, s.p_err, s.p_eos);
+    assert!(
+        s.p_minus_mf.abs() + 4.0 * s.p_minus_mf_err < 0.5 * excess,
+        "the particle EOS over the local densities misses most of the excess {excess}: P - P_mf = {} +- {}",
+        s.p_minus_mf,
+        s.p_minus_mf_err
+    );
+    let s = lj_state("3.0", "14", "4.0", "0.45", 1500);
+    assert!(s.p_err < 0.005 * s.p_eos, "the run is too short to test 2 %: SEM {}", s.p_err);
+    assert!((s.p / s.p_eos - 1.0).abs() < 0.02, "T = 3: P = {} +- {}, EOS {}", s.p, s.p_err, s.p_eos);
 }
 
 /// Flash heating (examples/flash-heating, N = 14^3): half of the particles heated to
@@ -78,8 +124,8 @@ fn lj_temperatures_agree_and_the_virial_pressure_converges_with_the_cutoff() {
 fn flash_heating_relaxes_to_equal_temperatures_and_keeps_energy() {
     let vars = [("n", "14"), ("eos", FLASH_TABLE), ("equil", "300"), ("steps", "0")];
     let mut it = common::run_example("flash-heating", &vars);
-    let [_, _, _, e0] = sample(&mut it, 1, 1);
-    let [tk, ti, _, e] = sample(&mut it, 3000, 5);
+    let [_, _, _, e0, _] = sample(&mut it, 1, 1);
+    let [tk, ti, _, e, _] = sample(&mut it, 3000, 5);
     let half = tk.len() / 3;
     let ((tk, tk_err), (ti, _)) = (mean_sem(&tk[half..]), mean_sem(&ti[half..]));
     let drift = e.iter().map(|x| (x / e0[0] - 1.0).abs()).fold(0.0, f64::max);

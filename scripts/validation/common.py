@@ -90,6 +90,19 @@ def h5md_frames(path, field):
         return f[f"particles/all/{field}/value"][()]
 
 
+def pearson(samples, quantile, bins=30):
+    """Pearson chi^2 and p-value of `samples` on `bins` bins equiprobable under the
+    distribution with quantile function `quantile` (samples treated as independent)."""
+    import numpy as np
+    from scipy import stats
+    edges = np.asarray(quantile(np.linspace(0, 1, bins + 1)), dtype=float)
+    edges[0], edges[-1] = -np.inf, np.inf
+    counts, _ = np.histogram(samples, bins=edges)
+    expected = len(samples) / bins
+    chi2 = float(((counts - expected) ** 2 / expected).sum())
+    return chi2, float(stats.chi2.sf(chi2, bins - 1))
+
+
 def lattice_cells(rho, rc, skin=0.4, minimum=None):
     """Lattice cells per side of an sc box at density rho that holds 4 list cells."""
     import math
@@ -109,6 +122,17 @@ def save(scene, entry):
 def figure_path(scene):
     OUT.mkdir(parents=True, exist_ok=True)
     return OUT / f"{scene}.png"
+
+
+def cached(workdir, compute):
+    """The row of a run: read from `workdir`/row.json if an earlier run left it, otherwise
+    `compute()`d and written there, so that a rerun only redoes what is missing."""
+    cache = Path(workdir) / "row.json"
+    if cache.exists():
+        return json.loads(cache.read_text())
+    row = compute()
+    cache.write_text(json.dumps(row))
+    return row
 
 
 def workdir(scene, tag):

@@ -7,9 +7,9 @@ several C_V.
 
 Theory (k_B = 1, vdW excess EOS u = C_V theta - a n, mean field n = rho = 0.5):
 p_a ~ N(0, m T) (eq 89); u + a rho ~ Gamma(shape C_V, scale T) (eq 90); theta ~ Gamma(shape
-C_V, scale T / C_V) (eq 91, constant C_V). The local density has no closed form (eq 92
-needs a Monte Carlo of the configurational integral, not done here): its histogram is shown
-with its mean beside rho.
+C_V, scale T / C_V) (eq 91, constant C_V). The local density has no closed form: its
+histogram is shown with its mean beside rho here, and against eq 92 by a Monte Carlo of the
+configurational integral in local_density_mc.py (which reads this script's runs).
 """
 import argparse
 
@@ -19,16 +19,6 @@ from scipy import stats
 import common
 
 T, RHO, A = 1.5, 0.5, 2.4682
-
-
-def chi2_p(samples, dist, bins=30):
-    """Pearson chi^2 p-value of `samples` against the frozen distribution `dist` on
-    equiprobable bins (samples are treated as independent, see the notes)."""
-    edges = dist.ppf(np.linspace(0, 1, bins + 1))
-    counts, _ = np.histogram(samples, bins=np.clip(edges, -1e300, 1e300))
-    expected = len(samples) / bins
-    chi2 = float(((counts - expected) ** 2 / expected).sum())
-    return chi2, float(stats.chi2.sf(chi2, bins - 1))
 
 
 def main():
@@ -58,7 +48,7 @@ def main():
         d = theory[name]
         # one frame of independent particles for the test, all frames for the moments
         one = x[: x.size // frames]
-        chi2, pval = chi2_p(one, d)
+        chi2, pval = common.pearson(one, d.ppf)
         entry[name] = {"mean": float(x.mean()), "theory_mean": float(d.mean()), "var": float(x.var()),
                        "theory_var": float(d.var()), "chi2_last_frame": chi2, "p_value": pval}
     entry["n"] = {"mean": float(n.mean()), "rho": RHO, "std": float(n.std())}
@@ -85,7 +75,7 @@ def main():
         _, wall6 = common.run("distributions", {"n": args.cv_n, "cv": c, "steps": args.steps // 2, "equil": args.equil}, wd6)
         th = common.h5md_frames(wd6 / "dist.h5", "temperature")
         d = stats.gamma(c, scale=T / c)
-        chi2, pval = chi2_p(th[-1], d)
+        chi2, pval = common.pearson(th[-1], d.ppf)
         fig6[f"{c:g}"] = {"mean": float(th.mean()), "var": float(th.var()), "theory_var": float(d.var()),
                           "p_value": pval, "N": args.cv_n ** 3, "wall_s": round(wall6, 1)}
         line = ax[1, 1].hist(th.ravel(), bins=80, density=True, histtype="step", label=f"$C_V$ = {c:g}")

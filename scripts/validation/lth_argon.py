@@ -22,7 +22,6 @@ NVE at the paper's dt. Each run's numbers are cached in its work directory
 (row.json): a rerun only redoes what is missing.
 """
 import argparse
-import json
 import math
 import subprocess
 from concurrent.futures import ThreadPoolExecutor
@@ -70,9 +69,10 @@ def runs(args):
 
 def simulate(name, group, v, n, args):
     wd = common.workdir("lth_argon", f"{name}_n{n}")
-    cache = wd / "row.json"
-    if cache.exists():
-        return json.loads(cache.read_text())
+    return common.cached(wd, lambda: simulate_in(wd, name, group, v, n, args))
+
+
+def simulate_in(wd, name, group, v, n, args):
     dt = v["dt"]
     dteq = 2 * dt
     prod_steps = round(args.prod_t / dt)
@@ -88,7 +88,6 @@ def simulate(name, group, v, n, args):
         m, e = common.mean_sem(prod[col][half:])
         row[key], row[key + "_err"] = m, e
     row["max_edrift"] = max(abs(x - prod["Edrift"][0]) for x in prod["Edrift"])
-    cache.write_text(json.dumps(row))
     print(name, {k: row[k] for k in ("T_kin", "n", "P", "U", "wall_s")}, flush=True)
     return row
 
