@@ -92,15 +92,16 @@ fn lj_kinetic_and_internal_temperatures_agree() {
 /// LJ, T = 1.5, rho = 0.5, rc = 4 (N = 14^3): the virial pressure lies 7 % above the EOS
 /// pressure, not within the 2 % the issue asked for, and the test shows why. The particle
 /// EOS averaged over the particles' own states (P_mf of `sample`) accounts for most of the
-/// excess: at rc = 4 the local densities fluctuate by 15 % (the counting noise of ~70
-/// weighted neighbours) and pi(n)/n^2 is curved, so the mean of the particle pressures is
+/// excess: at rc = 4 the local densities fluctuate by 15 % (the counting noise of about 47
+/// independent neighbours) and pi(n)/n^2 is curved, so the mean of the particle pressures is
 /// not the EOS at the mean density; the rest is the correlation of n_i with the weight
-/// gradient sum m_i, a fluctuation term of the same order. The excess falls as 1/rc^3 and
-/// reaches 2 % near rc = 6 (docs/VALIDATION.md, Figs 4 and 5, runs too long for the
-/// suite). At T = 3, where pi(n)/n^2 is nearly linear, the virial is within 2 % of the EOS
-/// at rc = 4. The friction is 0.45, not 4.5: the statics do not depend on it (eq 88), and
-/// with 4.5 the local densities that carry the pressure decorrelate ten times more slowly,
-/// too slowly for a short run to have an honest error bar.
+/// gradient sum m_i, a fluctuation term of the same order. The excess falls as 1/rc^3:
+/// +1.8 % at rc = 6 and +0.2 % at rc = 7 (docs/VALIDATION.md, Figs 4 and 5, runs too long
+/// for the suite). At T = 3, where pi(n)/n^2 is nearly linear, the virial is within 2 % of the EOS
+/// at rc = 4. The friction is 0.45, not 4.5: the pressure is the same at both (0.4523 +-
+/// 0.0016 at 0.45, N = 2744; 0.4525 +- 0.0008 at 4.5, N = 27000; pressure.py), and with 4.5
+/// the local densities that carry it decorrelate ten times more slowly, too slowly for a
+/// short run to have an honest error bar.
 #[test]
 fn lj_virial_pressure_excess_comes_from_the_local_density_fluctuations() {
     let s = lj_state("1.5", "14", "4.0", "0.45", 4000);

@@ -35,7 +35,20 @@ def run(example, variables, workdir, ranks=1):
     wall = time.time() - start
     if out.returncode != 0:
         sys.exit(f"gendpde failed in {workdir}:\n{' '.join(cmd)}\n{out.stdout[-3000:]}\n{out.stderr[-3000:]}")
+    (workdir / "run.json").write_text(json.dumps({"example": example, "variables": variables, "wall_s": wall}))
     return thermo_blocks(out.stdout), wall
+
+
+def run_once(example, variables, workdir):
+    """`run`, unless `workdir` holds a finished run of the same example and variables
+    (its run.json): then its log's thermo blocks and wall time, so that a driver can redo
+    its analysis without the simulation."""
+    done = Path(workdir) / "run.json"
+    if done.exists():
+        record = json.loads(done.read_text())
+        if record["example"] == example and record["variables"] == json.loads(json.dumps(variables)):
+            return thermo_blocks((Path(workdir) / "log.gendpde").read_text()), record["wall_s"]
+    return run(example, variables, workdir)
 
 
 def thermo_blocks(text):

@@ -11,8 +11,10 @@ For the vdW excess EOS (C_V = 60, a = 2.4682, b = 1.4142, self term excluded, qu
 weight, rc = 4) the exponent per particle is f(n) = [u(T, n) - C_V T]/T + C_V ln T - s(T, n),
 which this script tabulates through `gendpde eos` so that the engine's cap of n below 1/b
 is included. Single-particle moves in an sc-started box of n^3 sites at rho = 0.5; the step
-is tuned to 40 % acceptance during equilibration; all n_i are recomputed every sweep
-(no drift of the incremental updates). With the n distribution, eq 90 becomes a mixture:
+is raised towards 40 % acceptance during equilibration, and since the soft weight accepts
+even moves across the whole box three times in four, it ends larger than the box (random
+re-insertion; the proposal stays symmetric). All n_i are recomputed every sweep (no drift
+of the incremental updates). With the n distribution, eq 90 becomes a mixture:
 u + a n ~ Gamma(C_V, T) for each particle's n, so P(u) = <Gamma pdf(u + a n)>_n.
 """
 import argparse

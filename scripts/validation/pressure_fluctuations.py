@@ -14,7 +14,7 @@ sum_i (pi_i/n_i^2) m_i / V with m_i = -sum_j r_ij w'(r_ij)/3, and <m_i> = rho fo
 the last estimate keeps the spread of n_i and drops the correlation of m_i with n_i.
 For an uncorrelated fluid the spread is the counting noise of the weight,
 var(n_i) = rho * integral of w^2 = rho * 225 / (105 pi rc^3) for the quadratic weight.
-The friction is 0.45 (the statics do not depend on it; see pressure.py).
+The friction is 0.45 (the pressure is the same as at 4.5; see pressure.py).
 """
 import argparse
 import subprocess
