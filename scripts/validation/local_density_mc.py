@@ -132,7 +132,7 @@ def main():
              "step": mc["step"], "wall_s": round(wall, 1), "mc": {"mean": m, "mean_err": m_err, "std": v ** 0.5,
                                                                   "var": v, "var_err": v_err}}
     md = {}
-    for tag, label in [(f"cv60", "N = 3375"), ("n30", "N = 27000")]:
+    for tag, label in [("cv60", "N = 3375"), ("n30", "N = 27000")]:
         try:
             frames = md_frames(tag)
         except OSError:

@@ -72,23 +72,6 @@ def relaxation(T, rho, rc, args, points=60):
     return [[float(x[i:i + k].mean()) for i in range(0, len(x) - k + 1, k)] for x in cols]
 
 
-def simulate(wd, T, rho, rc, n, args):
-    v = {"n": n, "rho": rho, "T": T, "rc": rc, "gamma": args.gamma, "eos": args.eos, "equil": args.equil,
-         "steps": args.steps, "every": 10}
-    blocks, wall = common.run("lj-fluid", v, wd)
-    prod = blocks[-1]
-    p, p_err = common.mean_sem(prod["Press"])
-    tk, tk_err = common.mean_sem(prod["Temp"])
-    ti, ti_err = common.mean_sem(prod["Tint"])
-    nm, nm_err = common.mean_sem(prod["Nmean"])
-    p_eos = common.eos("lj 60.0", ti, rho)["pressure"]
-    row = {"T": T, "rho": rho, "rc": rc, "N": n ** 3, "P_virial": p, "P_err": p_err, "P_eos": p_eos,
-           "rel_dev": (p - p_eos) / abs(p_eos), "T_kin": tk, "T_kin_err": tk_err, "T_int": ti, "T_int_err": ti_err,
-           "n_mean": nm, "n_mean_err": nm_err, "gamma": args.gamma, "equil": args.equil, "steps": args.steps, "wall_s": round(wall, 1)}
-    print(row, flush=True)
-    return row
-
-
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--states", default=DEFAULT_STATES, help="T:rho,rho,... groups (Fig 4)")
