@@ -189,9 +189,13 @@ impl Interpreter {
                     return Err(a.err("read_restart: the box exists already").into());
                 }
                 let t = self.transport.take().ok_or_else(|| a.err("the box exists already"))?;
-                let commands = crate::restart::read(sim, &file, t).map_err(|e| a.err(e))?;
-                let text = commands.join("\n") + "\n";
-                self.execute_str(&format!("{file} (stored commands)"), &text)?;
+                let (system, commands) = crate::restart::read(sim, &file, t).map_err(|e| a.err(e))?;
+                let name = format!("{file} (stored commands)");
+                let before_box = commands.iter().take_while(|c| c.starts_with("units ") || c.starts_with("atom_style ")).count();
+                self.execute_str(&name, &(commands[..before_box].join("\n") + "\n"))?;
+                self.sim.system = Some(system);
+                self.execute_str(&name, &(commands[before_box..].join("\n") + "\n"))?;
+                self.sim.restore_fix_state();
             }
             "checkpoint" => {
                 let every = a.u64("the checkpoint interval N (0: off)")?;

@@ -1,18 +1,21 @@
 //! `write_restart FILE`, `read_restart FILE` and `checkpoint N FILE`: HDF5 restart files
-//! holding everything the dynamics needs (clock, box, particles with their cells and
-//! build positions, the style commands), so that a run continued from a restart is
-//! bit-identical to the uninterrupted run. Files are written to FILE.tmp and renamed.
+//! holding everything a continuation needs (clock, box, every restart field of the
+//! particle table with the particles' cells, build positions, group bits and the forces
+//! of the last step, group names, the state of fixes, the style commands), so that a
+//! run continued from a restart is bit-identical to the uninterrupted run. Files are
+//! written to FILE.tmp and renamed.
 
 use crate::gather::sorted_rows;
 use crate::sim::Sim;
-use gendpde_engine::{Comm, Domain, ProcGrid, Transport};
+use gendpde_engine::{stage, Comm, Domain, Fields, Particles, ProcGrid, Transport};
 use gendpde_integrators::System;
-use gendpde_io::{ParticleRows, RestartHeader, RestartReader, RestartWriter};
+use gendpde_io::{row_width, ColumnSpec, RestartHeader, RestartReader, RestartWriter};
 use std::path::Path;
 
-/// Values per particle in the gathered rows: tag, type, mass, r, p, u, theta, image,
-/// cell, r_build.
-const WIDTH: usize = 20;
+/// The restart columns of the store: every RESTART field of the particle table.
+fn columns(store: &Particles) -> Vec<ColumnSpec> {
+    store.record(stage::RESTART, true).iter().map(|c| ColumnSpec { name: c.field.name.into(), width: c.field.width, integer: c.field.integer }).collect()
+}
 
 /// Writes the current state (rank 0 writes; every rank must call).
 pub fn write(sim: &Sim, file: &str) -> Result<(), String> {
@@ -21,7 +24,7 @@ pub fn write(sim: &Sim, file: &str) -> Result<(), String> {
         step: sys.step,
         time: sys.time,
         dt: sim.dt,
-        natoms: crate::thermo::Observables::measure(sys).atoms as u64,
+        natoms: sys.comm.count(sys.store.nlocal),
         max_tag: sim.max_tag,
         ntypes: sim.ntypes,
         lo: sys.domain.lo,
@@ -32,67 +35,62 @@ pub fn write(sim: &Sim, file: &str) -> Result<(), String> {
         cell_counts: sys.grid.as_ref().map(|g| g.count),
         commands: sim.style_commands(),
         creator_version: env!("CARGO_PKG_VERSION").into(),
+        columns: columns(&sys.store),
+        enabled: sys.store.enabled().bits(),
+        groups: sim.groups.clone(),
+        state: sim.fix_state(),
     };
     let mut writer = if sys.comm.rank() == 0 { Some(RestartWriter::create(Path::new(file), &header).map_err(|e| e.0)?) } else { None };
     let s = &sys.store;
-    let row = |i: usize, b: &mut Vec<f64>| {
-        b.extend_from_slice(&[s.tag[i] as f64, s.kind[i] as f64, s.mass[i]]);
-        b.extend_from_slice(&s.r[i]);
-        b.extend_from_slice(&s.p[i]);
-        b.extend_from_slice(&[s.u[i], s.theta[i]]);
-        b.extend(s.image[i].iter().chain(&s.cell[i]).map(|&x| x as f64));
-        b.extend_from_slice(&s.r_build[i]);
-    };
-    let mut rows = ParticleRows::default();
+    let row = |i: usize, b: &mut Vec<f64>| s.pack(i, stage::RESTART, true, b);
     let mut emit = |buf: &[f64]| -> Result<(), String> {
-        let Some(w) = writer.as_mut() else { return Ok(()) };
-        rows.clear();
-        for r in buf.chunks_exact(WIDTH) {
-            rows.tag.push(r[0] as u64);
-            rows.kind.push(r[1] as u32);
-            rows.mass.push(r[2]);
-            rows.r.push([r[3], r[4], r[5]]);
-            rows.p.push([r[6], r[7], r[8]]);
-            rows.u.push(r[9]);
-            rows.theta.push(r[10]);
-            rows.image.push([r[11] as i32, r[12] as i32, r[13] as i32]);
-            rows.cell.push([r[14] as i32, r[15] as i32, r[16] as i32]);
-            rows.r_at_build.push([r[17], r[18], r[19]]);
+        match writer.as_mut() {
+            Some(w) => w.write_rows(buf).map_err(|e| e.0),
+            None => Ok(()),
         }
-        w.write_rows(&rows).map_err(|e| e.0)
     };
-    sorted_rows(sys, sim.max_tag, WIDTH, row, &mut emit)?;
+    sorted_rows(sys, sim.max_tag, row_width(&header.columns), row, &mut emit)?;
     match writer {
         Some(w) => w.finish().map_err(|e| e.0),
         None => Ok(()),
     }
 }
 
-/// Creates the box and particles of a restart file and returns the style commands to
-/// execute. Every rank reads the file in blocks and keeps the particles of its part.
-pub fn read(sim: &mut Sim, file: &str, transport: Box<dyn Transport>) -> Result<Vec<String>, String> {
+/// Reads the box and particles of a restart file into a system, and the settings into
+/// `sim`; returns the system and the style commands to execute (the first, `units` and
+/// `atom_style`, before the box exists). Every rank reads the file in blocks and keeps
+/// the particles of its part.
+pub fn read(sim: &mut Sim, file: &str, transport: Box<dyn Transport>) -> Result<(System, Vec<String>), String> {
     let reader = RestartReader::open(Path::new(file)).map_err(|e| e.0)?;
     let h = reader.header().clone();
     let domain = Domain::new(h.lo, h.hi);
     let procs = ProcGrid::choose(transport.size(), domain.len(), sim.procs)?;
     let mut sys = System::new(domain, Comm::new(transport, procs));
-    let mut rows = ParticleRows::default();
+    sys.store.enable(Fields::from_bits(h.enabled));
+    if columns(&sys.store) != h.columns {
+        let names: Vec<&str> = h.columns.iter().map(|c| c.name.as_str()).collect();
+        return Err(format!("restart file {file}: its particle columns {names:?} are not those of this gendpde's particle table"));
+    }
+    let width = row_width(&h.columns);
+    // each rank keeps the particles of the cells it will own (all of them on the grid
+    // the file was written on), so the set-up moves none and keeps their forces
+    let at = |name| sys.store.record(stage::RESTART, true).iter().find(|c| c.field.name == name).map_or(0, |c| c.offset);
+    let (x_at, cell_at) = (at("x"), at("cell"));
+    let mut rows = Vec::new();
     let mut start = 0;
     while start < h.natoms {
         reader.read_rows(start, crate::gather::BLOCK, &mut rows).map_err(|e| e.0)?;
-        for k in 0..rows.len() {
-            if !sys.comm.keeps(&sys.domain, rows.r[k]) {
+        for row in rows.chunks_exact(width) {
+            let mine = match h.cell_counts {
+                Some(count) => sys.comm.owns_cell([0, 1, 2].map(|d| row[cell_at + d] as i32), count),
+                None => sys.comm.keeps(&sys.domain, [row[x_at], row[x_at + 1], row[x_at + 2]]),
+            };
+            if !mine {
                 continue;
             }
             let s = &mut sys.store;
-            s.push(rows.tag[k], rows.kind[k], rows.mass[k], rows.r[k]);
-            let i = s.nlocal - 1;
-            s.p[i] = rows.p[k];
-            s.u[i] = rows.u[k];
-            s.theta[i] = rows.theta[k];
-            s.image[i] = rows.image[k];
-            s.cell[i] = rows.cell[k];
-            s.r_build[i] = rows.r_at_build[k];
+            s.push(0, 0, 0.0, [0.0; 3]);
+            s.unpack(s.nlocal - 1, stage::RESTART, true, row);
         }
         start += crate::gather::BLOCK;
     }
@@ -106,6 +104,7 @@ pub fn read(sim: &mut Sim, file: &str, transport: Box<dyn Transport>) -> Result<
     sim.max_tag = h.max_tag;
     sim.energy0 = h.energy0;
     sim.dt = h.dt;
-    sim.system = Some(sys);
-    Ok(h.commands)
+    sim.groups = h.groups;
+    sim.restored_state = h.state;
+    Ok((sys, h.commands))
 }

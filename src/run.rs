@@ -33,10 +33,16 @@ pub fn prepare(it: &mut Interpreter, cmd: &Command) -> Result<Box<dyn Physics>, 
     let neighbours = n / volume * 4.0 / 3.0 * std::f64::consts::PI * reach.powi(3);
     let bytes = n * neighbours * (crate::memory::NEIGHBOUR_ENTRY_BYTES + 0.5 * crate::memory::SWEEP_PAIR_BYTES);
     crate::memory::check(bytes, &format!("the neighbour lists ({neighbours:.0} neighbours per particle)")).map_err(err)?;
+    // a continuation keeps the forces of the step its restart was written at: they
+    // depend on that step's velocities and noise, which the set-up cannot redo
+    let resume = sys.restored.then(|| sys.store.save_by_tag(gendpde_engine::stage::RESUME));
     physics.setup(sys).map_err(|e| match e {
         SetupError::Grid(g) | SetupError::Types(g) => err(g),
         SetupError::State(s) => AppError::Step { cmd: cmd.clone(), err: s },
     })?;
+    if let Some(saved) = resume.filter(|_| sys.restored_grid == sys.grid.as_ref().map(|g| g.count)) {
+        sys.store.restore_by_tag(&saved);
+    }
     if let Some(grid) = &sys.grid {
         log::info!(
             "cell grid {:?} of side {:?}; {} ghosts; {} neighbour pairs; {} sweep pairs",

@@ -11,6 +11,9 @@ use gendpde_integrators::{RebuildPolicy, System};
 use gendpde_io::AtomStyle;
 use std::collections::HashMap;
 
+/// Restart state name prefix of a `fix heat/reservoir` energy tally.
+const RESERVOIR_STATE: &str = "heat/reservoir/";
+
 /// Everything the commands of a script have defined so far.
 pub struct Sim {
     pub lattice: Option<Lattice>,
@@ -48,6 +51,8 @@ pub struct Sim {
     pub averages: Vec<AveTime>,
     /// Group names by bit (an empty name is a free slot).
     pub groups: Vec<String>,
+    /// State of fixes read from a restart, taken by the fixes as they are defined.
+    pub restored_state: Vec<(String, Vec<f64>)>,
 }
 
 impl Default for Sim {
@@ -77,6 +82,7 @@ impl Default for Sim {
             rdfs: Vec::new(),
             averages: Vec::new(),
             groups: Vec::new(),
+            restored_state: Vec::new(),
         }
     }
 }
@@ -85,6 +91,30 @@ impl Sim {
     /// Whether thermo `pe` is a pair energy (LAMMPS's pairwise styles).
     pub fn pe_is_pair(&self) -> bool {
         matches!(self.pair, Some(PairStyle::Pairwise(_)))
+    }
+
+    /// The accumulated state of fixes, for a restart file: each reservoir's energy
+    /// tally (summed over ranks) as `heat/reservoir/ID`.
+    pub fn fix_state(&self) -> Vec<(String, Vec<f64>)> {
+        let Some(sys) = &self.system else { return Vec::new() };
+        sys.reservoir_heat
+            .iter()
+            .map(|(id, local)| {
+                let [total] = gendpde_engine::exact_sums(sys.comm.transport(), std::iter::once([*local]));
+                (format!("{RESERVOIR_STATE}{id}"), vec![total])
+            })
+            .collect()
+    }
+
+    /// Puts the reservoir tallies of a restart back (on rank 0: the totals).
+    pub fn restore_fix_state(&mut self) {
+        let Some(sys) = &mut self.system else { return };
+        let rank0 = sys.comm.rank() == 0;
+        for (name, v) in &self.restored_state {
+            if let (Some(id), [total]) = (name.strip_prefix(RESERVOIR_STATE), v.as_slice()) {
+                *sys.reservoir_tally(id) = if rank0 { *total } else { 0.0 };
+            }
+        }
     }
 
     /// Commands that re-create the styles and run settings, for a restart file. Values

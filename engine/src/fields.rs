@@ -1,10 +1,12 @@
 //! Named per-particle fields, as a bit set for the communication layer.
 
 /// A set of per-particle fields to exchange between owners and ghosts.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Fields(u32);
 
 impl Fields {
+    /// The empty set.
+    pub const NONE: Self = Self(0);
     pub const POSITION: Self = Self(1);
     pub const MOMENTUM: Self = Self(2);
     pub const ENERGY: Self = Self(4);
@@ -30,6 +32,24 @@ impl Fields {
 
     pub const fn contains(self, other: Self) -> bool {
         self.0 & other.0 == other.0
+    }
+
+    /// Whether the sets share a field.
+    pub const fn intersects(self, other: Self) -> bool {
+        self.0 & other.0 != 0
+    }
+
+    pub const fn is_empty(self) -> bool {
+        self.0 == 0
+    }
+
+    /// The raw bits (restart files store the enabled set).
+    pub const fn bits(self) -> u32 {
+        self.0
+    }
+
+    pub const fn from_bits(bits: u32) -> Self {
+        Self(bits)
     }
 }
 

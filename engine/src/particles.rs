@@ -1,54 +1,266 @@
 //! Structure-of-arrays particle store: owned particles first (0..nlocal), then ghosts.
+//!
+//! Every per-particle field is one row of the table in `particle_fields!` below: its
+//! element type, the comm key that forward/reverse exchanges name it by, the stages it
+//! takes part in and the name restart files and dumps know it by. The store, migration,
+//! ghost records, reordering, snapshots and restart columns all derive from that table,
+//! so adding a field is one row plus its physics (LAMMPS's `fields_grow`, `fields_comm`,
+//! `fields_border`, `fields_exchange` and `fields_restart` lists, checked by the compiler).
 
 use crate::{Fields, Vec3};
 
-/// Per-particle state. Primary fields are always present; derived fields (n, pi/n^2,
-/// 1/tau) are allocated only when a style in use asks for them (`enable`).
-#[derive(Clone, Debug, Default)]
-pub struct Particles {
-    /// Number of owned particles; indices nlocal.. are ghosts.
-    pub nlocal: usize,
+/// The stages a per-particle field takes part in (bit set).
+pub mod stage {
+    /// Travels with an owned particle to its new rank, and is kept in step snapshots.
+    pub const MIGRATE: u32 = 1;
+    /// Copied into the ghost record when the ghost layer is built.
+    pub const GHOST: u32 = 2;
+    /// A column of restart files.
+    pub const RESTART: u32 = 4;
+    /// Computed by a step from velocities and noise (forces, virials, pair energies): a
+    /// continuation keeps the stored values instead of recomputing them at its set-up.
+    pub const RESUME: u32 = 8;
+}
+
+/// Element types of per-particle fields: `WIDTH` values in an f64 record. Integers
+/// travel as f64, exact below 2^53.
+pub trait Column: Copy + Default {
+    const WIDTH: usize;
+    /// Whether the values are integers (restart files store them as integers).
+    const INTEGER: bool;
+    fn pack(self, buf: &mut Vec<f64>);
+    fn unpack(rec: &[f64]) -> Self;
+}
+
+impl Column for f64 {
+    const WIDTH: usize = 1;
+    const INTEGER: bool = false;
+    fn pack(self, buf: &mut Vec<f64>) {
+        buf.push(self);
+    }
+    fn unpack(rec: &[f64]) -> Self {
+        rec[0]
+    }
+}
+
+macro_rules! integer_column {
+    ($($t:ty),*) => {$(
+        impl Column for $t {
+            const WIDTH: usize = 1;
+            const INTEGER: bool = true;
+            fn pack(self, buf: &mut Vec<f64>) {
+                buf.push(self as f64);
+            }
+            fn unpack(rec: &[f64]) -> Self {
+                rec[0] as $t
+            }
+        }
+    )*};
+}
+integer_column!(u64, u32);
+
+impl Column for bool {
+    const WIDTH: usize = 1;
+    const INTEGER: bool = true;
+    fn pack(self, buf: &mut Vec<f64>) {
+        buf.push(self as u8 as f64);
+    }
+    fn unpack(rec: &[f64]) -> Self {
+        rec[0] != 0.0
+    }
+}
+
+impl Column for [f64; 3] {
+    const WIDTH: usize = 3;
+    const INTEGER: bool = false;
+    fn pack(self, buf: &mut Vec<f64>) {
+        buf.extend_from_slice(&self);
+    }
+    fn unpack(rec: &[f64]) -> Self {
+        [rec[0], rec[1], rec[2]]
+    }
+}
+
+impl Column for [i32; 3] {
+    const WIDTH: usize = 3;
+    const INTEGER: bool = true;
+    fn pack(self, buf: &mut Vec<f64>) {
+        buf.extend(self.iter().map(|&x| x as f64));
+    }
+    fn unpack(rec: &[f64]) -> Self {
+        [rec[0] as i32, rec[1] as i32, rec[2] as i32]
+    }
+}
+
+/// One row of the field table.
+#[derive(Clone, Copy, Debug)]
+pub struct FieldInfo {
+    /// The name restart files and dumps use.
+    pub name: &'static str,
+    /// Values per particle.
+    pub width: usize,
+    pub integer: bool,
+    /// Allocated only when one of these fields is enabled (`Fields::NONE`: always).
+    pub gate: Fields,
+    /// The key forward and reverse exchanges name it by (`Fields::NONE`: not exchanged).
+    pub comm: Fields,
+    /// Bit set of [`stage`] constants.
+    pub stages: u32,
+}
+
+/// The layout of a ghost record (see [`Particles::ghost_layout`]).
+#[derive(Clone, Copy, Debug)]
+pub struct GhostLayout {
+    pub width: usize,
+    /// Offsets of the position and of the cell.
+    pub r: usize,
+    pub cell: usize,
+}
+
+/// One column of a stage's record: a field and where its values start.
+#[derive(Clone, Copy, Debug)]
+pub struct RecordColumn {
+    pub field: FieldInfo,
+    pub offset: usize,
+}
+
+macro_rules! particle_fields {
+    ($( $(#[$doc:meta])* $name:ident : $ty:ty, $key:literal, gate $gate:expr, comm $comm:expr, stages $stages:expr; )*) => {
+        /// Per-particle state; see the module documentation for the field table.
+        #[derive(Clone, Debug, Default)]
+        pub struct Particles {
+            /// Number of owned particles; indices nlocal.. are ghosts.
+            pub nlocal: usize,
+            $( $(#[$doc])* pub $name: Vec<$ty>, )*
+            enabled: Fields,
+        }
+
+        /// The field table, in record order.
+        pub const FIELDS: &[FieldInfo] = &[
+            $( FieldInfo { name: $key, width: <$ty as Column>::WIDTH, integer: <$ty as Column>::INTEGER, gate: $gate, comm: $comm, stages: $stages }, )*
+        ];
+
+        impl Particles {
+            /// Sets every allocated field to length `len` (new entries default).
+            fn resize(&mut self, len: usize) {
+                $( let n = if self.allocates($gate) { len } else { 0 }; self.$name.resize(n, <$ty>::default()); )*
+            }
+
+            /// Removes particle `i` from every field (the last takes its index).
+            fn swap_remove_all(&mut self, i: usize) {
+                $( if !self.$name.is_empty() { self.$name.swap_remove(i); } )*
+            }
+
+            /// Puts every field in the order `order` (a permutation of 0..len).
+            fn permute(&mut self, order: &[u32]) {
+                $( permute(&mut self.$name, order); )*
+            }
+
+            /// Appends the fields of `stages` of particle `i` (unallocated fields of the
+            /// stage: skipped when `dense`, defaults otherwise).
+            pub fn pack(&self, i: usize, stages: u32, dense: bool, buf: &mut Vec<f64>) {
+                $( if $stages & stages != 0 {
+                    match self.$name.get(i) {
+                        Some(&v) => v.pack(buf),
+                        None if !dense => <$ty>::default().pack(buf),
+                        None => {}
+                    }
+                } )*
+            }
+
+            /// Reads a `pack` record into particle `i`; returns the values read.
+            pub fn unpack(&mut self, i: usize, stages: u32, dense: bool, rec: &[f64]) -> usize {
+                let mut k = 0;
+                $( if $stages & stages != 0 {
+                    let allocated = !self.$name.is_empty();
+                    if allocated || !dense {
+                        if allocated {
+                            self.$name[i] = <$ty as Column>::unpack(&rec[k..]);
+                        }
+                        k += <$ty as Column>::WIDTH;
+                    }
+                } )*
+                k
+            }
+
+            /// Appends the exchanged fields `fields` of particle `i`, in table order.
+            fn pack_comm(&self, i: usize, fields: Fields, buf: &mut Vec<f64>) {
+                $( if !$comm.is_empty() && fields.contains($comm) && !self.$name.is_empty() { self.$name[i].pack(buf); } )*
+            }
+
+            /// Reads a `pack_comm` record into particle `i`.
+            fn unpack_comm(&mut self, i: usize, fields: Fields, rec: &[f64]) {
+                let mut k = 0;
+                $( if !$comm.is_empty() && fields.contains($comm) && !self.$name.is_empty() {
+                    self.$name[i] = <$ty as Column>::unpack(&rec[k..]);
+                    k += <$ty as Column>::WIDTH;
+                } )*
+                debug_assert_eq!(k, rec.len());
+            }
+
+            /// Copies the exchanged fields `fields` from `from` to `to` for each pair.
+            fn copy_comm(&mut self, moves: impl Iterator<Item = (usize, usize)> + Clone, fields: Fields) {
+                $( if !$comm.is_empty() && fields.contains($comm) && !self.$name.is_empty() {
+                    for (from, to) in moves.clone() {
+                        self.$name[to] = self.$name[from];
+                    }
+                } )*
+            }
+        }
+    };
+}
+
+const NONE: Fields = Fields::NONE;
+use stage::{GHOST, MIGRATE, RESTART, RESUME};
+
+particle_fields! {
     /// Global particle id (LAMMPS "tag"), 1-based.
-    pub tag: Vec<u64>,
+    tag: u64, "id", gate NONE, comm NONE, stages MIGRATE | GHOST | RESTART;
     /// Particle type, 1-based as in LAMMPS.
-    pub kind: Vec<u32>,
-    pub mass: Vec<f64>,
-    pub r: Vec<Vec3>,
-    pub p: Vec<Vec3>,
+    kind: u32, "type", gate NONE, comm NONE, stages MIGRATE | GHOST | RESTART;
+    mass: f64, "mass", gate NONE, comm NONE, stages MIGRATE | GHOST | RESTART;
+    r: Vec3, "x", gate NONE, comm Fields::POSITION, stages MIGRATE | GHOST | RESTART;
+    p: Vec3, "p", gate NONE, comm Fields::MOMENTUM, stages MIGRATE | GHOST | RESTART;
     /// Internal energy u (the dynamic variable).
-    pub u: Vec<f64>,
+    u: f64, "u", gate NONE, comm Fields::ENERGY, stages MIGRATE | GHOST | RESTART;
     /// Particle temperature theta(u, n).
-    pub theta: Vec<f64>,
-    /// True where u is still to be derived from theta at the next setup (`set theta`).
-    pub theta_given: Vec<bool>,
-    /// Bit mask of the groups the particle belongs to (owned particles).
-    pub groups: Vec<u32>,
-    /// Periodic image counters of owned particles.
-    pub image: Vec<[i32; 3]>,
+    theta: f64, "theta", gate NONE, comm Fields::THETA, stages MIGRATE | GHOST | RESTART;
     /// Global cell coordinates at the last rebuild (ghosts: outside 0..n).
-    pub cell: Vec<[i32; 3]>,
+    cell: [i32; 3], "cell", gate NONE, comm NONE, stages MIGRATE | GHOST | RESTART;
+    /// True where u is still to be derived from theta at the next setup (`set theta`).
+    theta_given: bool, "theta_given", gate NONE, comm NONE, stages MIGRATE | RESTART;
+    /// Bit mask of the groups the particle belongs to (owned particles).
+    groups: u32, "groups", gate NONE, comm NONE, stages MIGRATE | RESTART;
+    /// Periodic image counters of owned particles.
+    image: [i32; 3], "image", gate NONE, comm NONE, stages MIGRATE | RESTART;
     /// Position at the last rebuild (owned particles), for the skin criterion.
-    pub r_build: Vec<Vec3>,
+    r_build: Vec3, "r_at_build", gate NONE, comm NONE, stages MIGRATE | RESTART;
     /// Half-step momentum estimate of the modified velocity Verlet (owned particles).
-    pub vest: Vec<Vec3>,
-    /// Conservative force.
-    pub f: Vec<Vec3>,
+    vest: Vec3, "vest", gate NONE, comm NONE, stages MIGRATE | RESTART;
+    /// Conductive part of u (classic DPDE, LAMMPS's uCond; uMech = u - uCond).
+    u_cond: f64, "uCond", gate Fields::U_COND, comm Fields::U_COND, stages MIGRATE | GHOST | RESTART;
+    /// Conservative force (pairwise styles: with the friction and noise of `pair dpd`).
+    f: Vec3, "f", gate NONE, comm NONE, stages RESTART | RESUME;
     /// Local density n (eq 2); empty for pairwise scenes.
-    pub n: Vec<f64>,
+    n: f64, "n", gate Fields::DENSITY, comm Fields::DENSITY, stages GHOST;
     /// pi/n^2 (eq 51); empty for pairwise scenes.
-    pub pn2: Vec<f64>,
+    pn2: f64, "pn2", gate Fields::PRESSURE, comm Fields::PRESSURE, stages GHOST;
     /// 1/tau (eq 19); only for the original heat-flow model.
-    pub inv_tau: Vec<f64>,
+    inv_tau: f64, "inv_tau", gate Fields::INV_TAU, comm Fields::INV_TAU, stages GHOST;
+    /// MDPD density rho_i = sum_j m_j W(r_ij) (LAMMPS mdpd/rhosum).
+    rho: f64, "rho", gate Fields::RHO, comm Fields::RHO, stages GHOST;
     /// Per-particle diagonal virial sum_j F_ij (x_ij^2, y_ij^2, z_ij^2) / 2 of owned
     /// particles (its trace is the scalar virial).
-    pub virial: Vec<Vec3>,
-    /// Conductive part of u (classic DPDE, LAMMPS's uCond; uMech = u - uCond).
-    pub u_cond: Vec<f64>,
+    virial: Vec3, "virial", gate Fields::PRESSURE.union(Fields::PAIR_ENERGY), comm NONE, stages RESTART | RESUME;
     /// Half the pair energy of each pair a particle is in (pairwise styles).
-    pub epair: Vec<f64>,
-    /// MDPD density rho_i = sum_j m_j W(r_ij) (LAMMPS mdpd/rhosum).
-    pub rho: Vec<f64>,
-    enabled: Option<Fields>,
+    epair: f64, "epair", gate Fields::PAIR_ENERGY, comm NONE, stages RESTART | RESUME;
+}
+
+fn permute<T: Copy>(v: &mut Vec<T>, order: &[u32]) {
+    if v.len() == order.len() {
+        let old = std::mem::take(v);
+        v.extend(order.iter().map(|&k| old[k as usize]));
+    }
 }
 
 impl Particles {
@@ -71,34 +283,33 @@ impl Particles {
         mask == u32::MAX || self.groups[i] & mask != 0
     }
 
-    /// Appends an owned particle (no ghosts may exist yet).
-    pub fn push(&mut self, tag: u64, kind: u32, mass: f64, r: Vec3) {
-        debug_assert_eq!(self.nlocal, self.len(), "push before ghosts are built");
-        self.tag.push(tag);
-        self.kind.push(kind);
-        self.mass.push(mass);
-        self.r.push(r);
-        self.p.push([0.0; 3]);
-        self.u.push(0.0);
-        self.theta.push(0.0);
-        self.theta_given.push(false);
-        self.groups.push(0);
-        self.image.push([0; 3]);
-        self.cell.push([0; 3]);
-        self.r_build.push(r);
-        self.vest.push([0.0; 3]);
-        self.nlocal += 1;
-        self.resize_derived(self.len());
+    /// Whether a field gated on `gate` is allocated.
+    fn allocates(&self, gate: Fields) -> bool {
+        gate.is_empty() || self.enabled.intersects(gate)
     }
 
-    /// Allocates the derived fields of `fields` (DENSITY, PRESSURE, INV_TAU).
+    /// Appends an owned particle (no ghosts may exist yet); its other fields default.
+    pub fn push(&mut self, tag: u64, kind: u32, mass: f64, r: Vec3) {
+        debug_assert_eq!(self.nlocal, self.len(), "push before ghosts are built");
+        let i = self.len();
+        self.resize(i + 1);
+        (self.tag[i], self.kind[i], self.mass[i], self.r[i], self.r_build[i]) = (tag, kind, mass, r, r);
+        self.nlocal += 1;
+    }
+
+    /// Allocates the gated fields of `fields` (DENSITY, PRESSURE, INV_TAU, ...).
     pub fn enable(&mut self, fields: Fields) {
-        self.enabled = Some(self.enabled.map_or(fields, |e| e | fields));
-        self.resize_derived(self.len());
+        self.enabled = self.enabled | fields;
+        self.resize(self.len());
+    }
+
+    /// The fields enabled so far (restart files keep them).
+    pub fn enabled(&self) -> Fields {
+        self.enabled
     }
 
     pub fn has(&self, field: Fields) -> bool {
-        self.enabled.is_some_and(|e| e.contains(field))
+        self.enabled.contains(field)
     }
 
     /// Drops all ghosts.
@@ -106,183 +317,146 @@ impl Particles {
         self.resize(self.nlocal);
     }
 
-    fn resize(&mut self, len: usize) {
-        self.tag.truncate(len);
-        self.kind.truncate(len);
-        self.mass.truncate(len);
-        self.r.truncate(len);
-        self.p.truncate(len);
-        self.u.truncate(len);
-        self.theta.truncate(len);
-        self.theta_given.truncate(len);
-        self.groups.truncate(len);
-        self.image.truncate(len);
-        self.cell.truncate(len);
-        self.r_build.truncate(len);
-        self.vest.truncate(len);
-        self.resize_derived(len);
+    /// The columns of the record of `stages` (`dense`: the allocated fields only).
+    pub fn record(&self, stages: u32, dense: bool) -> Vec<RecordColumn> {
+        let mut offset = 0;
+        let mut out = Vec::new();
+        for field in FIELDS.iter().filter(|f| f.stages & stages != 0 && (!dense || self.allocates(f.gate))) {
+            out.push(RecordColumn { field: *field, offset });
+            offset += field.width;
+        }
+        out
     }
 
-    fn resize_derived(&mut self, len: usize) {
-        self.f.resize(len, [0.0; 3]);
-        let on = |f| self.enabled.is_some_and(|e| e.contains(f));
-        let (dens, pres, tau) = (on(Fields::DENSITY), on(Fields::PRESSURE), on(Fields::INV_TAU));
-        let (cond, epair, rho) = (on(Fields::U_COND), on(Fields::PAIR_ENERGY), on(Fields::RHO));
-        self.n.resize(if dens { len } else { 0 }, 0.0);
-        self.pn2.resize(if pres { len } else { 0 }, 0.0);
-        self.virial.resize(if pres || epair { len } else { 0 }, [0.0; 3]);
-        self.inv_tau.resize(if tau { len } else { 0 }, 0.0);
-        self.u_cond.resize(if cond { len } else { 0 }, 0.0);
-        self.epair.resize(if epair { len } else { 0 }, 0.0);
-        self.rho.resize(if rho { len } else { 0 }, 0.0);
+    /// Values per particle of the record of `stages`.
+    pub fn record_width(&self, stages: u32, dense: bool) -> usize {
+        self.record(stages, dense).iter().map(|c| c.field.width).sum()
     }
-}
 
-/// Packing of particles into f64 buffers for the communication layer. Integers travel
-/// as f64, exact below 2^53.
-impl Particles {
-    /// Appends owned particle `i` (primary fields) for migration.
+    /// Appends owned particle `i` for migration or a snapshot (every MIGRATE field).
     pub fn pack_owned(&self, i: usize, buf: &mut Vec<f64>) {
-        buf.extend_from_slice(&[self.tag[i] as f64, self.kind[i] as f64, self.mass[i]]);
-        buf.extend_from_slice(&self.r[i]);
-        buf.extend_from_slice(&self.p[i]);
-        buf.extend_from_slice(&[self.u[i], self.theta[i], self.theta_given[i] as u8 as f64]);
-        buf.extend(self.image[i].iter().map(|&x| x as f64));
-        buf.extend(self.cell[i].iter().map(|&x| x as f64));
-        buf.extend_from_slice(&self.r_build[i]);
-        buf.push(self.u_cond.get(i).copied().unwrap_or(0.0));
-        buf.extend_from_slice(&self.vest[i]);
-        buf.push(self.groups[i] as f64);
+        self.pack(i, MIGRATE, false, buf);
     }
 
     /// Length of one `pack_owned` record.
-    pub const OWNED_RECORD: usize = 26;
-
-    /// The cell a `pack_owned` record carries.
-    pub fn record_cell(rec: &[f64]) -> [i32; 3] {
-        [rec[15] as i32, rec[16] as i32, rec[17] as i32]
+    pub fn owned_record(&self) -> usize {
+        self.record_width(MIGRATE, false)
     }
 
     /// Appends an owned particle from a `pack_owned` record (no ghosts may exist).
     pub fn unpack_owned(&mut self, rec: &[f64]) {
-        self.push(rec[0] as u64, rec[1] as u32, rec[2], [rec[3], rec[4], rec[5]]);
-        let i = self.nlocal - 1;
-        self.p[i] = [rec[6], rec[7], rec[8]];
-        self.u[i] = rec[9];
-        self.theta[i] = rec[10];
-        self.theta_given[i] = rec[11] != 0.0;
-        self.image[i] = [rec[12] as i32, rec[13] as i32, rec[14] as i32];
-        self.r_build[i] = [rec[18], rec[19], rec[20]];
-        if !self.u_cond.is_empty() {
-            self.u_cond[i] = rec[21];
-        }
-        self.vest[i] = [rec[22], rec[23], rec[24]];
-        self.groups[i] = rec[25] as u32;
+        debug_assert_eq!(self.nlocal, self.len(), "unpack before ghosts are dropped");
+        let i = self.len();
+        self.resize(i + 1);
+        self.unpack(i, MIGRATE, false, rec);
+        self.nlocal += 1;
     }
 
     /// Removes owned particle `i` (the last owned particle takes its index; no ghosts
     /// may exist).
     pub fn remove_owned(&mut self, i: usize) {
         debug_assert_eq!(self.nlocal, self.len(), "remove before ghosts are dropped");
-        self.tag.swap_remove(i);
-        self.kind.swap_remove(i);
-        self.mass.swap_remove(i);
-        self.r.swap_remove(i);
-        self.p.swap_remove(i);
-        self.u.swap_remove(i);
-        self.theta.swap_remove(i);
-        self.theta_given.swap_remove(i);
-        self.groups.swap_remove(i);
-        self.image.swap_remove(i);
-        self.cell.swap_remove(i);
-        self.r_build.swap_remove(i);
-        self.vest.swap_remove(i);
-        if !self.u_cond.is_empty() {
-            self.u_cond.swap_remove(i);
-        }
+        self.swap_remove_all(i);
         self.nlocal -= 1;
-        self.resize_derived(self.nlocal);
     }
 
-    /// Length of one `pack_ghost` record.
-    pub fn ghost_record(&self) -> usize {
-        14 + [&self.n, &self.pn2, &self.inv_tau, &self.u_cond, &self.rho].iter().filter(|v| !v.is_empty()).count()
+    /// Width of a ghost record and where its position and cell start.
+    pub fn ghost_layout(&self) -> GhostLayout {
+        let cols = self.record(GHOST, true);
+        let at = |name| cols.iter().find(|c| c.field.name == name).map(|c| c.offset).expect("ghosts carry x and cell");
+        GhostLayout { width: self.record_width(GHOST, true), r: at("x"), cell: at("cell") }
     }
 
     /// Appends particle `i` as a ghost record, its position shifted by `shift` along `dim`
     /// and its cell by `cell_shift`.
-    pub fn pack_ghost(&self, i: usize, dim: usize, shift: f64, cell_shift: i32, buf: &mut Vec<f64>) {
-        let mut r = self.r[i];
-        r[dim] += shift;
-        let mut c = self.cell[i];
-        c[dim] += cell_shift;
-        buf.extend_from_slice(&[self.tag[i] as f64, self.kind[i] as f64, self.mass[i]]);
-        buf.extend_from_slice(&r);
-        buf.extend_from_slice(&self.p[i]);
-        buf.extend_from_slice(&[self.u[i], self.theta[i]]);
-        buf.extend(c.iter().map(|&x| x as f64));
-        for v in [&self.n, &self.pn2, &self.inv_tau, &self.u_cond, &self.rho] {
-            if !v.is_empty() {
-                buf.push(v[i]);
-            }
-        }
+    pub fn pack_ghost(&self, i: usize, layout: &GhostLayout, dim: usize, shift: f64, cell_shift: i32, buf: &mut Vec<f64>) {
+        let start = buf.len();
+        self.pack(i, GHOST, true, buf);
+        buf[start + layout.r + dim] += shift;
+        buf[start + layout.cell + dim] += cell_shift as f64;
     }
 
-    /// Appends a ghost from a `pack_ghost` record.
+    /// Appends a ghost from a `pack_ghost` record (its owned-only fields default).
     pub fn unpack_ghost(&mut self, rec: &[f64]) {
-        self.tag.push(rec[0] as u64);
-        self.kind.push(rec[1] as u32);
-        self.mass.push(rec[2]);
-        self.r.push([rec[3], rec[4], rec[5]]);
-        self.p.push([rec[6], rec[7], rec[8]]);
-        self.u.push(rec[9]);
-        self.theta.push(rec[10]);
-        self.theta_given.push(false);
-        self.groups.push(0);
-        self.image.push([0; 3]);
-        self.cell.push([rec[11] as i32, rec[12] as i32, rec[13] as i32]);
-        self.r_build.push([rec[3], rec[4], rec[5]]);
-        self.vest.push([0.0; 3]);
-        let len = self.len();
-        self.resize_derived(len);
-        let mut k = 14;
-        for v in [&mut self.n, &mut self.pn2, &mut self.inv_tau, &mut self.u_cond, &mut self.rho] {
-            if !v.is_empty() {
-                v[len - 1] = rec[k];
-                k += 1;
+        let i = self.len();
+        self.resize(i + 1);
+        self.unpack(i, GHOST, true, rec);
+        self.r_build[i] = self.r[i];
+    }
+
+    /// Puts the owned particles in the order `order` (a permutation of 0..nlocal; no
+    /// ghosts may exist): neighbouring particles then sit close in memory.
+    pub fn reorder_owned(&mut self, order: &[u32]) {
+        debug_assert_eq!(self.nlocal, self.len(), "reorder before ghosts are built");
+        self.permute(order);
+    }
+}
+
+/// The fields of one stage of the owned particles, keyed by tag (see
+/// [`Particles::save_by_tag`]).
+#[derive(Clone, Debug, Default)]
+pub struct SavedByTag {
+    stages: u32,
+    /// (tag, record index), sorted by tag.
+    index: Vec<(u64, usize)>,
+    records: Vec<f64>,
+}
+
+impl Particles {
+    /// Saves the fields of `stages` of the owned particles, keyed by tag.
+    pub fn save_by_tag(&self, stages: u32) -> SavedByTag {
+        let mut saved = SavedByTag { stages, ..Default::default() };
+        for i in 0..self.nlocal {
+            saved.index.push((self.tag[i], i));
+            self.pack(i, stages, true, &mut saved.records);
+        }
+        saved.index.sort_unstable();
+        saved
+    }
+
+    /// Puts saved fields back into the owned particles of the same tags (the particles
+    /// may have been reordered since; tags not saved are left alone).
+    pub fn restore_by_tag(&mut self, saved: &SavedByTag) {
+        let width = self.record_width(saved.stages, true);
+        for i in 0..self.nlocal {
+            if let Ok(k) = saved.index.binary_search_by_key(&self.tag[i], |&(t, _)| t) {
+                let at = saved.index[k].1 * width;
+                self.unpack(i, saved.stages, true, &saved.records[at..at + width]);
             }
         }
     }
 }
 
+/// Forward and reverse exchanges: records of the fields named by a `Fields` set.
 impl Particles {
-    /// Puts the owned particles in the order `order` (a permutation of 0..nlocal; no
-    /// ghosts may exist): neighbouring particles then sit close in memory.
-    pub fn reorder_owned(&mut self, order: &[u32]) {
-        debug_assert_eq!(self.nlocal, self.len(), "reorder before ghosts are built");
-        fn apply<T: Copy>(v: &mut Vec<T>, order: &[u32]) {
-            if v.len() == order.len() {
-                let old = std::mem::take(v);
-                v.extend(order.iter().map(|&k| old[k as usize]));
-            }
+    /// Values per particle of the exchanged fields `fields`.
+    pub fn comm_width(&self, fields: Fields) -> usize {
+        FIELDS.iter().filter(|f| !f.comm.is_empty() && fields.contains(f.comm) && self.allocates(f.gate)).map(|f| f.width).sum()
+    }
+
+    /// Appends `fields` of particle `i`, the position shifted by `shift` (dimension,
+    /// length) when given: the position leads the record.
+    pub fn pack_fields(&self, i: usize, fields: Fields, shift: Option<(usize, f64)>, buf: &mut Vec<f64>) {
+        let start = buf.len();
+        self.pack_comm(i, fields, buf);
+        if let (Some((d, s)), true) = (shift, fields.contains(Fields::POSITION)) {
+            buf[start + d] += s;
         }
-        apply(&mut self.tag, order);
-        apply(&mut self.kind, order);
-        apply(&mut self.mass, order);
-        apply(&mut self.r, order);
-        apply(&mut self.p, order);
-        apply(&mut self.u, order);
-        apply(&mut self.theta, order);
-        apply(&mut self.theta_given, order);
-        apply(&mut self.groups, order);
-        apply(&mut self.image, order);
-        apply(&mut self.cell, order);
-        apply(&mut self.r_build, order);
-        apply(&mut self.vest, order);
-        apply(&mut self.f, order);
-        apply(&mut self.virial, order);
-        for v in [&mut self.n, &mut self.pn2, &mut self.inv_tau, &mut self.u_cond, &mut self.epair, &mut self.rho] {
-            apply(v, order);
+    }
+
+    /// Reads a `pack_fields` record into particle `i`.
+    pub fn unpack_fields(&mut self, i: usize, fields: Fields, rec: &[f64]) {
+        self.unpack_comm(i, fields, rec);
+    }
+
+    /// Copies `fields` from particle `from` to particle `to` for each (from, to) of
+    /// `moves` (a swap of a rank with itself), with the position shift of `pack_fields`.
+    pub fn copy_fields(&mut self, moves: impl Iterator<Item = (usize, usize)> + Clone, fields: Fields, shift: Option<(usize, f64)>) {
+        self.copy_comm(moves.clone(), fields);
+        if let (Some((d, s)), true) = (shift, fields.contains(Fields::POSITION)) {
+            for (_, to) in moves {
+                self.r[to][d] += s;
+            }
         }
     }
 }

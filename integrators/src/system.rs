@@ -208,10 +208,9 @@ impl System {
         while s.nlocal > 0 {
             s.remove_owned(s.nlocal - 1);
         }
-        for rec in snap.records.chunks_exact(Particles::OWNED_RECORD) {
+        let width = s.owned_record();
+        for rec in snap.records.chunks_exact(width) {
             s.unpack_owned(rec);
-            let i = s.nlocal - 1;
-            s.cell[i] = Particles::record_cell(rec);
         }
         (self.step, self.time, self.last_build) = (snap.step, snap.time, snap.last_build);
         self.restored = true;

@@ -14,6 +14,6 @@ pub use data_file::{parse_data, read_data, write_data, AtomStyle, DataAtom, Data
 pub use expr::evaluate;
 pub use format::{format_g, format_printf};
 pub use h5md::{check_h5md, repair_h5md, H5mdError, H5mdField, H5mdSummary, H5mdWriter};
-pub use restart::{ParticleRows, RestartError, RestartHeader, RestartReader, RestartWriter};
+pub use restart::{row_width, ColumnSpec, RestartError, RestartHeader, RestartReader, RestartWriter};
 pub use script::{Command, Location, ScriptError, ScriptReader};
 pub use variables::Variables;

@@ -66,7 +66,7 @@ use hdf5::{Dataset, File, H5Type, Location};
 /// Value of the root `format` attribute.
 pub const RESTART_FORMAT: &str = "gendpde-restart";
 /// The `format_version` this module writes and the newest it reads.
-pub const RESTART_FORMAT_VERSION: u32 = 1;
+pub const RESTART_FORMAT_VERSION: u32 = 2;
 /// Most particle types a restart may declare (guards allocations driven by
 /// a corrupt header).
 pub const MAX_RESTART_TYPES: u64 = 1_000_000;
@@ -112,6 +112,14 @@ pub struct RestartHeader {
     /// fix, timestep, neighbor, neigh_modify ...), in order.
     pub commands: Vec<String>,
     pub creator_version: String,
+    /// The per-particle columns, in row order; one of them is `id`.
+    pub columns: Vec<ColumnSpec>,
+    /// The particle store's enabled optional fields (bits of the engine's `Fields`).
+    pub enabled: u32,
+    /// Group names by bit (an empty name is a free slot).
+    pub groups: Vec<String>,
+    /// Named state of fixes and computes (energy tallies, open averaging windows).
+    pub state: Vec<(String, Vec<f64>)>,
 }
 
 impl RestartHeader {
@@ -144,92 +152,35 @@ impl RestartHeader {
                 return Err(format!("cell_counts must all be at least 1, got {c:?}"));
             }
         }
+        if self.columns.iter().any(|c| c.width == 0 || c.name.is_empty() || c.name.contains(['/', '\0', '.'])) {
+            return Err("particle columns need a width and a plain name".into());
+        }
+        if !self.columns.iter().any(|c| c.name == "id" && c.width == 1 && c.integer) {
+            return Err("the particle columns lack the integer column 'id'".into());
+        }
+        if self.groups.len() > 32 {
+            return Err(format!("at most 32 groups, got {}", self.groups.len()));
+        }
         Ok(())
     }
 }
 
-/// A block of particles (structure of arrays, equal lengths).
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct ParticleRows {
-    pub tag: Vec<u64>,
-    pub kind: Vec<u32>,
-    pub mass: Vec<f64>,
-    pub r: Vec<[f64; 3]>,
-    pub p: Vec<[f64; 3]>,
-    pub u: Vec<f64>,
-    pub theta: Vec<f64>,
-    pub image: Vec<[i32; 3]>,
-    pub cell: Vec<[i32; 3]>,
-    pub r_at_build: Vec<[f64; 3]>,
+/// One per-particle column: `width` values per particle, integers or floats.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ColumnSpec {
+    pub name: String,
+    pub width: usize,
+    pub integer: bool,
 }
 
-impl ParticleRows {
-    /// Number of rows (the length of `tag`; see [`ParticleRows::check`]).
-    pub fn len(&self) -> usize {
-        self.tag.len()
-    }
-
-    pub fn is_empty(&self) -> bool {
-        self.tag.is_empty()
-    }
-
-    /// Empties every column, keeping the allocations.
-    pub fn clear(&mut self) {
-        self.tag.clear();
-        self.kind.clear();
-        self.mass.clear();
-        self.r.clear();
-        self.p.clear();
-        self.u.clear();
-        self.theta.clear();
-        self.image.clear();
-        self.cell.clear();
-        self.r_at_build.clear();
-    }
-
-    fn column_lengths(&self) -> [(&'static str, usize); 10] {
-        [
-            ("tag", self.tag.len()),
-            ("kind", self.kind.len()),
-            ("mass", self.mass.len()),
-            ("r", self.r.len()),
-            ("p", self.p.len()),
-            ("u", self.u.len()),
-            ("theta", self.theta.len()),
-            ("image", self.image.len()),
-            ("cell", self.cell.len()),
-            ("r_at_build", self.r_at_build.len()),
-        ]
-    }
-
-    /// Checks that all columns have the same length.
-    fn check(&self) -> Result<usize, String> {
-        let lens = self.column_lengths();
-        let n = lens[0].1;
-        if lens.iter().any(|&(_, l)| l != n) {
-            let list: Vec<String> = lens.iter().map(|(c, l)| format!("{c} {l}")).collect();
-            return Err(format!(
-                "particle columns have unequal lengths ({})",
-                list.join(", ")
-            ));
-        }
-        Ok(n)
-    }
+/// Values per particle of `columns`.
+pub fn row_width(columns: &[ColumnSpec]) -> usize {
+    columns.iter().map(|c| c.width).sum()
 }
 
-/// Open handles of the per-particle datasets.
-struct Columns {
-    tag: Dataset,
-    kind: Dataset,
-    mass: Dataset,
-    r: Dataset,
-    p: Dataset,
-    u: Dataset,
-    theta: Dataset,
-    image: Dataset,
-    cell: Dataset,
-    r_at_build: Dataset,
-}
+/// Particle rows per chunk of the particle datasets (each chunk carries a Fletcher32
+/// checksum).
+const CHUNK_ROWS: usize = 1 << 14;
 
 fn temp_path(path: &Path) -> PathBuf {
     let mut s = OsString::from(path.as_os_str());
@@ -277,7 +228,10 @@ pub struct RestartWriter {
     path: PathBuf,
     tmp: PathBuf,
     /// `None` once finished, or after a failed write left the file unusable.
-    inner: Option<(File, Columns)>,
+    inner: Option<(File, Vec<Dataset>)>,
+    columns: Vec<ColumnSpec>,
+    /// Offset of the `id` column in a row.
+    id_at: usize,
     natoms: u64,
     max_tag: u64,
     written: u64,
@@ -320,6 +274,8 @@ impl RestartWriter {
             inner: None,
             natoms: header.natoms,
             max_tag: header.max_tag,
+            columns: header.columns.clone(),
+            id_at: id_offset(&header.columns),
             written: 0,
             last_tag: None,
             done: false,
@@ -399,99 +355,52 @@ impl RestartWriter {
             cd.write_raw(&commands[..]).map_err(h5)?;
         }
 
+        write_names(&file, "groups", &header.groups).map_err(h5)?;
+        write_attr(&file, "enabled", &header.enabled).map_err(h5)?;
+        let state = file.create_group("state").map_err(h5)?;
+        let names: Vec<String> = header.state.iter().map(|(n, _)| n.clone()).collect();
+        write_names(&state, "names", &names).map_err(h5)?;
+        let lengths: Vec<u64> = header.state.iter().map(|(_, v)| v.len() as u64).collect();
+        let values: Vec<f64> = header.state.iter().flat_map(|(_, v)| v.iter().copied()).collect();
+        checked_dataset::<u64>(&state, "lengths", &[lengths.len()]).and_then(|d| d.write_raw(&lengths)).map_err(h5)?;
+        checked_dataset::<f64>(&state, "values", &[values.len()]).and_then(|d| d.write_raw(&values)).map_err(h5)?;
+
         let pg = file.create_group("particles").map_err(h5)?;
-        let cols = Columns {
-            tag: pg
-                .new_dataset::<u64>()
-                .shape(natoms)
-                .create("tag")
-                .map_err(h5)?,
-            kind: pg
-                .new_dataset::<u32>()
-                .shape(natoms)
-                .create("type")
-                .map_err(h5)?,
-            mass: pg
-                .new_dataset::<f64>()
-                .shape(natoms)
-                .create("mass")
-                .map_err(h5)?,
-            r: pg
-                .new_dataset::<f64>()
-                .shape((natoms, 3))
-                .create("r")
-                .map_err(h5)?,
-            p: pg
-                .new_dataset::<f64>()
-                .shape((natoms, 3))
-                .create("p")
-                .map_err(h5)?,
-            u: pg
-                .new_dataset::<f64>()
-                .shape(natoms)
-                .create("u")
-                .map_err(h5)?,
-            theta: pg
-                .new_dataset::<f64>()
-                .shape(natoms)
-                .create("theta")
-                .map_err(h5)?,
-            image: pg
-                .new_dataset::<i32>()
-                .shape((natoms, 3))
-                .create("image")
-                .map_err(h5)?,
-            cell: pg
-                .new_dataset::<i32>()
-                .shape((natoms, 3))
-                .create("cell")
-                .map_err(h5)?,
-            r_at_build: pg
-                .new_dataset::<f64>()
-                .shape((natoms, 3))
-                .create("r_at_build")
-                .map_err(h5)?,
-        };
+        let names: Vec<String> = header.columns.iter().map(|c| c.name.clone()).collect();
+        write_names(&pg, "columns", &names).map_err(h5)?;
+        let mut cols = Vec::new();
+        for c in &header.columns {
+            let shape: Vec<usize> = if c.width == 1 { vec![natoms] } else { vec![natoms, c.width] };
+            let d = if c.integer { checked_dataset::<i64>(&pg, &c.name, &shape) } else { checked_dataset::<f64>(&pg, &c.name, &shape) };
+            cols.push(d.map_err(h5)?);
+        }
         writer.inner = Some((file, cols));
         Ok(writer)
     }
 
-    /// Appends the next rows (rows arrive in tag order, in blocks; the total
-    /// must reach header.natoms).
-    pub fn write_rows(&mut self, rows: &ParticleRows) -> Result<(), RestartError> {
+    /// Appends the next rows (row-major, the header's columns; rows arrive in tag
+    /// order, in blocks; the total must reach header.natoms).
+    pub fn write_rows(&mut self, rows: &[f64]) -> Result<(), RestartError> {
         let path = self.path.clone();
-        let n = rows.check().map_err(|e| error(&path, e))?;
+        let width = row_width(&self.columns);
+        if rows.len() % width != 0 {
+            return Err(error(&path, format!("{} values do not make rows of {width}", rows.len())));
+        }
+        let n = rows.len() / width;
         let Some((_, cols)) = &self.inner else {
-            return Err(error(
-                &path,
-                "an earlier write failed; the restart cannot be completed",
-            ));
+            return Err(error(&path, "an earlier write failed; the restart cannot be completed"));
         };
         if self.written + n as u64 > self.natoms {
-            return Err(error(
-                &path,
-                format!(
-                    "{} rows written plus {n} more exceed natoms = {}",
-                    self.written, self.natoms
-                ),
-            ));
+            return Err(error(&path, format!("{} rows written plus {n} more exceed natoms = {}", self.written, self.natoms)));
         }
         let mut last = self.last_tag;
-        for &t in &rows.tag {
+        for row in rows.chunks_exact(width) {
+            let t = row[self.id_at] as u64;
             if last.is_some_and(|l| t <= l) {
-                return Err(error(
-                    &path,
-                    format!(
-                        "particle tags must be strictly increasing, got {t} after {}",
-                        last.unwrap_or(0)
-                    ),
-                ));
+                return Err(error(&path, format!("particle tags must be strictly increasing, got {t} after {}", last.unwrap_or(0))));
             }
             if t > self.max_tag {
-                return Err(error(
-                    &path,
-                    format!("particle tag {t} exceeds max_tag = {}", self.max_tag),
-                ));
+                return Err(error(&path, format!("particle tag {t} exceeds max_tag = {}", self.max_tag)));
             }
             last = Some(t);
         }
@@ -501,30 +410,24 @@ impl RestartWriter {
         let a = self.written as usize;
         let b = a + n;
         let result = (|| -> hdf5::Result<()> {
-            cols.tag.write_slice(&rows.tag[..], a..b)?;
-            cols.kind.write_slice(&rows.kind[..], a..b)?;
-            cols.mass.write_slice(&rows.mass[..], a..b)?;
-            cols.r
-                .write_slice::<_, f64, _, _>(&rows.r[..], (a..b, ..))?;
-            cols.p
-                .write_slice::<_, f64, _, _>(&rows.p[..], (a..b, ..))?;
-            cols.u.write_slice(&rows.u[..], a..b)?;
-            cols.theta.write_slice(&rows.theta[..], a..b)?;
-            cols.image
-                .write_slice::<_, i32, _, _>(&rows.image[..], (a..b, ..))?;
-            cols.cell
-                .write_slice::<_, i32, _, _>(&rows.cell[..], (a..b, ..))?;
-            cols.r_at_build
-                .write_slice::<_, f64, _, _>(&rows.r_at_build[..], (a..b, ..))?;
+            let mut offset = 0;
+            for (c, d) in self.columns.iter().zip(cols) {
+                let column = rows.chunks_exact(width).flat_map(|row| &row[offset..offset + c.width]);
+                if c.integer {
+                    let v: Vec<i64> = column.map(|&x| x as i64).collect();
+                    write_block(d, &v, a, b, c.width)?;
+                } else {
+                    let v: Vec<f64> = column.copied().collect();
+                    write_block(d, &v, a, b, c.width)?;
+                }
+                offset += c.width;
+            }
             Ok(())
         })();
         if let Err(e) = result {
             // Part of the block may be on disk; refuse to go on.
             self.inner = None;
-            return Err(error(
-                &self.tmp,
-                format!("writing particle rows {a}..{b}: {e}"),
-            ));
+            return Err(error(&self.tmp, format!("writing particle rows {a}..{b}: {e}")));
         }
         self.written += n as u64;
         self.last_tag = last;
@@ -590,6 +493,43 @@ impl Drop for RestartWriter {
 
 /// The HDF5 superblock signature, which gendpde restarts carry at offset 0.
 const HDF5_SIGNATURE: [u8; 8] = [0x89, b'H', b'D', b'F', b'\r', b'\n', 0x1a, b'\n'];
+
+/// Offset of the `id` column in a row of `columns` (0 when absent; `check` refuses that).
+fn id_offset(columns: &[ColumnSpec]) -> usize {
+    let k = columns.iter().position(|c| c.name == "id").unwrap_or(0);
+    row_width(&columns[..k])
+}
+
+/// Creates a dataset of `shape` with a Fletcher32 checksum on every chunk.
+fn checked_dataset<T: H5Type>(loc: &hdf5::Group, name: &str, shape: &[usize]) -> hdf5::Result<Dataset> {
+    let mut chunk = shape.to_vec();
+    chunk[0] = chunk[0].clamp(1, CHUNK_ROWS);
+    loc.new_dataset::<T>().shape(shape).chunk(chunk).fletcher32().create(name)
+}
+
+/// Writes rows a..b of a column dataset of `width` values per row.
+fn write_block<T: H5Type>(d: &Dataset, v: &[T], a: usize, b: usize, width: usize) -> hdf5::Result<()> {
+    if width == 1 {
+        d.write_slice(v, a..b)
+    } else {
+        let arr = ndarray::ArrayView2::from_shape((b - a, width), v).map_err(|e| e.to_string())?;
+        d.write_slice(arr, (a..b, ..))
+    }
+}
+
+/// Stores names as one checksummed byte dataset, each name followed by a NUL byte.
+fn write_names(loc: &hdf5::Group, name: &str, names: &[String]) -> hdf5::Result<()> {
+    let mut bytes = Vec::new();
+    for n in names {
+        bytes.extend_from_slice(n.as_bytes());
+        bytes.push(0);
+    }
+    let d = checked_dataset::<u8>(loc, name, &[bytes.len()])?;
+    if !bytes.is_empty() {
+        d.write_raw(&bytes)?;
+    }
+    Ok(())
+}
 
 mod read;
 pub use read::RestartReader;

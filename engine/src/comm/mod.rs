@@ -106,6 +106,15 @@ impl Comm {
         })
     }
 
+    /// Whether this rank owns global cell `cell` of a grid of `count` cells per dimension.
+    pub fn owns_cell(&self, cell: [i32; 3], count: [usize; 3]) -> bool {
+        (0..3).all(|d| {
+            let (c, p, n) = (self.grid.coords[d], self.grid.dims[d], count[d]);
+            let (lo, hi) = (c * n / p, (c + 1) * n / p);
+            (lo..hi).contains(&(cell[d] as usize))
+        })
+    }
+
     /// Owned cell range [lo, hi) of this rank on `grid`.
     pub fn owned_cells(&self, grid: &CellGrid) -> ([i32; 3], [i32; 3]) {
         let lo = [0, 1, 2].map(|d| (self.grid.coords[d] * grid.count[d] / self.grid.dims[d]) as i32);
@@ -118,6 +127,11 @@ impl Comm {
         let mut v = [x];
         self.timed(|| self.t.max(&mut v));
         v[0]
+    }
+
+    /// Sum of an integer count over ranks.
+    pub fn count(&self, n: usize) -> u64 {
+        self.timed(|| self.t.all_gather(&[n as u64])).iter().sum()
     }
 
     /// Whether any rank says yes.
@@ -180,10 +194,12 @@ impl Comm {
                     }
                     let (dest, src) = self.grid.neighbours(d, dir);
                     self.t.sendrecv(&self.send, dest, src, &mut self.recv);
-                    for rec in self.recv.chunks_exact(Particles::OWNED_RECORD) {
+                    for rec in self.recv.chunks_exact(store.owned_record()) {
                         store.unpack_owned(rec);
-                        let i = store.nlocal - 1;
-                        store.cell[i] = if keep_cells { Particles::record_cell(rec) } else { grid.locate(store.r[i]) };
+                        if !keep_cells {
+                            let i = store.nlocal - 1;
+                            store.cell[i] = grid.locate(store.r[i]);
+                        }
                     }
                 }
             }
@@ -199,6 +215,7 @@ impl Comm {
     fn borders(&mut self, store: &mut Particles, domain: &Domain, grid: &CellGrid) {
         self.swaps.clear();
         let len = domain.len();
+        let layout = store.ghost_layout();
         for d in 0..3 {
             let n = grid.count[d] as i32;
             for dir in [-1, 1] {
@@ -209,12 +226,12 @@ impl Comm {
                 let send: Vec<u32> = (0..store.len() as u32).filter(|&i| store.cell[i as usize][d] == layer).collect();
                 self.send.clear();
                 for &i in &send {
-                    store.pack_ghost(i as usize, d, shift, cell_shift, &mut self.send);
+                    store.pack_ghost(i as usize, &layout, d, shift, cell_shift, &mut self.send);
                 }
                 let (dest, src) = self.grid.neighbours(d, dir);
                 self.t.sendrecv(&self.send, dest, src, &mut self.recv);
                 let recv_start = store.len();
-                for rec in self.recv.chunks_exact(store.ghost_record()) {
+                for rec in self.recv.chunks_exact(layout.width) {
                     store.unpack_ghost(rec);
                 }
                 let recv_count = store.len() - recv_start;
@@ -226,21 +243,21 @@ impl Comm {
     /// Copies `fields` from the owners to all their ghosts.
     pub fn forward(&mut self, store: &mut Particles, fields: Fields) {
         let start = std::time::Instant::now();
-        let width = record_width(store, fields);
+        let width = store.comm_width(fields);
         let me = self.t.rank();
         for s in &self.swaps {
             if s.dest == me && s.src == me {
                 let moves = s.send.iter().enumerate().map(|(k, &i)| (i as usize, s.recv_start + k));
-                copy_fields(store, moves, fields, Some((s.dim, s.shift)));
+                store.copy_fields(moves, fields, Some((s.dim, s.shift)));
                 continue;
             }
             self.send.clear();
             for &i in &s.send {
-                pack_fields(store, i as usize, fields, Some((s.dim, s.shift)), &mut self.send);
+                store.pack_fields(i as usize, fields, Some((s.dim, s.shift)), &mut self.send);
             }
             self.t.sendrecv(&self.send, s.dest, s.src, &mut self.recv);
             for (k, rec) in self.recv.chunks_exact(width).enumerate() {
-                unpack_fields(store, s.recv_start + k, fields, rec);
+                store.unpack_fields(s.recv_start + k, fields, rec);
             }
         }
         self.time.set(self.time.get() + start.elapsed());
@@ -252,7 +269,7 @@ impl Comm {
     pub fn reverse(&mut self, store: &mut Particles, ghosts: &[u32], fields: Fields) {
         let start = std::time::Instant::now();
         let fields = fields.without(Fields::POSITION);
-        let width = 1 + record_width(store, fields);
+        let width = 1 + store.comm_width(fields);
         self.written.clear();
         self.written.resize(store.len(), false);
         for &g in ghosts {
@@ -263,7 +280,7 @@ impl Comm {
             if s.dest == me && s.src == me {
                 let written = &self.written;
                 let moves = (0..s.recv_count).filter(|&k| written[s.recv_start + k]).map(|k| (s.recv_start + k, s.send[k] as usize));
-                copy_fields(store, moves, fields, None);
+                store.copy_fields(moves, fields, None);
                 // the owners reached may be ghosts that travel on in later swaps (the
                 // sources, ghosts of this swap, lie above every destination)
                 for k in 0..s.recv_count {
@@ -278,123 +295,18 @@ impl Comm {
             for k in 0..s.recv_count {
                 if self.written[s.recv_start + k] {
                     self.send.push(k as f64);
-                    pack_fields(store, s.recv_start + k, fields, None, &mut self.send);
+                    store.pack_fields(s.recv_start + k, fields, None, &mut self.send);
                 }
             }
             self.t.sendrecv(&self.send, s.src, s.dest, &mut self.recv);
             for rec in self.recv.chunks_exact(width) {
                 let i = s.send[rec[0] as usize] as usize;
-                unpack_fields(store, i, fields, &rec[1..]);
+                store.unpack_fields(i, fields, &rec[1..]);
                 if i >= store.nlocal {
                     self.written[i] = true;
                 }
             }
         }
         self.time.set(self.time.get() + start.elapsed());
-    }
-}
-
-/// Number of f64 per particle for `fields`.
-fn record_width(store: &Particles, fields: Fields) -> usize {
-    let mut w = 0;
-    for (f, n) in [(Fields::POSITION, 3), (Fields::MOMENTUM, 3)] {
-        if fields.contains(f) {
-            w += n;
-        }
-    }
-    for (f, v) in scalars(store) {
-        if fields.contains(f) && !v.is_empty() {
-            w += 1;
-        }
-    }
-    w
-}
-
-/// The per-particle scalars ghosts carry, in record order (u and theta always exist).
-fn scalars(s: &Particles) -> [(Fields, &Vec<f64>); 7] {
-    [
-        (Fields::ENERGY, &s.u),
-        (Fields::THETA, &s.theta),
-        (Fields::DENSITY, &s.n),
-        (Fields::PRESSURE, &s.pn2),
-        (Fields::INV_TAU, &s.inv_tau),
-        (Fields::U_COND, &s.u_cond),
-        (Fields::RHO, &s.rho),
-    ]
-}
-
-fn pack_fields(store: &Particles, i: usize, fields: Fields, shift: Option<(usize, f64)>, buf: &mut Vec<f64>) {
-    if fields.contains(Fields::POSITION) {
-        let mut r = store.r[i];
-        if let Some((d, s)) = shift {
-            r[d] += s;
-        }
-        buf.extend_from_slice(&r);
-    }
-    if fields.contains(Fields::MOMENTUM) {
-        buf.extend_from_slice(&store.p[i]);
-    }
-    for (f, v) in scalars(store) {
-        if fields.contains(f) && !v.is_empty() {
-            buf.push(v[i]);
-        }
-    }
-}
-
-/// Copies `fields` from particle `from` to particle `to` for each (from, to) of `moves`
-/// (a swap of this rank with itself: no buffer), field by field; `shift` as in
-/// [`pack_fields`].
-fn copy_fields(store: &mut Particles, moves: impl Iterator<Item = (usize, usize)> + Clone, fields: Fields, shift: Option<(usize, f64)>) {
-    if fields.contains(Fields::POSITION) {
-        for (i, j) in moves.clone() {
-            let mut r = store.r[i];
-            if let Some((d, s)) = shift {
-                r[d] += s;
-            }
-            store.r[j] = r;
-        }
-    }
-    if fields.contains(Fields::MOMENTUM) {
-        for (i, j) in moves.clone() {
-            store.p[j] = store.p[i];
-        }
-    }
-    for (f, v) in scalars_mut(store) {
-        if fields.contains(f) && !v.is_empty() {
-            for (i, j) in moves.clone() {
-                v[j] = v[i];
-            }
-        }
-    }
-}
-
-/// [`scalars`], writable.
-fn scalars_mut(s: &mut Particles) -> [(Fields, &mut Vec<f64>); 7] {
-    [
-        (Fields::ENERGY, &mut s.u),
-        (Fields::THETA, &mut s.theta),
-        (Fields::DENSITY, &mut s.n),
-        (Fields::PRESSURE, &mut s.pn2),
-        (Fields::INV_TAU, &mut s.inv_tau),
-        (Fields::U_COND, &mut s.u_cond),
-        (Fields::RHO, &mut s.rho),
-    ]
-}
-
-fn unpack_fields(store: &mut Particles, i: usize, fields: Fields, rec: &[f64]) {
-    let mut k = 0;
-    if fields.contains(Fields::POSITION) {
-        store.r[i] = [rec[0], rec[1], rec[2]];
-        k += 3;
-    }
-    if fields.contains(Fields::MOMENTUM) {
-        store.p[i] = [rec[k], rec[k + 1], rec[k + 2]];
-        k += 3;
-    }
-    for (f, v) in scalars_mut(store) {
-        if fields.contains(f) && !v.is_empty() {
-            v[i] = rec[k];
-            k += 1;
-        }
     }
 }

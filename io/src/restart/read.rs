@@ -7,7 +7,9 @@ use super::*;
 pub struct RestartReader {
     path: PathBuf,
     header: RestartHeader,
-    cols: Columns,
+    cols: Vec<Dataset>,
+    /// Tag of the last row read, for the order check across blocks.
+    last_tag: std::cell::Cell<u64>,
     _file: File,
 }
 
@@ -167,6 +169,34 @@ impl Check<'_> {
             .map_err(|e| self.err(format!("cannot read dataset '{name}': {e}")))
     }
 
+    /// Reads a NUL-terminated list of names (a checksummed byte dataset).
+    fn names(&self, name: &str) -> Result<Vec<String>, RestartError> {
+        let d = self.dataset::<u8>(name, None)?;
+        if d.ndim() != 1 || d.size() > MAX_COMMAND_BYTES {
+            return Err(self.err(format!("dataset '{name}' should be a one-dimensional byte list, found shape {:?}", d.shape())));
+        }
+        self.checksummed(name, &d)?;
+        let bytes = self.read_all::<u8>(name, &d)?;
+        if bytes.last().is_some_and(|&b| b != 0) {
+            return Err(self.err(format!("dataset '{name}' does not end with a NUL byte")));
+        }
+        bytes
+            .split(|&b| b == 0)
+            .take(bytes.iter().filter(|&&b| b == 0).count())
+            .map(|c| String::from_utf8(c.to_vec()))
+            .collect::<Result<Vec<_>, _>>()
+            .map_err(|_| self.err(format!("dataset '{name}' is not valid UTF-8")))
+    }
+
+    /// Requires the Fletcher32 checksum filter on a dataset (HDF5 verifies it on read).
+    fn checksummed(&self, name: &str, d: &Dataset) -> Result<(), RestartError> {
+        if d.filters().iter().any(|f| matches!(f, hdf5::filters::Filter::Fletcher32)) {
+            Ok(())
+        } else {
+            Err(self.err(format!("dataset '{name}' has no checksum (Fletcher32 filter)")))
+        }
+    }
+
     fn vector3(&self, name: &str) -> Result<[f64; 3], RestartError> {
         let d = self.dataset::<f64>(name, Some(&[3]))?;
         let v = self.read_all::<f64>(name, &d)?;
@@ -252,9 +282,10 @@ impl RestartReader {
                  use a newer gendpde"
             )));
         }
-        if version < 1 {
+        if version < RESTART_FORMAT_VERSION {
             return Err(c.err(format!(
-                "unsupported format_version {version} (expected {RESTART_FORMAT_VERSION})"
+                "format_version {version} was written by an older gendpde (this one reads {RESTART_FORMAT_VERSION}); \
+                 continue the run with the gendpde that wrote it, or start again from a data file"
             )));
         }
 
@@ -331,19 +362,37 @@ impl RestartReader {
             .collect::<Result<Vec<_>, _>>()
             .map_err(|_| c.err(format!("dataset '{cmd_name}' is not valid UTF-8")))?;
 
-        let (v, m) = ([n], [n, 3]);
-        let cols = Columns {
-            tag: c.dataset::<u64>("particles/tag", Some(&v))?,
-            kind: c.dataset::<u32>("particles/type", Some(&v))?,
-            mass: c.dataset::<f64>("particles/mass", Some(&v))?,
-            r: c.dataset::<f64>("particles/r", Some(&m))?,
-            p: c.dataset::<f64>("particles/p", Some(&m))?,
-            u: c.dataset::<f64>("particles/u", Some(&v))?,
-            theta: c.dataset::<f64>("particles/theta", Some(&v))?,
-            image: c.dataset::<i32>("particles/image", Some(&m))?,
-            cell: c.dataset::<i32>("particles/cell", Some(&m))?,
-            r_at_build: c.dataset::<f64>("particles/r_at_build", Some(&m))?,
-        };
+        let enabled = c.scalar::<u32>("enabled")?;
+        let groups = c.names("groups")?;
+        let state_names = c.names("state/names")?;
+        let ld = c.dataset::<u64>("state/lengths", Some(&[state_names.len()]))?;
+        let lengths = c.read_all::<u64>("state/lengths", &ld)?;
+        let total = lengths.iter().try_fold(0u64, |a, &l| a.checked_add(l)).filter(|&t| t <= MAX_COMMAND_BYTES as u64);
+        let total = total.ok_or_else(|| c.err("dataset 'state/lengths' is out of range"))?;
+        let vd = c.dataset::<f64>("state/values", Some(&[total as usize]))?;
+        let mut values = c.read_all::<f64>("state/values", &vd)?.into_iter();
+        let state = state_names.into_iter().zip(&lengths).map(|(name, &l)| (name, values.by_ref().take(l as usize).collect())).collect();
+
+        let mut columns = Vec::new();
+        let mut cols = Vec::new();
+        for name in c.names("particles/columns")? {
+            let path = format!("particles/{name}");
+            if !c.file.link_exists(&format!("/{path}")) || name.is_empty() || name.contains('/') {
+                return Err(c.err(format!("missing dataset '{path}' of a listed particle column")));
+            }
+            let d = c.file.dataset(&path).map_err(|e| c.err(format!("cannot open dataset '{path}': {e}")))?;
+            let integer = has_type::<i64>(d.dtype());
+            let d = if integer { c.dataset::<i64>(&path, None)? } else { c.dataset::<f64>(&path, None)? };
+            let shape = d.shape();
+            let width = match shape[..] {
+                [rows] if rows == n => 1,
+                [rows, w] if rows == n && (1..=16).contains(&w) => w,
+                _ => return Err(c.err(format!("dataset '{path}' should have {n} rows of at most 16 values, found shape {shape:?}"))),
+            };
+            c.checksummed(&path, &d)?;
+            columns.push(ColumnSpec { name, width, integer });
+            cols.push(d);
+        }
 
         let header = RestartHeader {
             step,
@@ -360,14 +409,22 @@ impl RestartReader {
             cell_counts,
             commands,
             creator_version,
+            columns,
+            enabled,
+            groups,
+            state,
         };
         header
             .check()
             .map_err(|e| c.err(format!("inconsistent header: {e}")))?;
+        if let Some(bad) = header.masses.iter().flatten().find(|m| !(m.is_finite() && **m > 0.0)) {
+            return Err(c.err(format!("inconsistent header: a per-type mass of {bad}; expected a positive finite mass")));
+        }
         Ok(RestartReader {
             path: path.to_path_buf(),
             header,
             cols,
+            last_tag: std::cell::Cell::new(0),
             _file: file,
         })
     }
@@ -376,14 +433,12 @@ impl RestartReader {
         &self.header
     }
 
-    /// Reads rows [start, start + len) (clipped to natoms) into `rows`
-    /// (cleared first).
-    pub fn read_rows(
-        &self,
-        start: u64,
-        len: u64,
-        rows: &mut ParticleRows,
-    ) -> Result<(), RestartError> {
+    /// Reads rows [start, start + len) (clipped to natoms) into `rows` (cleared first;
+    /// row-major, the header's columns). Blocks must be read in increasing order: the
+    /// rows are validated as strictly as a data file (tags increasing within
+    /// 1..=max_tag, types within 1..=ntypes, positive finite masses, finite floats,
+    /// positions near the box, cells on the grid).
+    pub fn read_rows(&self, start: u64, len: u64, rows: &mut Vec<f64>) -> Result<(), RestartError> {
         rows.clear();
         let natoms = self.header.natoms;
         let a = start.min(natoms);
@@ -394,43 +449,84 @@ impl RestartReader {
         // natoms fits in usize (checked in open).
         let (a, b) = (a as usize, b as usize);
         let n = b - a;
-        let err = |name: &str, e: hdf5::Error| {
-            error(
-                &self.path,
-                format!("reading rows {a}..{b} of dataset 'particles/{name}': {e}"),
-            )
-        };
-        fn one<T: H5Type + Clone>(d: &Dataset, a: usize, b: usize) -> hdf5::Result<Vec<T>> {
-            Ok(d.read_slice_1d::<T, _>(a..b)?.iter().cloned().collect())
-        }
-        fn three<T: H5Type + Copy + Default>(
-            d: &Dataset,
-            a: usize,
-            b: usize,
-        ) -> hdf5::Result<Vec<[T; 3]>> {
-            let arr = d.read_slice_2d::<T, _>((a..b, ..))?;
-            if arr.shape() != [b - a, 3] {
-                return Err(format!("got shape {:?}, expected [{}, 3]", arr.shape(), b - a).into());
+        let width = row_width(&self.header.columns);
+        rows.resize(n * width, 0.0);
+        let mut offset = 0;
+        for (c, d) in self.header.columns.iter().zip(&self.cols) {
+            let err = |e: hdf5::Error| error(&self.path, format!("reading rows {a}..{b} of dataset 'particles/{}': {e}", c.name));
+            let values: Vec<f64> = if c.integer {
+                read_block::<i64>(d, a, b, c.width).map_err(err)?.into_iter().map(|x| x as f64).collect()
+            } else {
+                read_block::<f64>(d, a, b, c.width).map_err(err)?
+            };
+            for (row, v) in rows.chunks_exact_mut(width).zip(values.chunks_exact(c.width)) {
+                row[offset..offset + c.width].copy_from_slice(v);
             }
-            let flat: Vec<T> = arr.iter().copied().collect();
-            Ok(flat.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect())
+            offset += c.width;
         }
-        let c = &self.cols;
-        rows.tag = one(&c.tag, a, b).map_err(|e| err("tag", e))?;
-        rows.kind = one(&c.kind, a, b).map_err(|e| err("type", e))?;
-        rows.mass = one(&c.mass, a, b).map_err(|e| err("mass", e))?;
-        rows.r = three(&c.r, a, b).map_err(|e| err("r", e))?;
-        rows.p = three(&c.p, a, b).map_err(|e| err("p", e))?;
-        rows.u = one(&c.u, a, b).map_err(|e| err("u", e))?;
-        rows.theta = one(&c.theta, a, b).map_err(|e| err("theta", e))?;
-        rows.image = three(&c.image, a, b).map_err(|e| err("image", e))?;
-        rows.cell = three(&c.cell, a, b).map_err(|e| err("cell", e))?;
-        rows.r_at_build = three(&c.r_at_build, a, b).map_err(|e| err("r_at_build", e))?;
-        if let Err(e) = rows.check() {
-            rows.clear();
-            return Err(error(&self.path, format!("reading rows {a}..{b}: {e}")));
+        if a == 0 {
+            self.last_tag.set(0);
         }
-        debug_assert_eq!(rows.len(), n);
+        for (k, row) in rows.chunks_exact(width).enumerate() {
+            if let Err(e) = self.validate(row) {
+                rows.clear();
+                return Err(error(&self.path, format!("particle row {}: {e}", a + k)));
+            }
+        }
         Ok(())
     }
+
+    /// Checks one row against the header (see `read_rows`).
+    fn validate(&self, row: &[f64]) -> Result<(), String> {
+        let h = &self.header;
+        let mut offset = 0;
+        for c in &h.columns {
+            let v = &row[offset..offset + c.width];
+            offset += c.width;
+            if v.iter().any(|x| !x.is_finite()) {
+                return Err(format!("column '{}' holds {v:?}; expected finite values", c.name));
+            }
+            match c.name.as_str() {
+                "id" => {
+                    let t = v[0] as u64;
+                    if v[0] < 1.0 || t > h.max_tag || t <= self.last_tag.get() {
+                        return Err(format!("id {} after id {}: expected increasing ids within 1..={}", v[0], self.last_tag.get(), h.max_tag));
+                    }
+                    self.last_tag.set(t);
+                }
+                "type" if v[0] < 1.0 || v[0] > h.ntypes as f64 => return Err(format!("type {} is outside 1..={}", v[0], h.ntypes)),
+                "mass" if v[0] <= 0.0 => return Err(format!("mass {}: expected a positive mass", v[0])),
+                "x" => {
+                    for d in 0..3 {
+                        let l = h.hi[d] - h.lo[d];
+                        if v[d] < h.lo[d] - l || v[d] > h.hi[d] + l {
+                            return Err(format!("position {v:?} lies far outside the box {:?}..{:?}", h.lo, h.hi));
+                        }
+                    }
+                }
+                "cell" => {
+                    if let Some(count) = h.cell_counts {
+                        if (0..3).any(|d| v[d] < 0.0 || v[d] >= count[d] as f64) {
+                            return Err(format!("cell {v:?} is outside the cell grid {count:?}"));
+                        }
+                    }
+                }
+                _ => {}
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Reads rows a..b of a column dataset of `width` values per row, row-major.
+fn read_block<T: H5Type + Copy>(d: &Dataset, a: usize, b: usize, width: usize) -> hdf5::Result<Vec<T>> {
+    let v: Vec<T> = if width == 1 {
+        d.read_slice_1d::<T, _>(a..b)?.iter().copied().collect()
+    } else {
+        d.read_slice_2d::<T, _>((a..b, ..))?.iter().copied().collect()
+    };
+    if v.len() != (b - a) * width {
+        return Err(format!("got {} values, expected {}", v.len(), (b - a) * width).into());
+    }
+    Ok(v)
 }
