@@ -41,7 +41,8 @@ pub fn prepare(it: &mut Interpreter, cmd: &Command) -> Result<Box<dyn Physics>, 
         SetupError::State(s) => AppError::Step { cmd: cmd.clone(), err: s },
     })?;
     if let Some(saved) = resume.filter(|_| sys.restored_grid == sys.grid.as_ref().map(|g| g.count)) {
-        sys.store.restore_by_tag(&saved);
+        let exchanged = sys.store.restore_by_tag(&saved);
+        sys.comm.forward(&mut sys.store, exchanged);
     }
     if let Some(grid) = &sys.grid {
         log::info!(

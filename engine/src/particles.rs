@@ -17,8 +17,9 @@ pub mod stage {
     pub const GHOST: u32 = 2;
     /// A column of restart files.
     pub const RESTART: u32 = 4;
-    /// Computed by a step from velocities and noise (forces, virials, pair energies): a
-    /// continuation keeps the stored values instead of recomputing them at its set-up.
+    /// Computed by a step in a way its set-up cannot redo to the bit (forces and virials
+    /// from that step's velocities and noise; theta, solved by Newton iterations started
+    /// from the previous theta): a continuation keeps the stored values.
     pub const RESUME: u32 = 8;
 }
 
@@ -224,7 +225,7 @@ particle_fields! {
     /// Internal energy u (the dynamic variable).
     u: f64, "u", gate NONE, comm Fields::ENERGY, stages MIGRATE | GHOST | RESTART;
     /// Particle temperature theta(u, n).
-    theta: f64, "theta", gate NONE, comm Fields::THETA, stages MIGRATE | GHOST | RESTART;
+    theta: f64, "theta", gate NONE, comm Fields::THETA, stages MIGRATE | GHOST | RESTART | RESUME;
     /// Global cell coordinates at the last rebuild (ghosts: outside 0..n).
     cell: [i32; 3], "cell", gate NONE, comm NONE, stages MIGRATE | GHOST | RESTART;
     /// True where u is still to be derived from theta at the next setup (`set theta`).
@@ -415,8 +416,9 @@ impl Particles {
     }
 
     /// Puts saved fields back into the owned particles of the same tags (the particles
-    /// may have been reordered since; tags not saved are left alone).
-    pub fn restore_by_tag(&mut self, saved: &SavedByTag) {
+    /// may have been reordered since; tags not saved are left alone). Returns the
+    /// exchanged fields among them, which the ghosts must be sent again.
+    pub fn restore_by_tag(&mut self, saved: &SavedByTag) -> Fields {
         let width = self.record_width(saved.stages, true);
         for i in 0..self.nlocal {
             if let Ok(k) = saved.index.binary_search_by_key(&self.tag[i], |&(t, _)| t) {
@@ -424,6 +426,7 @@ impl Particles {
                 self.unpack(i, saved.stages, true, &saved.records[at..at + width]);
             }
         }
+        self.record(saved.stages, true).iter().fold(Fields::NONE, |f, c| f | c.field.comm)
     }
 }
 
