@@ -323,14 +323,8 @@ impl RestartWriter {
         }
 
         let bx = file.create_group("box").map_err(h5)?;
-        bx.new_dataset_builder()
-            .with_data(&header.lo[..])
-            .create("lo")
-            .map_err(h5)?;
-        bx.new_dataset_builder()
-            .with_data(&header.hi[..])
-            .create("hi")
-            .map_err(h5)?;
+        checked(&bx, "lo", &[3], f64::NAN).and_then(|d| d.write_raw(&header.lo)).map_err(h5)?;
+        checked(&bx, "hi", &[3], f64::NAN).and_then(|d| d.write_raw(&header.hi)).map_err(h5)?;
 
         let masses: Vec<f64> = header
             .masses
@@ -338,22 +332,11 @@ impl RestartWriter {
             .map(|m| m.unwrap_or(f64::NAN))
             .collect();
         let types = file.create_group("types").map_err(h5)?;
-        types
-            .new_dataset_builder()
-            .with_data(&masses[..])
-            .create("mass")
-            .map_err(h5)?;
+        checked(&types, "mass", &[masses.len()], -1.0).and_then(|d| write_nonempty(&d, &masses)).map_err(h5)?;
 
         let commands = join_commands(path, &header.commands)?;
         let script = file.create_group("script").map_err(h5)?;
-        let cd = script
-            .new_dataset::<u8>()
-            .shape(commands.len())
-            .create("commands")
-            .map_err(h5)?;
-        if !commands.is_empty() {
-            cd.write_raw(&commands[..]).map_err(h5)?;
-        }
+        checked(&script, "commands", &[commands.len()], MISSING_BYTE).and_then(|d| write_nonempty(&d, &commands)).map_err(h5)?;
 
         write_names(&file, "groups", &header.groups).map_err(h5)?;
         write_attr(&file, "enabled", &header.enabled).map_err(h5)?;
@@ -362,8 +345,8 @@ impl RestartWriter {
         write_names(&state, "names", &names).map_err(h5)?;
         let lengths: Vec<u64> = header.state.iter().map(|(_, v)| v.len() as u64).collect();
         let values: Vec<f64> = header.state.iter().flat_map(|(_, v)| v.iter().copied()).collect();
-        checked_dataset::<u64>(&state, "lengths", &[lengths.len()]).and_then(|d| d.write_raw(&lengths)).map_err(h5)?;
-        checked_dataset::<f64>(&state, "values", &[values.len()]).and_then(|d| d.write_raw(&values)).map_err(h5)?;
+        checked(&state, "lengths", &[lengths.len()], u64::MAX).and_then(|d| write_nonempty(&d, &lengths)).map_err(h5)?;
+        checked(&state, "values", &[values.len()], f64::NAN).and_then(|d| write_nonempty(&d, &values)).map_err(h5)?;
 
         let pg = file.create_group("particles").map_err(h5)?;
         let names: Vec<String> = header.columns.iter().map(|c| c.name.clone()).collect();
@@ -371,7 +354,7 @@ impl RestartWriter {
         let mut cols = Vec::new();
         for c in &header.columns {
             let shape: Vec<usize> = if c.width == 1 { vec![natoms] } else { vec![natoms, c.width] };
-            let d = if c.integer { checked_dataset::<i64>(&pg, &c.name, &shape) } else { checked_dataset::<f64>(&pg, &c.name, &shape) };
+            let d = if c.integer { checked(&pg, &c.name, &shape, MISSING_INTEGER) } else { checked(&pg, &c.name, &shape, f64::NAN) };
             cols.push(d.map_err(h5)?);
         }
         writer.inner = Some((file, cols));
@@ -500,11 +483,26 @@ fn id_offset(columns: &[ColumnSpec]) -> usize {
     row_width(&columns[..k])
 }
 
-/// Creates a dataset of `shape` with a Fletcher32 checksum on every chunk.
-fn checked_dataset<T: H5Type>(loc: &hdf5::Group, name: &str, shape: &[usize]) -> hdf5::Result<Dataset> {
+/// Fill value of byte datasets: not UTF-8, so text read from a chunk whose index was
+/// damaged (HDF5 then returns the fill value) is refused.
+pub(crate) const MISSING_BYTE: u8 = 0xff;
+/// Fill value of integer particle columns: beyond 2^53, which the reader refuses.
+pub(crate) const MISSING_INTEGER: i64 = i64::MIN;
+
+/// Creates a dataset of `shape` with a Fletcher32 checksum on every chunk and a fill
+/// value the reader refuses (a chunk lost from a damaged index reads as the fill value).
+fn checked<T: H5Type + Copy>(loc: &hdf5::Group, name: &str, shape: &[usize], fill: T) -> hdf5::Result<Dataset> {
     let mut chunk = shape.to_vec();
     chunk[0] = chunk[0].clamp(1, CHUNK_ROWS);
-    loc.new_dataset::<T>().shape(shape).chunk(chunk).fletcher32().create(name)
+    loc.new_dataset::<T>().shape(shape).chunk(chunk).fletcher32().fill_value(fill).create(name)
+}
+
+fn write_nonempty<T: H5Type>(d: &Dataset, v: &[T]) -> hdf5::Result<()> {
+    if v.is_empty() {
+        Ok(())
+    } else {
+        d.write_raw(v)
+    }
 }
 
 /// Writes rows a..b of a column dataset of `width` values per row.
@@ -524,11 +522,7 @@ fn write_names(loc: &hdf5::Group, name: &str, names: &[String]) -> hdf5::Result<
         bytes.extend_from_slice(n.as_bytes());
         bytes.push(0);
     }
-    let d = checked_dataset::<u8>(loc, name, &[bytes.len()])?;
-    if !bytes.is_empty() {
-        d.write_raw(&bytes)?;
-    }
-    Ok(())
+    write_nonempty(&checked(loc, name, &[bytes.len()], MISSING_BYTE)?, &bytes)
 }
 
 mod read;

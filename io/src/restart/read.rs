@@ -150,6 +150,7 @@ impl Check<'_> {
                 describe(d.dtype())
             )));
         }
+        self.checksummed(name, &d)?;
         if let Some(shape) = shape {
             if d.shape() != shape {
                 return Err(self.err(format!(
@@ -175,7 +176,6 @@ impl Check<'_> {
         if d.ndim() != 1 || d.size() > MAX_COMMAND_BYTES {
             return Err(self.err(format!("dataset '{name}' should be a one-dimensional byte list, found shape {:?}", d.shape())));
         }
-        self.checksummed(name, &d)?;
         let bytes = self.read_all::<u8>(name, &d)?;
         if bytes.last().is_some_and(|&b| b != 0) {
             return Err(self.err(format!("dataset '{name}' does not end with a NUL byte")));
@@ -370,7 +370,11 @@ impl RestartReader {
         let total = lengths.iter().try_fold(0u64, |a, &l| a.checked_add(l)).filter(|&t| t <= MAX_COMMAND_BYTES as u64);
         let total = total.ok_or_else(|| c.err("dataset 'state/lengths' is out of range"))?;
         let vd = c.dataset::<f64>("state/values", Some(&[total as usize]))?;
-        let mut values = c.read_all::<f64>("state/values", &vd)?.into_iter();
+        let values = c.read_all::<f64>("state/values", &vd)?;
+        if values.iter().any(|v| !v.is_finite()) {
+            return Err(c.err("dataset 'state/values' holds non-finite values"));
+        }
+        let mut values = values.into_iter();
         let state = state_names.into_iter().zip(&lengths).map(|(name, &l)| (name, values.by_ref().take(l as usize).collect())).collect();
 
         let mut columns = Vec::new();
@@ -389,7 +393,6 @@ impl RestartReader {
                 [rows, w] if rows == n && (1..=16).contains(&w) => w,
                 _ => return Err(c.err(format!("dataset '{path}' should have {n} rows of at most 16 values, found shape {shape:?}"))),
             };
-            c.checksummed(&path, &d)?;
             columns.push(ColumnSpec { name, width, integer });
             cols.push(d);
         }
@@ -485,6 +488,9 @@ impl RestartReader {
             offset += c.width;
             if v.iter().any(|x| !x.is_finite()) {
                 return Err(format!("column '{}' holds {v:?}; expected finite values", c.name));
+            }
+            if c.integer && v.iter().any(|x| x.abs() > (1u64 << 53) as f64) {
+                return Err(format!("integer column '{}' holds {v:?}; expected integers below 2^53", c.name));
             }
             match c.name.as_str() {
                 "id" => {

@@ -46,13 +46,18 @@ impl Lcg {
         // infinities, subnormals and -0.
         f64::from_bits(self.next() ^ (self.next() << 53))
     }
-    fn f64_3(&mut self) -> [f64; 3] {
-        [self.f64(), self.f64(), self.f64()]
-    }
-    fn i32_3(&mut self) -> [i32; 3] {
-        [self.next() as i32, self.next() as i32, self.next() as i32]
-    }
 }
+
+/// The columns of the test files (those of the engine's particle table, as of writing).
+fn test_columns() -> Vec<ColumnSpec> {
+    [("id", 1, true), ("type", 1, true), ("mass", 1, false), ("x", 3, false), ("p", 3, false), ("u", 1, false), ("theta", 1, false), ("image", 3, true), ("cell", 3, true), ("r_at_build", 3, false)]
+        .into_iter()
+        .map(|(name, width, integer)| ColumnSpec { name: name.into(), width, integer })
+        .collect()
+}
+
+/// Values per row of [`test_columns`].
+const W: usize = 20;
 
 fn header(natoms: u64) -> RestartHeader {
     RestartHeader {
@@ -79,97 +84,58 @@ fn header(natoms: u64) -> RestartHeader {
             "print \"unicode: θ ≈ 1\nsecond line\"".into(),
         ],
         creator_version: "gendpde 0.1.0 (test)".into(),
+        columns: test_columns(),
+        enabled: 0b1010_0000,
+        groups: vec!["all".into(), "".into(), "hot slab".into()],
+        state: vec![("heat/reservoir/hot".into(), vec![973.779697076279]), ("empty".into(), vec![]), ("window".into(), vec![1.0, -0.0, 5e-324])],
     }
 }
 
-/// `natoms` particles with tags 3i + 1, random bits everywhere else.
-fn particles(natoms: u64, seed: u64) -> ParticleRows {
+/// `natoms` valid particles with tags 3i + 1 and random values (any finite bit
+/// pattern where the column allows it).
+fn particles(natoms: u64, seed: u64) -> Vec<f64> {
     let mut g = Lcg(seed);
-    let mut rows = ParticleRows::default();
+    let h = header(natoms);
+    let mut any = || loop {
+        let x = g.f64();
+        if x.is_finite() {
+            return x;
+        }
+    };
+    let mut rows = Vec::new();
+    let mut g2 = Lcg(seed ^ 0xabcd);
     for i in 0..natoms {
-        rows.tag.push(3 * i + 1);
-        rows.kind.push(g.next() as u32);
-        rows.mass.push(g.f64());
-        rows.r.push(g.f64_3());
-        rows.p.push(g.f64_3());
-        rows.u.push(g.f64());
-        rows.theta.push(g.f64());
-        rows.image.push(g.i32_3());
-        rows.cell.push(g.i32_3());
-        rows.r_at_build.push(g.f64_3());
+        rows.push((3 * i + 1) as f64);
+        rows.push((1 + g2.below(3)) as f64);
+        rows.push(any().abs().max(f64::MIN_POSITIVE));
+        for d in 0..3 {
+            rows.push(h.lo[d] + (h.hi[d] - h.lo[d]) * (g2.below(1000) as f64 / 1000.0));
+        }
+        rows.extend([any(), any(), any(), any(), any()]);
+        rows.extend((0..3).map(|_| g2.next() as i32 as f64));
+        rows.extend((0..3).map(|d| g2.below(h.cell_counts.unwrap()[d] as u64) as f64));
+        rows.extend([any(), any(), any()]);
     }
     // A few values that must survive exactly.
     if natoms >= 4 {
-        rows.mass[0] = f64::from_bits(0x7ff8_0000_dead_beef); // quiet NaN with payload
-        rows.mass[1] = f64::from_bits(0x7ff0_0000_0000_0001); // signalling NaN
-        rows.u[2] = -0.0;
-        rows.theta[3] = f64::from_bits(0x0000_0000_0000_0003); // subnormal
-        rows.r[0] = [f64::INFINITY, f64::NEG_INFINITY, f64::MIN_POSITIVE];
-        rows.image[0] = [i32::MIN, i32::MAX, 0];
+        rows[W + 9] = -0.0; // u
+        rows[3 * W + 10] = f64::from_bits(3); // subnormal theta
+        rows[2 * W + 2] = f64::MIN_POSITIVE; // mass
+        rows[11..14].copy_from_slice(&[i32::MIN as f64, i32::MAX as f64, 0.0]); // image
     }
     rows
 }
 
-fn slice_rows(all: &ParticleRows, a: usize, b: usize) -> ParticleRows {
-    ParticleRows {
-        tag: all.tag[a..b].to_vec(),
-        kind: all.kind[a..b].to_vec(),
-        mass: all.mass[a..b].to_vec(),
-        r: all.r[a..b].to_vec(),
-        p: all.p[a..b].to_vec(),
-        u: all.u[a..b].to_vec(),
-        theta: all.theta[a..b].to_vec(),
-        image: all.image[a..b].to_vec(),
-        cell: all.cell[a..b].to_vec(),
-        r_at_build: all.r_at_build[a..b].to_vec(),
-    }
-}
-
-fn append_rows(to: &mut ParticleRows, from: &ParticleRows) {
-    to.tag.extend_from_slice(&from.tag);
-    to.kind.extend_from_slice(&from.kind);
-    to.mass.extend_from_slice(&from.mass);
-    to.r.extend_from_slice(&from.r);
-    to.p.extend_from_slice(&from.p);
-    to.u.extend_from_slice(&from.u);
-    to.theta.extend_from_slice(&from.theta);
-    to.image.extend_from_slice(&from.image);
-    to.cell.extend_from_slice(&from.cell);
-    to.r_at_build.extend_from_slice(&from.r_at_build);
+fn slice_rows(all: &[f64], a: usize, b: usize) -> &[f64] {
+    &all[a * W..b * W]
 }
 
 fn bits(v: &[f64]) -> Vec<u64> {
     v.iter().map(|x| x.to_bits()).collect()
 }
 
-fn bits3(v: &[[f64; 3]]) -> Vec<[u64; 3]> {
-    v.iter().map(|x| x.map(f64::to_bits)).collect()
-}
-
-fn rows_bit_identical(a: &ParticleRows, b: &ParticleRows) -> bool {
-    a.tag == b.tag
-        && a.kind == b.kind
-        && bits(&a.mass) == bits(&b.mass)
-        && bits3(&a.r) == bits3(&b.r)
-        && bits3(&a.p) == bits3(&b.p)
-        && bits(&a.u) == bits(&b.u)
-        && bits(&a.theta) == bits(&b.theta)
-        && a.image == b.image
-        && a.cell == b.cell
-        && bits3(&a.r_at_build) == bits3(&b.r_at_build)
-}
-
-fn assert_rows_bit_exact(a: &ParticleRows, b: &ParticleRows) {
-    assert_eq!(a.tag, b.tag);
-    assert_eq!(a.kind, b.kind);
-    assert_eq!(bits(&a.mass), bits(&b.mass));
-    assert_eq!(bits3(&a.r), bits3(&b.r));
-    assert_eq!(bits3(&a.p), bits3(&b.p));
-    assert_eq!(bits(&a.u), bits(&b.u));
-    assert_eq!(bits(&a.theta), bits(&b.theta));
-    assert_eq!(a.image, b.image);
-    assert_eq!(a.cell, b.cell);
-    assert_eq!(bits3(&a.r_at_build), bits3(&b.r_at_build));
+fn assert_rows_bit_exact(a: &[f64], b: &[f64]) {
+    assert_eq!(bits(a), bits(b));
 }
 
 fn assert_header_bit_exact(a: &RestartHeader, b: &RestartHeader) {
@@ -189,14 +155,17 @@ fn assert_header_bit_exact(a: &RestartHeader, b: &RestartHeader) {
     assert_eq!(a.cell_counts, b.cell_counts);
     assert_eq!(a.commands, b.commands);
     assert_eq!(a.creator_version, b.creator_version);
+    assert_eq!((&a.columns, a.enabled, &a.groups), (&b.columns, b.enabled, &b.groups));
+    let state = |h: &RestartHeader| h.state.iter().map(|(n, v)| (n.clone(), bits(v))).collect::<Vec<_>>();
+    assert_eq!(state(a), state(b));
 }
 
 /// Writes `rows` to `path` in blocks ending at the given offsets.
-fn write_restart(path: &Path, h: &RestartHeader, rows: &ParticleRows, ends: &[usize]) {
+fn write_restart(path: &Path, h: &RestartHeader, rows: &[f64], ends: &[usize]) {
     let mut w = RestartWriter::create(path, h).unwrap();
     let mut a = 0;
     for &b in ends {
-        w.write_rows(&slice_rows(rows, a, b)).unwrap();
+        w.write_rows(slice_rows(rows, a, b)).unwrap();
         a = b;
     }
     w.finish().unwrap();
@@ -243,25 +212,23 @@ fn round_trip_is_bit_exact() {
 
     // Read back in blocks unrelated to the written ones, the last one
     // running past natoms (clipped).
-    let mut got = ParticleRows::default();
-    let mut block = ParticleRows::default();
+    let mut got = Vec::new();
+    let mut block = Vec::new();
     let mut start = 0;
     for len in [1, 99, 400, 0, 250, 1000] {
         r.read_rows(start, len, &mut block).unwrap();
-        assert_eq!(block.len() as u64, len.min(1000 - start));
-        append_rows(&mut got, &block);
-        start += block.len() as u64;
+        assert_eq!((block.len() / W) as u64, len.min(1000 - start));
+        got.extend_from_slice(&block);
+        start += (block.len() / W) as u64;
     }
     assert_eq!(start, 1000);
     assert_rows_bit_exact(&got, &all);
 
     // Past the end: empty, and the buffer is cleared.
     r.read_rows(1000, 10, &mut block).unwrap();
-    assert!(block.is_empty() && block.r.is_empty() && block.r_at_build.is_empty());
+    assert!(block.is_empty());
     r.read_rows(u64::MAX, u64::MAX, &mut block).unwrap();
     assert!(block.is_empty());
-    r.read_rows(990, u64::MAX, &mut block).unwrap();
-    assert_rows_bit_exact(&block, &slice_rows(&all, 990, 1000));
 }
 
 #[test]
@@ -278,7 +245,7 @@ fn optional_fields_and_empty_system_round_trip() {
         commands: vec![],
         ..header(0)
     };
-    write_restart(&path, &h, &ParticleRows::default(), &[]);
+    write_restart(&path, &h, &[], &[]);
     let r = RestartReader::open(&path).unwrap();
     assert_eq!(r.header(), &h);
     let mut rows = particles(3, 1);
@@ -292,7 +259,7 @@ fn optional_fields_and_empty_system_round_trip() {
         masses: vec![],
         ..h
     };
-    write_restart(&path, &h2, &ParticleRows::default(), &[]);
+    write_restart(&path, &h2, &[], &[]);
     let r = RestartReader::open(&path).unwrap();
     assert!(r.header().energy0.is_some_and(f64::is_nan));
     assert_eq!(r.header().masses, vec![]);
@@ -306,7 +273,7 @@ fn unfinished_writer_leaves_no_file_and_keeps_existing_one() {
     // Nothing there yet: a dropped writer leaves nothing behind.
     {
         let mut w = RestartWriter::create(&path, &header(10)).unwrap();
-        w.write_rows(&slice_rows(&particles(10, 1), 0, 5)).unwrap();
+        w.write_rows(slice_rows(&particles(10, 1), 0, 5)).unwrap();
     }
     assert!(!path.exists());
     assert!(!temp_path(&path).exists());
@@ -318,14 +285,14 @@ fn unfinished_writer_leaves_no_file_and_keeps_existing_one() {
     let before = fs::read(&path).unwrap();
     {
         let mut w = RestartWriter::create(&path, &header(20)).unwrap();
-        w.write_rows(&slice_rows(&particles(20, 3), 0, 20)).unwrap();
+        w.write_rows(slice_rows(&particles(20, 3), 0, 20)).unwrap();
         assert!(temp_path(&path).exists());
         // dropped without finish
     }
     assert_eq!(fs::read(&path).unwrap(), before);
     assert!(!temp_path(&path).exists());
     let r = RestartReader::open(&path).unwrap();
-    let mut rows = ParticleRows::default();
+    let mut rows = Vec::new();
     r.read_rows(0, 10, &mut rows).unwrap();
     assert_rows_bit_exact(&rows, &all);
 }
@@ -339,7 +306,7 @@ fn finish_with_too_few_rows_is_an_error() {
     let before = fs::read(&path).unwrap();
 
     let mut w = RestartWriter::create(&path, &header(10)).unwrap();
-    w.write_rows(&slice_rows(&all, 0, 9)).unwrap();
+    w.write_rows(slice_rows(&all, 0, 9)).unwrap();
     let e = w.finish().unwrap_err();
     assert_contains(&e.0, "only 9 of natoms = 10 particle rows were written");
     assert_contains(&e.0, &path.display().to_string());
@@ -354,34 +321,24 @@ fn writer_rejects_bad_rows_and_headers() {
     let all = particles(10, 5);
 
     let mut w = RestartWriter::create(&path, &header(10)).unwrap();
-    let mut uneven = slice_rows(&all, 0, 3);
-    uneven.theta.pop();
-    assert_contains(&w.write_rows(&uneven).unwrap_err().0, "unequal lengths");
-    w.write_rows(&slice_rows(&all, 0, 5)).unwrap();
+    assert_contains(&w.write_rows(&slice_rows(&all, 0, 3)[1..]).unwrap_err().0, "do not make rows of 20");
+    w.write_rows(slice_rows(&all, 0, 5)).unwrap();
     // Going backwards in tag order.
-    assert_contains(
-        &w.write_rows(&slice_rows(&all, 4, 6)).unwrap_err().0,
-        "strictly increasing",
-    );
+    assert_contains(&w.write_rows(slice_rows(&all, 4, 6)).unwrap_err().0, "strictly increasing");
     // Too many rows.
-    let mut more = slice_rows(&all, 5, 10);
-    append_rows(
-        &mut more,
-        &ParticleRows {
-            tag: vec![1000],
-            ..slice_rows(&all, 0, 1)
-        },
-    );
+    let mut more = slice_rows(&all, 5, 10).to_vec();
+    more.extend_from_slice(slice_rows(&all, 0, 1));
+    more[5 * W] = 1000.0;
     assert_contains(&w.write_rows(&more).unwrap_err().0, "exceed natoms = 10");
     // A tag above max_tag.
-    let mut big = slice_rows(&all, 5, 6);
-    big.tag[0] = header(10).max_tag + 1;
+    let mut big = slice_rows(&all, 5, 6).to_vec();
+    big[0] = (header(10).max_tag + 1) as f64;
     assert_contains(&w.write_rows(&big).unwrap_err().0, "exceeds max_tag");
     // Rejected blocks were not counted: the rest still completes the file.
-    w.write_rows(&slice_rows(&all, 5, 10)).unwrap();
+    w.write_rows(slice_rows(&all, 5, 10)).unwrap();
     w.finish().unwrap();
     let r = RestartReader::open(&path).unwrap();
-    let mut rows = ParticleRows::default();
+    let mut rows = Vec::new();
     r.read_rows(0, 10, &mut rows).unwrap();
     assert_rows_bit_exact(&rows, &all);
 
@@ -520,51 +477,41 @@ fn open_inconsistent_restarts() {
     let p = crafted(&dir, "short-u.h5", |f| {
         let g = f.group("particles").unwrap();
         g.unlink("u").unwrap();
-        g.new_dataset::<f64>().shape(99).create("u").unwrap();
+        checked(&g, "u", &[99], 0.0).unwrap();
     });
-    assert_contains(
-        &open_err(&p),
-        "dataset 'particles/u' should have shape [100], found [99]",
-    );
+    assert_contains(&open_err(&p), "dataset 'particles/u' should have 100 rows of at most 16 values, found shape [99]");
 
     let p = crafted(&dir, "short-r.h5", |f| {
         let g = f.group("particles").unwrap();
-        g.unlink("r").unwrap();
-        g.new_dataset::<f64>().shape((50, 3)).create("r").unwrap();
+        g.unlink("x").unwrap();
+        checked(&g, "x", &[50, 3], 0.0).unwrap();
     });
-    assert_contains(
-        &open_err(&p),
-        "dataset 'particles/r' should have shape [100, 3], found [50, 3]",
-    );
+    assert_contains(&open_err(&p), "dataset 'particles/x' should have 100 rows of at most 16 values, found shape [50, 3]");
 
-    let p = crafted(&dir, "no-tag.h5", |f| {
-        f.group("particles").unwrap().unlink("tag").unwrap()
-    });
-    assert_contains(&open_err(&p), "missing dataset 'particles/tag'");
+    let p = crafted(&dir, "no-tag.h5", |f| f.group("particles").unwrap().unlink("id").unwrap());
+    assert_contains(&open_err(&p), "missing dataset 'particles/id' of a listed particle column");
 
     let p = crafted(&dir, "no-particles.h5", |f| f.unlink("particles").unwrap());
-    assert_contains(
-        &open_err(&p),
-        "missing dataset 'particles/tag' ('/particles' does not exist)",
-    );
+    assert_contains(&open_err(&p), "missing dataset 'particles/columns' ('/particles' does not exist)");
 
     let p = crafted(&dir, "float-tags.h5", |f| {
         let g = f.group("particles").unwrap();
-        g.unlink("tag").unwrap();
-        g.new_dataset::<f64>().shape(100).create("tag").unwrap();
+        g.unlink("id").unwrap();
+        checked(&g, "id", &[100], 0.0).unwrap();
     });
-    assert_contains(
-        &open_err(&p),
-        "dataset 'particles/tag' should be of type u64, found f64",
-    );
+    assert_contains(&open_err(&p), "lack the integer column 'id'");
+
+    let p = crafted(&dir, "unchecked.h5", |f| {
+        let g = f.group("particles").unwrap();
+        g.unlink("u").unwrap();
+        g.new_dataset::<f64>().shape(100).create("u").unwrap();
+    });
+    assert_contains(&open_err(&p), "dataset 'particles/u' has no checksum (Fletcher32 filter)");
 
     let p = crafted(&dir, "masses.h5", |f| {
         let g = f.group("types").unwrap();
         g.unlink("mass").unwrap();
-        g.new_dataset_builder()
-            .with_data(&[1.0f64, 2.0][..])
-            .create("mass")
-            .unwrap();
+        checked(&g, "mass", &[2], 1.0).unwrap().write_raw(&[1.0f64, 2.0]).unwrap();
     });
     assert_contains(
         &open_err(&p),
@@ -574,13 +521,16 @@ fn open_inconsistent_restarts() {
     let p = crafted(&dir, "newer.h5", |f| {
         f.attr("format_version")
             .unwrap()
-            .write_scalar(&2u32)
+            .write_scalar(&3u32)
             .unwrap();
     });
     assert_contains(
         &open_err(&p),
-        "format_version 2 is newer than this gendpde supports",
+        "format_version 3 is newer than this gendpde supports",
     );
+
+    let p = crafted(&dir, "older.h5", |f| f.attr("format_version").unwrap().write_scalar(&1u32).unwrap());
+    assert_contains(&open_err(&p), "format_version 1 was written by an older gendpde");
 
     let p = crafted(&dir, "no-step.h5", |f| f.delete_attr("step").unwrap());
     assert_contains(&open_err(&p), "missing root attribute 'step'");
@@ -615,8 +565,19 @@ fn open_inconsistent_restarts() {
     assert_contains(&open_err(&p), "inconsistent header: box bounds");
 }
 
+/// Reads every row of a restart (in blocks of 16).
+fn read_all_rows(r: &RestartReader) -> Result<Vec<f64>, RestartError> {
+    let (mut rows, mut got, mut start) = (Vec::new(), Vec::new(), 0);
+    while start < r.header().natoms {
+        r.read_rows(start, 16, &mut rows)?;
+        got.extend_from_slice(&rows);
+        start += 16;
+    }
+    Ok(got)
+}
+
 #[test]
-fn flipped_bytes_never_panic() {
+fn flipped_bits_are_refused_or_harmless() {
     let dir = TempDir::new("fuzz");
     let path = dir.join("restart.h5");
     // Few particles, so that metadata makes up much of the file.
@@ -625,45 +586,71 @@ fn flipped_bytes_never_panic() {
     let good = fs::read(&path).unwrap();
     let bad = dir.join("bad.h5");
     let mut g = Lcg(0x5eed);
-    let (mut opened, mut identical) = (0, 0);
-    let nvar = 200;
+    let (mut refused, mut harmless) = (0, 0);
+    let nvar = 1000;
     for variant in 0..nvar {
         let mut bytes = good.clone();
-        let flips = 1 + g.below(4);
-        for _ in 0..flips {
-            // Half the flips land in the first 4 KiB (superblock, root
-            // group, attributes), the rest anywhere.
-            let span = if variant % 2 == 0 {
-                bytes.len().min(4096)
-            } else {
-                bytes.len()
-            };
-            let at = g.below(span as u64) as usize;
-            bytes[at] ^= 1 << g.below(8);
-        }
+        // Half the flips land in the first 4 KiB (superblock, root group,
+        // attributes), the rest anywhere.
+        let span = if variant % 2 == 0 { bytes.len().min(4096) } else { bytes.len() };
+        let at = g.below(span as u64) as usize;
+        bytes[at] ^= 1 << g.below(8);
         fs::write(&bad, &bytes).unwrap();
-        if let Ok(r) = RestartReader::open(&bad) {
-            opened += 1;
-            let mut rows = ParticleRows::default();
-            let mut got = ParticleRows::default();
-            let mut ok = true;
-            let mut start = 0;
-            while start < r.header().natoms.min(1000) {
-                match r.read_rows(start, 16, &mut rows) {
-                    Ok(()) => append_rows(&mut got, &rows),
-                    Err(_) => {
-                        ok = false;
-                        break;
-                    }
-                }
-                start += 16;
+        match RestartReader::open(&bad).and_then(|r| read_all_rows(&r).map(|rows| (r, rows))) {
+            Err(e) => {
+                assert_contains(&e.0, &bad.display().to_string());
+                refused += 1;
             }
-            if ok && rows_bit_identical(&got, &all) && r.header() == &header(40) {
-                identical += 1;
+            Ok((r, rows)) => {
+                // accepted: then nothing the continuation uses has changed
+                if bits(&rows) != bits(&all) {
+                    let k = rows.iter().zip(&all).position(|(a, b)| a.to_bits() != b.to_bits());
+                    let k = k.unwrap_or(0);
+                    panic!("flip at byte {at} (bit {:#x}) of {} changed value {k}: {:e} -> {:e} ({:#x} -> {:#x})", bytes[at] ^ good[at], bytes.len(), all[k], rows[k], all[k].to_bits(), rows[k].to_bits());
+                }
+                assert_header_bit_exact(r.header(), &header(40));
+                assert_rows_bit_exact(&rows, &all);
+                harmless += 1;
             }
         }
     }
-    eprintln!(
-        "flipped-byte variants: {opened} of {nvar} opened, {identical} read back unchanged"
-    );
+    eprintln!("flipped-bit variants: {refused} of {nvar} refused, {harmless} read back unchanged (bits outside the data)");
+}
+
+/// Writes a restart whose row `k` has `edit` applied.
+fn with_row(dir: &TempDir, name: &str, k: usize, edit: impl FnOnce(&mut [f64])) -> PathBuf {
+    let path = dir.join(name);
+    let mut all = particles(10, 9);
+    edit(&mut all[k * W..(k + 1) * W]);
+    write_restart(&path, &header(10), &all, &[10]);
+    path
+}
+
+fn read_err(path: &Path) -> String {
+    let r = RestartReader::open(path).unwrap();
+    let e = read_all_rows(&r).unwrap_err().0;
+    assert_contains(&e, &path.display().to_string());
+    e
+}
+
+#[test]
+fn rows_are_validated_like_a_data_file() {
+    let dir = TempDir::new("validate");
+    assert_contains(&read_err(&with_row(&dir, "mass.h5", 3, |r| r[2] = -1.0)), "particle row 3: mass -1: expected a positive mass");
+    assert_contains(&read_err(&with_row(&dir, "type.h5", 4, |r| r[1] = 4.0)), "particle row 4: type 4 is outside 1..=3");
+    assert_contains(&read_err(&with_row(&dir, "zero-type.h5", 0, |r| r[1] = 0.0)), "type 0 is outside 1..=3");
+    assert_contains(&read_err(&with_row(&dir, "nan.h5", 5, |r| r[9] = f64::NAN)), "particle row 5: column 'u' holds [NaN]; expected finite values");
+    assert_contains(&read_err(&with_row(&dir, "far.h5", 6, |r| r[3] = 1e9)), "lies far outside the box");
+    assert_contains(&read_err(&with_row(&dir, "cell.h5", 7, |r| r[16] = 11.0)), "particle row 7: cell [");
+    // duplicate tags: the writer refuses them, so the file is edited afterwards
+    let p = crafted(&dir, "dup.h5", |f| {
+        let d = f.dataset("particles/id").unwrap();
+        let mut ids = d.read_raw::<i64>().unwrap();
+        ids[5] = ids[4];
+        d.write_raw(&ids).unwrap();
+    });
+    let r = RestartReader::open(&p).unwrap();
+    assert_contains(&read_all_rows(&r).unwrap_err().0, "particle row 5: id 13 after id 13: expected increasing ids");
+    let p = crafted(&dir, "mass-type.h5", |f| f.dataset("types/mass").unwrap().write_raw(&[1.0, -2.0, f64::NAN][..]).unwrap());
+    assert_contains(&open_err(&p), "a per-type mass of -2");
 }
