@@ -168,3 +168,42 @@ fn a_full_disk_during_output_stops_cleanly_with_earlier_frames_intact() {
     let summary = gendpde_io::check_h5md(&path).unwrap_or_else(|e| panic!("earlier frames lost: {}", e.0));
     assert!(summary.frames >= 3, "frames before the disk filled: {}", summary.frames);
 }
+
+/// Single-bit flips anywhere in a checkpoint written by a run: `read_restart` either
+/// refuses the file with a message naming it, or continues exactly as from the intact
+/// file; it never panics and never runs on silently changed data.
+#[test]
+fn flipped_bits_in_a_restart_are_refused_or_harmless() {
+    use proptest::prelude::*;
+    let dir = tempdir("flips");
+    straight_script(&dir);
+    let mut args = vec!["run", "in.straight", "-log", "none"];
+    args.extend(VARS);
+    args.push("50");
+    assert!(gendpde(&args, &dir).status.success());
+    let good = std::fs::read(dir.join("ck.50.h5")).unwrap();
+    std::fs::write(dir.join("in.flip"), "read_restart flip.h5\nthermo_modify format float %.17g\nrun 2\n").unwrap();
+    std::fs::write(dir.join("flip.h5"), &good).unwrap();
+    let reference = gendpde(&["run", "in.flip", "-log", "none"], &dir);
+    assert!(reference.status.success());
+    let rows = |o: &Output| String::from_utf8_lossy(&o.stdout).lines().filter(|l| l.trim_start().starts_with(|c: char| c.is_ascii_digit())).map(String::from).collect::<Vec<_>>();
+    let (refused, harmless) = (std::cell::Cell::new(0), std::cell::Cell::new(0));
+    let config = ProptestConfig { cases: 48, failure_persistence: None, ..ProptestConfig::default() };
+    proptest!(config, |(at in 0..good.len(), bit in 0u8..8)| {
+        let mut bytes = good.clone();
+        bytes[at] ^= 1 << bit;
+        std::fs::write(dir.join("flip.h5"), &bytes).unwrap();
+        let out = gendpde(&["run", "in.flip", "-log", "none"], &dir);
+        let err = String::from_utf8_lossy(&out.stderr);
+        prop_assert!(out.status.code() == Some(0) || out.status.code() == Some(1), "byte {at} bit {bit}: exit {:?}: {err}", out.status);
+        if out.status.success() {
+            prop_assert_eq!(rows(&out), rows(&reference), "byte {} bit {}: accepted with changed results", at, bit);
+            harmless.set(harmless.get() + 1);
+        } else {
+            prop_assert!(err.contains("in.flip:1: read_restart:") && err.contains("flip.h5"), "byte {at} bit {bit}: {err}");
+            prop_assert!(!err.contains("panicked") && !err.contains("HDF5-DIAG"), "byte {at} bit {bit}: {err}");
+            refused.set(refused.get() + 1);
+        }
+    });
+    eprintln!("{} flips refused, {} harmless", refused.get(), harmless.get());
+}
