@@ -1,10 +1,16 @@
-//! Per-particle output written by rank 0: particles arrive in blocks of consecutive tags,
-//! sorted by tag, so rank 0 never holds more than one block (BLOCK rows).
+//! Collectives over the particles of all ranks: their count, and their rows for output
+//! written by rank 0, which arrive in blocks of consecutive tags, sorted by tag, so rank 0
+//! never holds more than one block (BLOCK rows).
 
 use gendpde_integrators::System;
 
 /// Tags per block gathered on rank 0.
 pub const BLOCK: u64 = 1 << 20;
+
+/// The number of particles on all ranks (every rank must call).
+pub fn count(sys: &System) -> u64 {
+    sys.comm.transport().all_gather(&[sys.store.nlocal as u64]).iter().sum()
+}
 
 /// Calls `emit` on rank 0 with the rows of all particles in tag order, one block at a
 /// time. `row(i, buf)` appends `width` values for owned particle i, the tag first.

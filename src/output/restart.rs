@@ -3,8 +3,8 @@
 //! build positions, the style commands), so that a run continued from a restart is
 //! bit-identical to the uninterrupted run. Files are written to FILE.tmp and renamed.
 
-use crate::gather::sorted_rows;
-use crate::sim::Sim;
+use crate::base::gather::sorted_rows;
+use crate::model::sim::Sim;
 use gendpde_engine::{Comm, Domain, ProcGrid, Transport};
 use gendpde_integrators::System;
 use gendpde_io::{ParticleRows, RestartHeader, RestartReader, RestartWriter};
@@ -21,7 +21,7 @@ pub fn write(sim: &Sim, file: &str) -> Result<(), String> {
         step: sys.step,
         time: sys.time,
         dt: sim.dt,
-        natoms: crate::thermo::Observables::measure(sys).atoms as u64,
+        natoms: crate::output::thermo::Observables::measure(sys).atoms as u64,
         max_tag: sim.max_tag,
         ntypes: sim.ntypes,
         lo: sys.domain.lo,
@@ -79,7 +79,7 @@ pub fn read(sim: &mut Sim, file: &str, transport: Box<dyn Transport>) -> Result<
     let mut rows = ParticleRows::default();
     let mut start = 0;
     while start < h.natoms {
-        reader.read_rows(start, crate::gather::BLOCK, &mut rows).map_err(|e| e.0)?;
+        reader.read_rows(start, crate::base::gather::BLOCK, &mut rows).map_err(|e| e.0)?;
         for k in 0..rows.len() {
             if !sys.comm.keeps(&sys.domain, rows.r[k]) {
                 continue;
@@ -94,7 +94,7 @@ pub fn read(sim: &mut Sim, file: &str, transport: Box<dyn Transport>) -> Result<
             s.cell[i] = rows.cell[k];
             s.r_build[i] = rows.r_at_build[k];
         }
-        start += crate::gather::BLOCK;
+        start += crate::base::gather::BLOCK;
     }
     sys.step = h.step;
     sys.time = h.time;
