@@ -136,10 +136,10 @@ impl Interpreter {
             "log" => output::log(&mut self.out, self.mode, a)?,
             "echo" => output::echo(a)?,
             "variable" => self.vars.define(cmd)?,
-            "timestep" => run::timestep(sim, a)?,
-            "neighbor" => run::neighbor(sim, a)?,
-            "neigh_modify" => run::neigh_modify(sim, a)?,
-            "reset_timestep" => run::reset_timestep(sim, a)?,
+            "timestep" => setup::timestep(sim, a)?,
+            "neighbor" => setup::neighbor(sim, a)?,
+            "neigh_modify" => setup::neigh_modify(sim, a)?,
+            "reset_timestep" => setup::reset_timestep(sim, a)?,
             // LAMMPS communication settings: gendpde always exchanges what its styles
             // need (ghost velocities included) and uses full lists; accepted for
             // compatibility.

@@ -1,6 +1,5 @@
-//! Run control: `run N` (set up the dynamics, step, write the outputs that are due and
-//! print LAMMPS's summary) and the run settings timestep, neighbor, neigh_modify and
-//! reset_timestep.
+//! The `run` command: set up the dynamics, step, write the outputs that are due and
+//! print LAMMPS's summary.
 
 use crate::base::args::Args;
 use crate::base::gather;
@@ -18,52 +17,6 @@ use gendpde_integrators::{Physics, SetupError, Snapshot};
 use gendpde_io::{Command, ScriptError, Variables};
 use indicatif::ProgressBar;
 use std::time::Instant;
-
-/// `timestep DT`.
-pub fn timestep(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
-    sim.dt = a.positive("the timestep")?;
-    a.done()
-}
-
-/// `neighbor SKIN bin`.
-pub fn neighbor(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
-    sim.skin = a.non_negative("the skin distance")?;
-    match a.word("the neighbour style (bin)")? {
-        "bin" | "nsq" => a.done(),
-        s => Err(a.err(format!("unknown neighbour style '{s}'; known: bin"))),
-    }
-}
-
-/// `neigh_modify every N delay N check yes|no [once no]`: the list rebuild rules.
-pub fn neigh_modify(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
-    if a.remaining() == 0 {
-        return Err(a.err("missing argument: expected every, delay, check or once"));
-    }
-    while a.remaining() > 0 {
-        match a.word("a keyword")? {
-            "every" => sim.rebuild.every = a.u64("the rebuild interval")?.max(1),
-            "delay" => sim.rebuild.delay = a.u64("the rebuild delay")?,
-            "check" => sim.rebuild.check = a.yes_no("check")?,
-            "once" => {
-                if a.yes_no("once")? {
-                    return Err(a.err("once yes is not supported: lists must follow the particles"));
-                }
-            }
-            k => return Err(a.err(format!("unknown keyword '{k}'; known: every, delay, check, once"))),
-        }
-    }
-    Ok(())
-}
-
-/// `reset_timestep N`: positions and lists stay; the build step follows the clock.
-pub fn reset_timestep(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
-    let n = a.u64("the new step number")?;
-    a.done()?;
-    let sys = sim.system.as_mut().ok_or_else(|| a.err("reset_timestep before create_box"))?;
-    sys.last_build = sys.last_build.saturating_sub(sys.step).saturating_add(n).min(n);
-    sys.step = n;
-    Ok(())
-}
 
 /// Builds the dynamics of the current styles and sets the system up for it (lists,
 /// densities, forces); errors name `cmd`.

@@ -1,5 +1,6 @@
-//! Setup commands: units, dimension, boundary, atom_style, lattice, region, processors,
-//! create_box, create_atoms, mass and set.
+//! Setup and settings: units, dimension, boundary, atom_style, lattice, region,
+//! processors, create_box, create_atoms, mass, set, timestep, neighbor, neigh_modify and
+//! reset_timestep.
 
 use crate::base::args::Args;
 use crate::base::groups;
@@ -302,5 +303,51 @@ pub fn set(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
             k => return Err(a.err(format!("unknown set keyword '{k}'; known: theta, dpd/theta, u, type, type/fraction"))),
         }
     }
+    Ok(())
+}
+
+/// `timestep DT`.
+pub fn timestep(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
+    sim.dt = a.positive("the timestep")?;
+    a.done()
+}
+
+/// `neighbor SKIN bin`.
+pub fn neighbor(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
+    sim.skin = a.non_negative("the skin distance")?;
+    match a.word("the neighbour style (bin)")? {
+        "bin" | "nsq" => a.done(),
+        s => Err(a.err(format!("unknown neighbour style '{s}'; known: bin"))),
+    }
+}
+
+/// `neigh_modify every N delay N check yes|no [once no]`: the list rebuild rules.
+pub fn neigh_modify(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
+    if a.remaining() == 0 {
+        return Err(a.err("missing argument: expected every, delay, check or once"));
+    }
+    while a.remaining() > 0 {
+        match a.word("a keyword")? {
+            "every" => sim.rebuild.every = a.u64("the rebuild interval")?.max(1),
+            "delay" => sim.rebuild.delay = a.u64("the rebuild delay")?,
+            "check" => sim.rebuild.check = a.yes_no("check")?,
+            "once" => {
+                if a.yes_no("once")? {
+                    return Err(a.err("once yes is not supported: lists must follow the particles"));
+                }
+            }
+            k => return Err(a.err(format!("unknown keyword '{k}'; known: every, delay, check, once"))),
+        }
+    }
+    Ok(())
+}
+
+/// `reset_timestep N`: positions and lists stay; the build step follows the clock.
+pub fn reset_timestep(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
+    let n = a.u64("the new step number")?;
+    a.done()?;
+    let sys = sim.system.as_mut().ok_or_else(|| a.err("reset_timestep before create_box"))?;
+    sys.last_build = sys.last_build.saturating_sub(sys.step).saturating_add(n).min(n);
+    sys.step = n;
     Ok(())
 }
