@@ -111,6 +111,14 @@ impl Interpreter {
             "create_atoms" => setup::create_atoms(sim, a)?,
             "mass" => setup::mass(sim, a)?,
             "set" => setup::set(sim, a)?,
+            "timestep" => setup::timestep(sim, a)?,
+            "neighbor" => setup::neighbor(sim, a)?,
+            "neigh_modify" => setup::neigh_modify(sim, a)?,
+            "reset_timestep" => setup::reset_timestep(sim, a)?,
+            // LAMMPS communication settings: gendpde always exchanges what its styles
+            // need (ghost velocities included) and uses full lists; accepted for
+            // compatibility.
+            "comm_modify" | "newton" => {}
             "group" => group::group(sim, a)?,
             "velocity" => velocity::velocity(sim, a)?,
             "read_data" => particles::read_data(sim, a)?,
@@ -136,14 +144,6 @@ impl Interpreter {
             "log" => output::log(&mut self.out, self.mode, a)?,
             "echo" => output::echo(a)?,
             "variable" => self.vars.define(cmd)?,
-            "timestep" => setup::timestep(sim, a)?,
-            "neighbor" => setup::neighbor(sim, a)?,
-            "neigh_modify" => setup::neigh_modify(sim, a)?,
-            "reset_timestep" => setup::reset_timestep(sim, a)?,
-            // LAMMPS communication settings: gendpde always exchanges what its styles
-            // need (ghost velocities included) and uses full lists; accepted for
-            // compatibility.
-            "comm_modify" | "newton" => {}
             "run" => run::run(sim, outputs, &mut self.out, &self.vars, self.mode, a)?,
             other => return Err(a.err(format!("unknown command '{other}' (see docs/commands/ for the commands gendpde knows)")).into()),
         }
