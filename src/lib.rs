@@ -1,29 +1,18 @@
 //! gendpde: Generalised energy-conserving Dissipative Particle Dynamics driven by
 //! LAMMPS-style input scripts. The binary is a thin CLI over [`Interpreter`].
+//!
+//! Layers, each importing only those before it: `base` (shared types) <- `styles` (pair,
+//! fix and compute styles) <- `model` (what a script defined) <- `output` (screen, log,
+//! thermo, dumps, restart files) <- `commands` (the interpreter) <- the CLI (main.rs).
 
-mod args;
-mod ave_time;
-pub mod commands;
-mod computes;
-mod data;
-mod dump;
-mod gather;
-mod groups;
-mod h5md_out;
-mod restart;
-pub mod lattice;
+mod base;
+mod commands;
 pub mod lth_macro;
-mod memory;
-pub mod output;
-pub mod run;
-pub mod sim;
+mod model;
+mod output;
 pub mod styles;
-pub mod thermo;
-pub mod units;
-mod pairwise;
-mod rdf;
-mod velocity;
 
-pub use commands::{AppError, Interpreter, Mode};
-pub use output::Output;
-pub use thermo::Observables;
+pub use base::script::{AppError, Mode};
+pub use commands::Interpreter;
+pub use output::console::Output;
+pub use output::thermo::Observables;

@@ -285,11 +285,11 @@ fn lth_eos_fix_conserves_energy_and_tabulates() {
         loc: gendpde_io::Location { file: "lth.in".into(), line: 7 },
     };
     let lth = Lth::new(11.008, 29.345, 1.0112, 0.11606, 0.011054, 1.0);
-    let analytic = gendpde::styles::parse_fix(&cmd("eos all eos/lth 11.008 29.345 1.0112 0.11606 0.011054 1.0"), 1.0, &[]).unwrap();
-    let table = gendpde::styles::parse_fix(&cmd("eos all eos/lth 11.008 29.345 1.0112 0.11606 0.011054 1.0 table 0.005 0.03 61 0.5 1.5 65"), 1.0, &[]).unwrap();
+    let analytic = gendpde::styles::fix::parse_fix(&cmd("eos all eos/lth 11.008 29.345 1.0112 0.11606 0.011054 1.0"), 1.0, &[]).unwrap();
+    let table = gendpde::styles::fix::parse_fix(&cmd("eos all eos/lth 11.008 29.345 1.0112 0.11606 0.011054 1.0 table 0.005 0.03 61 0.5 1.5 65"), 1.0, &[]).unwrap();
     // the table within the largest errors it measured against the model over its grid
     for fix in [analytic, table] {
-        let gendpde::styles::FixStyle::Eos(model) = fix.style else { panic!("an EOS fix") };
+        let gendpde::styles::fix::FixStyle::Eos(model) = fix.style else { panic!("an EOS fix") };
         let d: std::collections::HashMap<_, _> = model.describe(Some(0.0121), None, 0.93).unwrap().into_iter().collect();
         let (u, pi) = (lth.u(0.0121, 0.93), lth.pressure(0.0121, 0.93));
         let (tol_u, tol_pi) = (d.get("table_error_u").copied().unwrap_or(1e-15), d.get("table_error_pn2").copied().unwrap_or(1e-15));
@@ -297,7 +297,7 @@ fn lth_eos_fix_conserves_energy_and_tabulates() {
         assert!(tol_u < 1e-3 && tol_pi < 1e-3, "table errors {tol_u} {tol_pi}");
         assert!((d["u"] - u).abs() <= tol_u * u.abs() && (d["pi"] - pi).abs() <= tol_pi * pi.abs(), "{d:?}");
     }
-    let e = gendpde::styles::parse_fix(&cmd("eos all eos/lth 11.008 29.345 0.0 0.11606 0.011054 1.0"), 1.0, &[]).unwrap_err().to_string();
+    let e = gendpde::styles::fix::parse_fix(&cmd("eos all eos/lth 11.008 29.345 0.0 0.11606 0.011054 1.0"), 1.0, &[]).unwrap_err().to_string();
     assert!(e.contains("lth.in:7") && e.contains("kappa_T"), "{e}");
 
     let ((e1, _, _), (e2, t2, _)) = (lth_energy_error("", "", 0.004), lth_energy_error("", "", 0.002));

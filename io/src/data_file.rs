@@ -22,7 +22,7 @@ use std::fmt::Write as _;
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
 
-use crate::script::{Location, ScriptError};
+use crate::command::{Location, ScriptError};
 
 /// Most atom types a data file may declare; the masses table is allocated
 /// up front, so an absurd count in a corrupt header must not reach it.

@@ -8,8 +8,6 @@
 use std::cell::RefCell;
 use std::collections::HashMap;
 
-use crate::variables::Variables;
-
 /// Deepest chain of `v_name` references followed before giving up.
 const MAX_VARIABLE_DEPTH: usize = 64;
 
@@ -17,12 +15,21 @@ const MAX_VARIABLE_DEPTH: usize = 64;
 /// counted across variable references.
 const MAX_NESTING: usize = 256;
 
+/// The variables an expression reads as `v_name` (the store of the `variable` command).
+pub trait VariableLookup {
+    /// The expression of equal-style variable `name`; None for other styles and unknown
+    /// names.
+    fn expression(&self, name: &str) -> Option<&str>;
+    /// The value of any other variable as text (an error for unknown names).
+    fn text(&self, name: &str, resolve: &dyn Fn(&str) -> Option<f64>) -> Result<String, String>;
+}
+
 /// Evaluates an equal-style expression. `v_name` reads another variable;
 /// any other unknown identifier (`step`, `c_ID[2]`, ...) is looked up with
 /// `resolve`.
 pub fn evaluate(
     text: &str,
-    vars: &Variables,
+    vars: &dyn VariableLookup,
     resolve: &dyn Fn(&str) -> Option<f64>,
 ) -> Result<f64, String> {
     evaluate_nested(text, vars, resolve, 0, 0, &Memo::default())
@@ -35,11 +42,34 @@ pub fn evaluate(
 /// ... takes time exponential in the length of the chain.
 pub(crate) type Memo = RefCell<HashMap<String, f64>>;
 
+/// The numeric value of a variable as read by `v_name` in an expression
+/// `depth` variables and `nesting` levels deep; `memo` holds the values
+/// of the variables already read by the same top-level evaluation.
+pub(crate) fn variable(
+    vars: &dyn VariableLookup,
+    name: &str,
+    resolve: &dyn Fn(&str) -> Option<f64>,
+    depth: usize,
+    nesting: usize,
+    memo: &Memo,
+) -> Result<f64, String> {
+    match vars.expression(name) {
+        Some(text) => evaluate_nested(text, vars, resolve, depth + 1, nesting, memo),
+        None => {
+            let text = vars.text(name, resolve)?;
+            match text.trim().parse::<f64>() {
+                Ok(x) if x.is_finite() => Ok(x),
+                _ => Err(format!("variable '{name}' is not numeric: '{text}'")),
+            }
+        }
+    }
+}
+
 /// [`evaluate`] for an expression reached through `depth` variable
 /// references from inside `nesting` levels of enclosing expressions.
-pub(crate) fn evaluate_nested(
+fn evaluate_nested(
     text: &str,
-    vars: &Variables,
+    vars: &dyn VariableLookup,
     resolve: &dyn Fn(&str) -> Option<f64>,
     depth: usize,
     nesting: usize,
@@ -164,7 +194,7 @@ struct Parser<'a> {
     tokens: Vec<Token>,
     pos: usize,
     nesting: usize,
-    vars: &'a Variables,
+    vars: &'a dyn VariableLookup,
     resolve: &'a dyn Fn(&str) -> Option<f64>,
     depth: usize,
     memo: &'a Memo,
@@ -252,9 +282,7 @@ impl Parser<'_> {
                 if let Some(&x) = self.memo.borrow().get(var) {
                     return Ok(x);
                 }
-                let x = self
-                    .vars
-                    .numeric(var, self.resolve, self.depth, self.nesting, self.memo)?;
+                let x = variable(self.vars, var, self.resolve, self.depth, self.nesting, self.memo)?;
                 self.memo.borrow_mut().insert(var.to_string(), x);
                 Ok(x)
             }
@@ -366,6 +394,7 @@ fn call(name: &str, args: &[f64]) -> Result<f64, String> {
 mod tests {
     use super::*;
     use crate::format::format_g;
+    use crate::variables::Variables;
 
     fn eval(text: &str) -> Result<f64, String> {
         let thermo = |k: &str| match k {
@@ -508,7 +537,7 @@ mod tests {
 
     #[test]
     fn variable_recursion_is_detected() {
-        use crate::script::{Command, Location};
+        use crate::command::{Command, Location};
         let mut vars = Variables::new();
         let define = |vars: &mut Variables, name: &str, text: &str| {
             let cmd = Command {

@@ -2,6 +2,7 @@
 //! variable substitution, the variable store, an equal-style expression
 //! evaluator, C-printf-compatible number formatting and LAMMPS data files.
 
+pub mod command;
 pub mod data_file;
 pub mod expr;
 pub mod format;
@@ -15,5 +16,6 @@ pub use expr::evaluate;
 pub use format::{format_g, format_printf};
 pub use h5md::{check_h5md, repair_h5md, H5mdError, H5mdField, H5mdSummary, H5mdWriter};
 pub use restart::{row_width, ColumnSpec, RestartError, RestartHeader, RestartReader, RestartWriter};
-pub use script::{Command, Location, ScriptError, ScriptReader};
+pub use command::{Command, Location, ScriptError};
+pub use script::ScriptReader;
 pub use variables::Variables;

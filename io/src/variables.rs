@@ -2,9 +2,9 @@
 
 use std::collections::HashMap;
 
-use crate::expr;
+use crate::command::{Command, ScriptError};
+use crate::expr::{self, VariableLookup};
 use crate::format::format_g;
-use crate::script::{Command, ScriptError};
 
 /// Named script variables of styles `index`, `loop`, `equal` and `string`.
 #[derive(Clone, Debug, Default)]
@@ -156,8 +156,7 @@ impl Variables {
                 current.to_string()
             }),
             Some(Var::Str(s)) => Ok(s.clone()),
-            Some(Var::Equal(_)) => self
-                .numeric(name, resolve, 0, 0, &expr::Memo::default())
+            Some(Var::Equal(_)) => expr::variable(self, name, resolve, 0, 0, &expr::Memo::default())
                 .map(|x| format_g(x, 15))
                 .map_err(|e| format!("variable '{name}': {e}")),
         }
@@ -167,30 +166,18 @@ impl Variables {
     pub fn contains(&self, name: &str) -> bool {
         self.vars.contains_key(name)
     }
+}
 
-    /// The numeric value of a variable as read by `v_name` in an expression
-    /// `depth` variables and `nesting` levels deep; `memo` holds the values
-    /// of the variables already read by the same top-level evaluation.
-    pub(crate) fn numeric(
-        &self,
-        name: &str,
-        resolve: &dyn Fn(&str) -> Option<f64>,
-        depth: usize,
-        nesting: usize,
-        memo: &expr::Memo,
-    ) -> Result<f64, String> {
+impl VariableLookup for Variables {
+    fn expression(&self, name: &str) -> Option<&str> {
         match self.vars.get(name) {
-            Some(Var::Equal(text)) => {
-                expr::evaluate_nested(text, self, resolve, depth + 1, nesting, memo)
-            }
-            _ => {
-                let text = self.value(name, resolve)?;
-                match text.trim().parse::<f64>() {
-                    Ok(x) if x.is_finite() => Ok(x),
-                    _ => Err(format!("variable '{name}' is not numeric: '{text}'")),
-                }
-            }
+            Some(Var::Equal(text)) => Some(text),
+            _ => None,
         }
+    }
+
+    fn text(&self, name: &str, resolve: &dyn Fn(&str) -> Option<f64>) -> Result<String, String> {
+        self.value(name, resolve)
     }
 }
 
@@ -231,7 +218,7 @@ fn parse_loop(args: &[String]) -> Result<Var, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::script::Location;
+    use crate::command::Location;
 
     fn cmd(line: &str) -> Command {
         let mut words = line.split_whitespace().map(str::to_string);

@@ -376,7 +376,7 @@ WARNING: Communication cutoff is shorter than a bond length based estimate (src/
 Loop time of 14.9308 on 1 procs for 2000 steps with 3000 atoms
 ";
 
-    /// gendpde's stdout uses the same layout (src/thermo.rs: integers `%10d `, floats `%.8g`
+    /// gendpde's stdout uses the same layout (src/output/thermo.rs: integers `%10d `, floats `%.8g`
     /// in 14 columns, headings centred).
     const GENDPDE_OUT: &str = "\
 Reading data file ...

@@ -10,7 +10,9 @@
 //! pxtot, pytot, pztot = total momentum. Sums are decomposition-independent (exact_sums).
 //! With `thermo_modify norm yes` (the lj default) pe, ke and etotal are per particle.
 
-use crate::units::Units;
+use crate::model::sim::Sim;
+use crate::output::schedule::{Frame, RunOutput, Span};
+use crate::styles::compute::{self, Totals};
 use gendpde_engine::exact_sums;
 use gendpde_integrators::System;
 use gendpde_io::format_printf;
@@ -28,6 +30,33 @@ impl Default for ThermoConfig {
     fn default() -> Self {
         let keywords = ["step", "temp", "tint", "pe", "ke", "etotal", "press"].map(String::from).to_vec();
         Self { every: 0, keywords, norm: true, float_format: None }
+    }
+}
+
+impl RunOutput for ThermoConfig {
+    /// At the setup, every `every` steps and at the last step of the run.
+    fn next_step(&self, step: u64, run: Span) -> Option<u64> {
+        if step == run.first {
+            return Some(step);
+        }
+        let periodic = if self.every > 0 { step.next_multiple_of(self.every) } else { run.last };
+        (step <= run.last).then_some(periodic.min(run.last))
+    }
+
+    /// One value line on the screen and in the log.
+    fn write(&mut self, f: &mut Frame) -> Result<(), String> {
+        let ctx = ThermoContext::new(f.sim, f.sys, self.norm, f.sys.step - f.run.first, f.cpu);
+        let resolve = |name: &str| ctx.keyword(name);
+        let mut values = Vec::with_capacity(self.keywords.len());
+        for k in &self.keywords {
+            let v = match ctx.keyword(k) {
+                Some(v) => v,
+                None => gendpde_io::evaluate(k, f.vars, &resolve).map_err(|e| format!("thermo keyword {k}: {e}"))?,
+            };
+            values.push(v);
+        }
+        f.out.line(&value_line(&self.keywords, &values, self.float_format.as_deref()));
+        Ok(())
     }
 }
 
@@ -109,21 +138,20 @@ impl Observables {
 
 /// Context for one evaluation of thermo keywords.
 pub struct ThermoContext<'a> {
-    pub sys: &'a System,
-    pub obs: Observables,
-    pub norm: bool,
-    pub dt: f64,
-    pub energy0: Option<f64>,
-    pub elapsed: u64,
-    pub cpu: f64,
-    pub units: Units,
-    /// `pe` is the pair energy (LAMMPS's pairwise styles) instead of sum u (GenDPDE).
-    pub pe_is_pair: bool,
-    /// The `compute` definitions.
-    pub computes: &'a [crate::computes::Compute],
+    sim: &'a Sim,
+    sys: &'a System,
+    obs: Observables,
+    norm: bool,
+    elapsed: u64,
+    cpu: f64,
 }
 
-impl ThermoContext<'_> {
+impl<'a> ThermoContext<'a> {
+    /// Measures `sys` of `sim` (collective); `elapsed` steps and `cpu` seconds of the run.
+    pub fn new(sim: &'a Sim, sys: &'a System, norm: bool, elapsed: u64, cpu: f64) -> Self {
+        Self { sim, sys, obs: Observables::measure(sys), norm, elapsed, cpu }
+    }
+
     /// Value of a built-in keyword; None if the name is not one.
     pub fn keyword(&self, name: &str) -> Option<f64> {
         let o = &self.obs;
@@ -133,10 +161,10 @@ impl ThermoContext<'_> {
             "step" => self.sys.step as f64,
             "elapsed" => self.elapsed as f64,
             "time" => self.sys.time,
-            "dt" => self.dt,
+            "dt" => self.sim.dt,
             "cpu" => self.cpu,
             "atoms" => o.atoms,
-            "temp" => o.temperature(self.units.kb),
+            "temp" => o.temperature(self.sim.units.kb),
             "tint" => if o.atoms > 0.0 { o.theta / o.atoms } else { 0.0 },
             "nmean" => if o.atoms > 0.0 { o.n / o.atoms } else { 0.0 },
             "press" => o.pressure(),
@@ -146,12 +174,12 @@ impl ThermoContext<'_> {
             "pe" => per(self.potential()),
             "ke" => per(o.ke),
             "etotal" => per(self.potential() + o.ke),
-            "edrift" => match self.energy0 {
+            "edrift" => match self.sim.energy0 {
                 Some(e0) if e0 != 0.0 => (o.energy() - e0) / e0.abs(),
                 _ => 0.0,
             },
             "vol" => o.volume,
-            "density" => o.mass / self.units.mvv2e / o.volume,
+            "density" => o.mass / self.sim.units.mvv2e / o.volume,
             "lx" => l[0],
             "ly" => l[1],
             "lz" => l[2],
@@ -162,18 +190,19 @@ impl ThermoContext<'_> {
         })
     }
 
+    /// `pe`: the pair energy for LAMMPS's pairwise styles, sum u for GenDPDE.
     fn potential(&self) -> f64 {
-        if self.pe_is_pair { self.obs.epair } else { self.obs.u }
+        if self.sim.pe_is_pair() { self.obs.epair } else { self.obs.u }
     }
 
-    /// `c_ID[k]` of a compute (src/computes.rs) or `f_ID` of a `fix heat/reservoir`.
+    /// `c_ID[k]` of a compute (`styles::compute`) or `f_ID` of a `fix heat/reservoir`.
     fn compute(&self, name: &str) -> Option<f64> {
         if let Some(id) = name.strip_prefix("f_") {
             return self.reservoir_heat(id);
         }
         let o = &self.obs;
-        let totals = crate::computes::Totals { atoms: o.atoms, u: o.u, u_cond: o.u_cond, inv_theta: o.inv_theta };
-        crate::computes::value(self.computes, self.sys, &totals, name)
+        let totals = Totals { atoms: o.atoms, u: o.u, u_cond: o.u_cond, inv_theta: o.inv_theta };
+        compute::value(&self.sim.computes, self.sys, &totals, name)
     }
 
     /// Energy reservoir `id` has put into the particles since it was defined, summed over

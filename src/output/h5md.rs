@@ -1,9 +1,9 @@
 //! `dump ID all h5md N FILE field... [append yes]`: H5MD snapshots every N steps,
 //! written by rank 0 from particles gathered in tag order (`gather`).
 
-use crate::args::Args;
-use crate::gather::sorted_rows;
-use gendpde_integrators::System;
+use crate::base::args::Args;
+use crate::base::gather::sorted_rows;
+use crate::output::schedule::{Frame, RunOutput, Span};
 use gendpde_io::{H5mdField, H5mdWriter, ScriptError};
 use std::path::Path;
 
@@ -22,6 +22,7 @@ pub struct H5mdDump {
 const FIELDS: &str = "x|position, image, v|velocity, p|momentum, mass, id, type|species, u|internal_energy, theta|temperature, n|density";
 
 impl H5mdDump {
+    /// The words after `dump`.
     pub fn parse(a: &mut Args) -> Result<Self, ScriptError> {
         let id = a.word("a dump ID")?.to_string();
         let group = a.word("a group")?;
@@ -55,11 +56,24 @@ impl H5mdDump {
         Ok(Self { id, every, file, fields, append, writer: None, last_step: None })
     }
 
-    /// Writes a frame when the step is a multiple of N (once per step).
-    pub fn maybe_write(&mut self, sys: &System, natoms: usize, max_tag: u64) -> Result<(), String> {
-        if sys.step % self.every != 0 || self.last_step == Some(sys.step) {
-            return Ok(());
-        }
+}
+
+impl RunOutput for H5mdDump {
+    /// Every N steps, once per step (a run's setup repeats the last step of the one before).
+    fn next_step(&self, step: u64, _run: Span) -> Option<u64> {
+        let next = step.next_multiple_of(self.every);
+        Some(if self.last_step == Some(next) { next + self.every } else { next })
+    }
+
+    fn write(&mut self, f: &mut Frame) -> Result<(), String> {
+        self.write_frame(f).map_err(|e| format!("dump {}: {e}", self.id))
+    }
+}
+
+impl H5mdDump {
+    /// Writes a frame of the current step.
+    fn write_frame(&mut self, frame: &Frame) -> Result<(), String> {
+        let (sys, natoms) = (frame.sys, frame.sys.comm.count(frame.sys.store.nlocal) as usize);
         self.last_step = Some(sys.step);
         if sys.comm.rank() == 0 && self.writer.is_none() {
             let path = Path::new(&self.file);
@@ -111,7 +125,7 @@ impl H5mdDump {
             first_row += n;
             Ok(())
         };
-        sorted_rows(sys, max_tag, width, row, &mut emit)?;
+        sorted_rows(sys, frame.sim.max_tag, width, row, &mut emit)?;
         if let Some(w) = self.writer.as_mut() {
             w.end_frame().map_err(|e| e.0)?;
         }

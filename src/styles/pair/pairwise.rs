@@ -11,9 +11,8 @@
 //!
 //! One coefficient set serves all type pairs (`pair_coeff * *`, or `1 1` with one type).
 
-use crate::args::Args;
-use crate::styles::{EosModel, Fix, FixStyle};
-use gendpde_integrators::{ClassicDpd, Integration, PairForce, Physics, Settings, ShardlowDpd};
+use crate::base::args::Args;
+use crate::styles::PAIR_STYLES;
 use gendpde_io::{Command, ScriptError};
 
 #[derive(Clone, Debug, PartialEq)]
@@ -46,8 +45,6 @@ pub struct Coeff {
     pub rd: f64,
 }
 
-pub const STYLES: &str = "gendpde, dpd, dpd/fdt, dpd/fdt/energy, hybrid/overlay mdpd/rhosum mdpd";
-
 /// A pairwise `pair_style` line (the words after the style name in `a`).
 pub fn parse_style(style: &str, a: &mut Args) -> Result<Pairwise, ScriptError> {
     let kind = match style {
@@ -63,7 +60,7 @@ pub fn parse_style(style: &str, a: &mut Args) -> Result<Pairwise, ScriptError> {
             }
             Kind::Mdpd { temperature: a.positive("the temperature T")? }
         }
-        other => return Err(a.err(format!("unknown pair style '{other}'; known: {STYLES}"))),
+        other => return Err(a.err(format!("unknown pair style '{other}'; known: {PAIR_STYLES}"))),
     };
     let cutoff = a.positive("the cutoff")?;
     let seed = a.u64("the random seed")?;
@@ -119,56 +116,4 @@ pub fn parse_coeff(p: &mut Pairwise, cmd: &Command, ntypes: usize) -> Result<(),
     a.done()?;
     p.coeff = Some(c);
     Ok(())
-}
-
-/// The dynamics of a pairwise scene from the pair style and the fixes.
-pub fn build(cmd: &Command, p: &Pairwise, fixes: &[Fix], settings: Settings, kb: f64) -> Result<Box<dyn Physics>, ScriptError> {
-    let err = |m: &str| ScriptError::at(cmd, m);
-    let c = p.coeff.as_ref().ok_or_else(|| err("the pair style has no coefficients (pair_coeff)"))?;
-    let has = |pred: fn(&FixStyle) -> bool| fixes.iter().any(|f| pred(&f.style));
-    let shardlow = has(|s| matches!(s, FixStyle::Shardlow { .. }));
-    let nve = has(|s| matches!(s, FixStyle::Nve));
-    let mvv = fixes.iter().find_map(|f| if let FixStyle::Mvv { lambda } = f.style { Some(lambda) } else { None });
-    let cv = fixes.iter().find_map(|f| match &f.style {
-        FixStyle::Eos(EosModel::Linear(e)) if !gendpde_potentials::Eos::density_dependent(e) && e.q == 0.0 => Some(e.cv),
-        _ => None,
-    });
-    if has(|s| matches!(s, FixStyle::Verlet { .. } | FixStyle::VvEuler { .. } | FixStyle::Reservoir { .. })) {
-        return Err(err("fix nve/gendpde, vv/euler and heat/reservoir belong to pair gendpde; LAMMPS's pairwise styles use fix nve, shardlow, eos/cv, mvv/dpd"));
-    }
-    let integration = match (nve, mvv) {
-        (true, None) => Integration::Nve,
-        (false, Some(lambda)) => Integration::Mvv { lambda },
-        (true, Some(_)) => return Err(err("fix nve and fix mvv/dpd both integrate: keep one")),
-        (false, None) => return Err(err("no integrator: add fix nve (or fix mvv/dpd for mdpd)")),
-    };
-    let sigma_of = |t: f64| (2.0 * kb * t * c.gamma).sqrt();
-    let (force, sweep) = match p.kind {
-        Kind::Dpd { temperature } => (PairForce::Dpd { a0: c.a, rc: c.rc, gamma: c.gamma, sigma: sigma_of(temperature) }, None),
-        Kind::DpdFdt { temperature } => (
-            PairForce::Dpd { a0: c.a, rc: c.rc, gamma: 0.0, sigma: 0.0 },
-            Some(ShardlowDpd { sigma: c.sigma, kappa: 0.0, rc: c.rc, temperature: Some(temperature) }),
-        ),
-        Kind::DpdFdtEnergy => (
-            PairForce::Dpd { a0: c.a, rc: c.rc, gamma: 0.0, sigma: 0.0 },
-            Some(ShardlowDpd { sigma: c.sigma, kappa: c.kappa, rc: c.rc, temperature: None }),
-        ),
-        Kind::Mdpd { temperature } => {
-            let h = p.rhosum.ok_or_else(|| err("pair mdpd needs 'pair_coeff * * mdpd/rhosum H'"))?;
-            let force = PairForce::Mdpd { a: c.a, b: c.b, rc: c.rc, rd: c.rd, gamma: c.gamma, sigma: sigma_of(temperature), h };
-            (force, None)
-        }
-    };
-    match (&p.kind, shardlow) {
-        (Kind::DpdFdt { .. } | Kind::DpdFdtEnergy, false) => return Err(err("pair dpd/fdt and dpd/fdt/energy need fix shardlow")),
-        (Kind::Dpd { .. } | Kind::Mdpd { .. }, true) => return Err(err("fix shardlow works with pair dpd/fdt and dpd/fdt/energy")),
-        _ => {}
-    }
-    if matches!(p.kind, Kind::DpdFdtEnergy) && cv.is_none() {
-        return Err(err("pair dpd/fdt/energy needs fix eos/cv"));
-    }
-    if matches!(integration, Integration::Mvv { .. }) && !matches!(p.kind, Kind::Mdpd { .. }) {
-        return Err(err("fix mvv/dpd integrates pair mdpd"));
-    }
-    Ok(Box::new(ClassicDpd { force, shardlow: sweep, integration, cv, kb, seed: p.seed, settings }))
 }

@@ -1,9 +1,12 @@
-//! `compute ID all dpd` and `compute ID GROUP tint`: global values read in thermo output
-//! as `c_ID` or `c_ID[k]`; the `compute` command, which also defines `compute ID all rdf`
-//! (crate::rdf, read by fix ave/time).
+//! Compute styles: `compute ID all dpd` and `compute ID GROUP tint`, global values read
+//! in thermo output as `c_ID` or `c_ID[k]`, and `compute ID all rdf` ([`rdf`], read by
+//! fix ave/time).
 
-use crate::args::Args;
-use crate::sim::Sim;
+pub mod rdf;
+
+use self::rdf::Rdf;
+use crate::base::args::Args;
+use crate::styles::COMPUTE_STYLES;
 use gendpde_engine::exact_sums;
 use gendpde_integrators::System;
 use gendpde_io::ScriptError;
@@ -23,33 +26,38 @@ pub enum ComputeStyle {
     Tint { mask: u32 },
 }
 
-pub const COMPUTE_STYLES: &str = "dpd, tint, rdf";
+/// What a `compute` command defines.
+pub enum Definition {
+    Value(Compute),
+    Rdf(Rdf),
+}
 
-/// Runs a `compute ID GROUP STYLE` command (redefining an ID replaces it).
-pub fn compute(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
+impl Definition {
+    pub fn id(&self) -> &str {
+        match self {
+            Self::Value(c) => &c.id,
+            Self::Rdf(r) => &r.id,
+        }
+    }
+}
+
+/// The words of `compute ID GROUP STYLE args...`; `groups` are the group names by bit.
+pub fn parse(a: &mut Args, groups: &[String]) -> Result<Definition, ScriptError> {
     let id = a.word("a compute ID")?.to_string();
     let group = a.word("a group")?;
     let style = match a.word("a compute style")? {
         "dpd" if group == "all" => ComputeStyle::Dpd,
         "dpd" => return Err(a.err(format!("compute dpd on group '{group}': only group all is supported"))),
-        "tint" => ComputeStyle::Tint { mask: crate::groups::mask(sim, group, a)? },
-        "rdf" if group == "all" => {
-            sim.computes.retain(|c| c.id != id);
-            sim.rdfs.retain(|c| c.id != id);
-            sim.rdfs.push(crate::rdf::Rdf::parse(id, a)?);
-            return Ok(());
-        }
+        "tint" => ComputeStyle::Tint { mask: crate::base::groups::mask(groups, group, a)? },
+        "rdf" if group == "all" => return Ok(Definition::Rdf(Rdf::parse(id, a)?)),
         "rdf" => return Err(a.err(format!("compute rdf on group {group}: only group all is supported"))),
         other => return Err(a.err(format!("unknown compute style '{other}'; known: {COMPUTE_STYLES}"))),
     };
     a.done()?;
-    sim.rdfs.retain(|c| c.id != id);
-    sim.computes.retain(|c| c.id != id);
-    sim.computes.push(Compute { id, style });
-    Ok(())
+    Ok(Definition::Value(Compute { id, style }))
 }
 
-/// The global sums a thermo line needs from the whole system (see [`crate::thermo`]).
+/// The global sums a thermo line needs from the whole system (`output::thermo`).
 pub struct Totals {
     pub atoms: f64,
     pub u: f64,

@@ -1,20 +1,26 @@
-//! `read_data FILE` and `write_data FILE`: LAMMPS data files (atom styles atomic and
-//! dpd, whose `dpdTheta` column sets the particle temperature), so LAMMPS DPDE inputs
-//! run unchanged.
+//! The particles to and from files: `read_data FILE` and `write_data FILE` (LAMMPS data
+//! files of atom styles atomic and dpd, whose `dpdTheta` column sets the particle
+//! temperature, so LAMMPS DPDE inputs run unchanged), `read_restart FILE` and
+//! `write_restart FILE` (`output::restart`).
 
-use crate::args::Args;
-use crate::sim::Sim;
-use gendpde_engine::{exact_sums, Comm, Domain, ProcGrid, Transport};
+use crate::base::args::Args;
+use crate::model::sim::Sim;
+use crate::output::restart;
+use gendpde_engine::{Comm, Domain, ProcGrid};
 use gendpde_integrators::System;
-use gendpde_io::{read_data, write_data, DataAtom, DataFile, ScriptError};
+use gendpde_io::{DataAtom, DataFile, ScriptError};
 use std::path::Path;
 
-/// Creates the box, the types' masses and the particles of a data file. Every rank
-/// parses the file and keeps the particles of its part of the box.
-pub fn read(sim: &mut Sim, a: &mut Args, transport: Box<dyn Transport>) -> Result<(), ScriptError> {
+/// `read_data FILE`: creates the box, the types' masses and the particles of a data
+/// file. Every rank parses the file and keeps the particles of its part of the box.
+pub fn read_data(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
+    if sim.system.is_some() {
+        return Err(a.err("read_data: the box exists already"));
+    }
+    let transport = sim.take_transport().map_err(|e| a.err(e))?;
     let file = a.word("a data file")?;
     a.done()?;
-    let data = read_data(Path::new(file), sim.atom_style)?;
+    let data = gendpde_io::read_data(Path::new(file), sim.atom_style)?;
     let domain = Domain::new(data.lo, data.hi);
     let procs = ProcGrid::choose(transport.size(), domain.len(), sim.procs).map_err(|e| a.err(e))?;
     let mut sys = System::new(domain, Comm::new(transport, procs));
@@ -44,12 +50,12 @@ pub fn read(sim: &mut Sim, a: &mut Args, transport: Box<dyn Transport>) -> Resul
     sim.masses = data.masses;
     sim.max_tag = max_tag;
     sim.system = Some(sys);
-    Ok(())
+    sim.check_density_cap().map_err(|e| a.err(e))
 }
 
-/// Writes the current particles as a data file (rank 0 gathers them; its memory holds
-/// the whole system, about 100 bytes per particle).
-pub fn write(sim: &Sim, a: &mut Args) -> Result<(), ScriptError> {
+/// `write_data FILE`: the current particles as a data file (rank 0 gathers them; its
+/// memory holds the whole system, about 100 bytes per particle).
+pub fn write_data(sim: &Sim, a: &mut Args) -> Result<(), ScriptError> {
     let file = a.word("a data file")?;
     a.done()?;
     let sys = sim.system.as_ref().ok_or_else(|| a.err("write_data before create_box"))?;
@@ -76,7 +82,7 @@ pub fn write(sim: &Sim, a: &mut Args) -> Result<(), ScriptError> {
             velocities.push((tag, [row[9], row[10], row[11]]));
         }
     });
-    let [count] = exact_sums(sys.comm.transport(), (0..s.nlocal).map(|_| [1.0]));
+    let count = sys.comm.count(sys.store.nlocal);
     if sys.comm.rank() != 0 {
         return Ok(());
     }
@@ -92,5 +98,28 @@ pub fn write(sim: &Sim, a: &mut Args) -> Result<(), ScriptError> {
         atoms,
         velocities: Some(velocities),
     };
-    write_data(Path::new(file), &data, sim.atom_style).map_err(|e| a.err(format!("writing '{file}': {e}")))
+    gendpde_io::write_data(Path::new(file), &data, sim.atom_style).map_err(|e| a.err(format!("writing '{file}': {e}")))
+}
+
+/// `write_restart FILE`.
+pub fn write_restart(sim: &Sim, a: &mut Args) -> Result<(), ScriptError> {
+    let file = a.word("a restart file")?;
+    a.done()?;
+    restart::write(sim, file).map_err(|e| a.err(e))
+}
+
+/// `read_restart FILE`: reads the box, particles and settings; returns the system and
+/// the name and stored style commands, split into those to execute before the box
+/// exists (`units`, `atom_style`) and after.
+pub fn read_restart(sim: &mut Sim, a: &mut Args) -> Result<(System, String, [String; 2]), ScriptError> {
+    let file = a.word("a restart file")?;
+    a.done()?;
+    if sim.system.is_some() {
+        return Err(a.err("read_restart: the box exists already"));
+    }
+    let transport = sim.take_transport().map_err(|e| a.err(e))?;
+    let (system, commands) = restart::read(sim, file, transport).map_err(|e| a.err(e))?;
+    let before_box = commands.iter().take_while(|c| c.starts_with("units ") || c.starts_with("atom_style ")).count();
+    let text = |c: &[String]| c.join("\n") + "\n";
+    Ok((system, format!("{file} (stored commands)"), [text(&commands[..before_box]), text(&commands[before_box..])]))
 }

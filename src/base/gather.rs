@@ -1,5 +1,5 @@
-//! Per-particle output written by rank 0: particles arrive in blocks of consecutive tags,
-//! sorted by tag, so rank 0 never holds more than one block (BLOCK rows).
+//! The rows of the particles of all ranks for output written by rank 0, which arrive in blocks of consecutive tags, sorted by tag, so rank 0
+//! never holds more than one block (BLOCK rows).
 
 use gendpde_integrators::System;
 

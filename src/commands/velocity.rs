@@ -5,15 +5,16 @@
 //! component is scaled by 1/sqrt(m), the centre-of-mass momentum is removed (mom yes),
 //! and the result is scaled to the exact temperature with 3N - 3 degrees of freedom.
 
-use crate::args::Args;
-use crate::sim::Sim;
+use crate::base::args::Args;
+use crate::base::groups;
+use crate::model::sim::Sim;
 use gendpde_engine::exact_sums;
 use gendpde_integrators::rng::{normal_pair, stream, uniform4};
 use gendpde_io::ScriptError;
 
 pub fn velocity(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     let group = a.word("a group")?;
-    let mask = crate::groups::mask(sim, group, a)?;
+    let mask = groups::mask(&sim.groups, group, a)?;
     match a.word("a velocity style (create)")? {
         "create" => {}
         s => return Err(a.err(format!("unknown velocity style '{s}'; known: create"))),

@@ -1,13 +1,11 @@
 //! `group ID region RID | type T... | id A[:B] ... | delete`: named sets of particles,
-//! static as in LAMMPS (membership is decided when the command runs). A particle
-//! carries its groups as a bit mask, so membership travels with it between ranks.
+//! static as in LAMMPS (membership is decided when the command runs), carried as bits of
+//! the particles' group masks.
 
-use crate::args::Args;
-use crate::sim::Sim;
+use crate::base::args::Args;
+use crate::base::groups::MAX_GROUPS;
+use crate::model::sim::Sim;
 use gendpde_io::ScriptError;
-
-/// Most groups besides `all` (LAMMPS allows 32 including all).
-pub const MAX_GROUPS: usize = 31;
 
 /// Runs a `group` command.
 pub fn group(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
@@ -79,18 +77,4 @@ pub fn group(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
         }
     }
     Ok(())
-}
-
-/// The bit mask selecting group `name` (all bits for `all`).
-pub fn mask(sim: &Sim, name: &str, a: &Args) -> Result<u32, ScriptError> {
-    mask_of(&sim.groups, name, a)
-}
-
-/// The bit mask of group `name` among the group names by bit.
-pub fn mask_of(groups: &[String], name: &str, a: &Args) -> Result<u32, ScriptError> {
-    if name == "all" {
-        return Ok(u32::MAX);
-    }
-    let k = groups.iter().position(|g| g == name).ok_or_else(|| a.err(format!("no group '{name}' (define it with the group command)")))?;
-    Ok(1 << k)
 }

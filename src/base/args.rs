@@ -13,6 +13,11 @@ impl<'a> Args<'a> {
         Self { cmd, pos: 0 }
     }
 
+    /// The command being read.
+    pub fn command(&self) -> &'a Command {
+        self.cmd
+    }
+
     pub fn err(&self, msg: impl Into<String>) -> ScriptError {
         ScriptError::at(self.cmd, msg)
     }

@@ -7,8 +7,8 @@
 //! summed over ranks, so the array does not depend on the decomposition. g(r) divides
 //! each count by its ideal-gas share N (N - 1) V_shell / V, with LAMMPS's operation order.
 
-use crate::args::Args;
-use crate::styles::PairStyle;
+use crate::base::args::Args;
+use crate::styles::pair::PairStyle;
 use gendpde_engine::{build_lists, dot, sub, CellGrid, ListRequest, NeighborList};
 use gendpde_integrators::System;
 use gendpde_io::ScriptError;

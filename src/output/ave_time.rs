@@ -3,10 +3,9 @@
 //! Nevery steps apart, one block every Nfreq steps, in LAMMPS's ave/time vector layout.
 //! Rank 0 writes the file and flushes each block.
 
-use crate::args::Args;
-use crate::rdf::{Rdf, COLUMNS};
-use crate::styles::PairStyle;
-use gendpde_integrators::System;
+use crate::base::args::Args;
+use crate::output::schedule::{Frame, RunOutput, Span};
+use crate::styles::compute::rdf::{Rdf, COLUMNS};
 use gendpde_io::ScriptError;
 use std::fs::File;
 use std::io::{BufWriter, Write};
@@ -105,14 +104,43 @@ impl AveTime {
         first
     }
 
-    /// Samples when the step is due and writes a block when it is complete. Every rank
-    /// calls it; a failure on rank 0 stops all ranks.
-    pub fn sample(&mut self, sys: &System, rdfs: &[Rdf], pair: Option<&PairStyle>, skin: f64) -> Result<(), String> {
+    /// Opens the file (with LAMMPS's three heading lines) at the first block, then
+    /// appends `step nrow` and the averaged rows, and flushes.
+    fn write_block(&mut self, step: u64, nrow: usize) -> std::io::Result<()> {
+        let ncol = self.columns.len();
+        let mut text = String::new();
+        if self.out.is_none() {
+            self.out = Some(BufWriter::new(File::create(&self.file)?));
+            let names: Vec<String> = self.columns.iter().map(|(id, k)| format!("c_{id}[{}]", k + 1)).collect();
+            text += &format!("# Time-averaged data for fix {}\n# TimeStep Number-of-rows\n# Row {}\n", self.id, names.join(" "));
+        }
+        text += &format!("{step} {nrow}\n");
+        for r in 0..nrow {
+            text += &(r + 1).to_string();
+            for c in 0..ncol {
+                let v = self.sums[r * ncol + c] / self.nrepeat as f64;
+                text += &gendpde_io::format_printf(&self.format, v).map_err(std::io::Error::other)?;
+            }
+            text.push('\n');
+        }
+        let out = self.out.as_mut().expect("opened above");
+        out.write_all(text.as_bytes())?;
+        out.flush()
+    }
+}
+
+impl RunOutput for AveTime {
+    /// The next sample (LAMMPS's nvalid).
+    fn next_step(&self, _step: u64, _run: Span) -> Option<u64> {
+        Some(self.next)
+    }
+
+    /// Adds a sample and writes a block when it is complete. A failure on rank 0 stops
+    /// all ranks.
+    fn write(&mut self, f: &mut Frame) -> Result<(), String> {
+        let (sys, rdfs, pair, skin) = (f.sys, &f.sim.rdfs, f.sim.pair.as_ref(), f.sim.skin);
         if sys.step > self.next {
             return Err(format!("fix {} ave/time: step {} lies past the next sample {} (reset_timestep?)", self.id, sys.step, self.next));
-        }
-        if sys.step != self.next {
-            return Ok(());
         }
         // each compute once per sample
         let mut tables: Vec<(&str, Vec<[f64; COLUMNS]>)> = Vec::new();
@@ -146,29 +174,5 @@ impl AveTime {
             (true, Ok(())) => Err(format!("fix {} ave/time: writing {} failed on rank 0", self.id, self.file)),
             (_, result) => result,
         }
-    }
-
-    /// Opens the file (with LAMMPS's three heading lines) at the first block, then
-    /// appends `step nrow` and the averaged rows, and flushes.
-    fn write_block(&mut self, step: u64, nrow: usize) -> std::io::Result<()> {
-        let ncol = self.columns.len();
-        let mut text = String::new();
-        if self.out.is_none() {
-            self.out = Some(BufWriter::new(File::create(&self.file)?));
-            let names: Vec<String> = self.columns.iter().map(|(id, k)| format!("c_{id}[{}]", k + 1)).collect();
-            text += &format!("# Time-averaged data for fix {}\n# TimeStep Number-of-rows\n# Row {}\n", self.id, names.join(" "));
-        }
-        text += &format!("{step} {nrow}\n");
-        for r in 0..nrow {
-            text += &(r + 1).to_string();
-            for c in 0..ncol {
-                let v = self.sums[r * ncol + c] / self.nrepeat as f64;
-                text += &gendpde_io::format_printf(&self.format, v).map_err(std::io::Error::other)?;
-            }
-            text.push('\n');
-        }
-        let out = self.out.as_mut().expect("opened above");
-        out.write_all(text.as_bytes())?;
-        out.flush()
     }
 }

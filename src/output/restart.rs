@@ -5,8 +5,8 @@
 //! run continued from a restart is bit-identical to the uninterrupted run. Files are
 //! written to FILE.tmp and renamed.
 
-use crate::gather::sorted_rows;
-use crate::sim::Sim;
+use crate::base::gather::sorted_rows;
+use crate::model::sim::Sim;
 use gendpde_engine::{stage, Comm, Domain, Fields, Particles, ProcGrid, Transport};
 use gendpde_integrators::System;
 use gendpde_io::{row_width, ColumnSpec, RestartHeader, RestartReader, RestartWriter};
@@ -79,7 +79,7 @@ pub fn read(sim: &mut Sim, file: &str, transport: Box<dyn Transport>) -> Result<
     let mut rows = Vec::new();
     let mut start = 0;
     while start < h.natoms {
-        reader.read_rows(start, crate::gather::BLOCK, &mut rows).map_err(|e| e.0)?;
+        reader.read_rows(start, crate::base::gather::BLOCK, &mut rows).map_err(|e| e.0)?;
         for row in rows.chunks_exact(width) {
             let mine = match h.cell_counts {
                 Some(count) => sys.comm.owns_cell([0, 1, 2].map(|d| row[cell_at + d] as i32), count),
@@ -92,7 +92,7 @@ pub fn read(sim: &mut Sim, file: &str, transport: Box<dyn Transport>) -> Result<
             s.push(0, 0, 0.0, [0.0; 3]);
             s.unpack(s.nlocal - 1, stage::RESTART, true, row);
         }
-        start += crate::gather::BLOCK;
+        start += crate::base::gather::BLOCK;
     }
     sys.step = h.step;
     sys.time = h.time;

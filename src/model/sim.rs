@@ -1,12 +1,13 @@
-//! The model a script builds: box, particles, styles and run settings.
+//! The model a script builds: box, particles, styles and run settings (its outputs are
+//! `output::Outputs`).
 
-use crate::ave_time::AveTime;
-use crate::h5md_out::H5mdDump;
-use crate::lattice::{Block, Lattice};
-use crate::rdf::Rdf;
-use crate::styles::{Fix, PairStyle};
-use crate::units::Units;
-use crate::thermo::ThermoConfig;
+use crate::base::lattice::{Block, Lattice};
+use crate::base::units::Units;
+use crate::styles::compute::rdf::Rdf;
+use crate::styles::compute::Compute;
+use crate::styles::fix::{Fix, FixStyle};
+use crate::styles::pair::PairStyle;
+use gendpde_engine::Transport;
 use gendpde_integrators::{RebuildPolicy, System};
 use gendpde_io::AtomStyle;
 use std::collections::HashMap;
@@ -16,6 +17,9 @@ const RESERVOIR_STATE: &str = "heat/reservoir/";
 
 /// Everything the commands of a script have defined so far.
 pub struct Sim {
+    /// The ranks, until the box is created (create_box, read_data or read_restart hands
+    /// them to its communicator).
+    transport: Option<Box<dyn Transport>>,
     pub lattice: Option<Lattice>,
     pub regions: HashMap<String, Block>,
     pub ntypes: usize,
@@ -28,7 +32,6 @@ pub struct Sim {
     pub dt: f64,
     pub skin: f64,
     pub rebuild: RebuildPolicy,
-    pub thermo: ThermoConfig,
     /// Total energy at the first setup, for `edrift`.
     pub energy0: Option<f64>,
     /// Largest tag handed out.
@@ -39,26 +42,22 @@ pub struct Sim {
     pub atom_style: AtomStyle,
     /// The `pair_style` and `pair_coeff` commands in force, as text (for restarts).
     pub pair_text: Vec<String>,
-    /// `checkpoint N FILE`: a restart file every N steps.
-    pub checkpoint: Option<(u64, String)>,
-    /// `dump ... h5md` outputs.
-    pub dumps: Vec<H5mdDump>,
     /// `compute` definitions (thermo `c_ID[k]`).
-    pub computes: Vec<crate::computes::Compute>,
+    pub computes: Vec<Compute>,
     /// `compute ID all rdf` definitions.
     pub rdfs: Vec<Rdf>,
-    /// `fix ID all ave/time` outputs.
-    pub averages: Vec<AveTime>,
     /// Group names by bit (an empty name is a free slot).
     pub groups: Vec<String>,
     /// State of fixes read from a restart, taken by the fixes as they are defined.
     pub restored_state: Vec<(String, Vec<f64>)>,
 }
 
-impl Default for Sim {
-    /// LAMMPS's lj-unit defaults: timestep 0.005, skin 0.3.
-    fn default() -> Self {
+impl Sim {
+    /// An empty model on the ranks of `transport`, with LAMMPS's lj-unit defaults:
+    /// timestep 0.005, skin 0.3.
+    pub fn new(transport: Box<dyn Transport>) -> Self {
         Self {
+            transport: Some(transport),
             lattice: None,
             regions: HashMap::new(),
             ntypes: 0,
@@ -70,24 +69,23 @@ impl Default for Sim {
             dt: 0.005,
             skin: 0.3,
             rebuild: RebuildPolicy::default(),
-            thermo: ThermoConfig::default(),
             energy0: None,
             max_tag: 0,
             procs: [None; 3],
             atom_style: AtomStyle::Atomic,
             pair_text: Vec::new(),
-            checkpoint: None,
-            dumps: Vec::new(),
             computes: Vec::new(),
             rdfs: Vec::new(),
-            averages: Vec::new(),
             groups: Vec::new(),
             restored_state: Vec::new(),
         }
     }
-}
 
-impl Sim {
+    /// The ranks, for the box about to be created.
+    pub fn take_transport(&mut self) -> Result<Box<dyn Transport>, String> {
+        self.transport.take().ok_or_else(|| "the box exists already".into())
+    }
+
     /// Whether thermo `pe` is a pair energy (LAMMPS's pairwise styles).
     pub fn pe_is_pair(&self) -> bool {
         matches!(self.pair, Some(PairStyle::Pairwise(_)))
@@ -128,5 +126,25 @@ impl Sim {
         let r = &self.rebuild;
         c.push(format!("neigh_modify every {} delay {} check {}", r.every, r.delay, if r.check { "yes" } else { "no" }));
         c
+    }
+
+    /// Err when the mean density lies at or above the cap of the EOS (vdW: 1/b): such a
+    /// box cannot start a run. Every rank must call.
+    pub fn check_density_cap(&self) -> Result<(), String> {
+        let Some(sys) = &self.system else { return Ok(()) };
+        let n = sys.comm.count(sys.store.nlocal) as f64 / sys.domain.volume();
+        for f in &self.fixes {
+            if let FixStyle::Eos(e) = &f.style {
+                if let Some(max) = e.max_density() {
+                    if n >= max {
+                        return Err(format!(
+                            "mean number density N/V = {n:.6} lies beyond the density limit {max:.6} of the EOS of fix {} (van der Waals: 1/b)",
+                            f.id
+                        ));
+                    }
+                }
+            }
+        }
+        Ok(())
     }
 }

@@ -1,0 +1,161 @@
+//! The script interpreter: reads commands one at a time, handles the loop commands
+//! (label, next, jump) and hands every other command to the body of its family.
+
+mod group;
+mod output;
+mod particles;
+mod run;
+mod setup;
+mod styles;
+mod velocity;
+
+use crate::base::args::Args;
+use crate::base::script::{echo, AppError, Mode};
+use crate::model::sim::Sim;
+use crate::output::checkpoint::Checkpoint;
+use crate::output::console::Output;
+use crate::output::thermo::ThermoContext;
+use crate::output::Outputs;
+use gendpde_engine::{Local, Transport};
+use gendpde_integrators::{Physics, System};
+use gendpde_io::{Command, Location, ScriptError, ScriptReader, Variables};
+use std::path::Path;
+
+pub struct Interpreter {
+    pub sim: Sim,
+    pub outputs: Outputs,
+    pub vars: Variables,
+    pub out: Output,
+    pub mode: Mode,
+    /// A `next` exhausted its variables: the next `jump` falls through.
+    skip_jump: bool,
+}
+
+impl Interpreter {
+    /// A single-rank interpreter.
+    pub fn new(mode: Mode, out: Output) -> Self {
+        Self::with_transport(mode, out, Box::new(Local))
+    }
+
+    /// An interpreter whose box is split over the ranks of `transport`.
+    pub fn with_transport(mode: Mode, out: Output, transport: Box<dyn Transport>) -> Self {
+        Self { sim: Sim::new(transport), outputs: Outputs::default(), vars: Variables::new(), out, mode, skip_jump: false }
+    }
+
+    /// Executes a script file to its end.
+    pub fn execute_file(&mut self, path: &Path) -> Result<(), AppError> {
+        self.execute_reader(ScriptReader::open(path)?)
+    }
+
+    /// Executes a script held in memory; `name` stands for its file name in errors.
+    pub fn execute_str(&mut self, name: &str, text: &str) -> Result<(), AppError> {
+        self.execute_reader(ScriptReader::from_string(name, text))
+    }
+
+    /// The dynamics of the styles defined so far, set up on the current system, for
+    /// programs that step it themselves (tests, benchmarks).
+    pub fn dynamics(&mut self) -> Result<Box<dyn Physics>, AppError> {
+        let cmd = Command { name: "run".into(), args: vec![], loc: Location { file: "<api>".into(), line: 0 } };
+        run::prepare(&mut self.sim, &self.outputs.averages, &cmd)
+    }
+
+    /// The system built by the script.
+    pub fn system(&mut self) -> Option<&mut System> {
+        self.sim.system.as_mut()
+    }
+
+    fn execute_reader(&mut self, mut reader: ScriptReader) -> Result<(), AppError> {
+        loop {
+            let next = {
+                let (sim, vars, norm) = (&self.sim, &self.vars, self.outputs.thermo.norm);
+                reader.next_command(vars, &|name| resolve(sim, norm, name))?
+            };
+            let Some(cmd) = next else { return Ok(()) };
+            self.out.log_line(&echo(&cmd));
+            match cmd.name.as_str() {
+                // LAMMPS loops: `label L`, `next V ...`, `jump SELF L`; a `next` that
+                // exhausts its variables makes the following `jump` fall through
+                "label" => {}
+                "next" => {
+                    if cmd.args.is_empty() {
+                        return Err(ScriptError::at(&cmd, "missing argument: expected variable names").into());
+                    }
+                    self.skip_jump = self.vars.next(&cmd.args).map_err(|mut e| {
+                        e.loc = Some(cmd.loc.clone());
+                        e
+                    })?;
+                }
+                "jump" => {
+                    if !std::mem::take(&mut self.skip_jump) {
+                        reader.jump(&cmd)?;
+                    }
+                }
+                _ => self.execute(&cmd)?,
+            }
+        }
+    }
+
+    /// Runs one command by its family's body.
+    fn execute(&mut self, cmd: &Command) -> Result<(), AppError> {
+        let a = &mut Args::new(cmd);
+        let (sim, outputs) = (&mut self.sim, &mut self.outputs);
+        match cmd.name.as_str() {
+            "units" => setup::units(sim, &mut outputs.thermo, a)?,
+            "dimension" => setup::dimension(a)?,
+            "boundary" => setup::boundary(a)?,
+            "atom_style" => setup::atom_style(sim, a)?,
+            "lattice" => setup::lattice(sim, a)?,
+            "region" => setup::region(sim, a)?,
+            "processors" => setup::processors(sim, a)?,
+            "create_box" => setup::create_box(sim, a)?,
+            "create_atoms" => setup::create_atoms(sim, a)?,
+            "mass" => setup::mass(sim, a)?,
+            "set" => setup::set(sim, a)?,
+            "timestep" => setup::timestep(sim, a)?,
+            "neighbor" => setup::neighbor(sim, a)?,
+            "neigh_modify" => setup::neigh_modify(sim, a)?,
+            "reset_timestep" => setup::reset_timestep(sim, a)?,
+            // LAMMPS communication settings: gendpde always exchanges what its styles
+            // need (ghost velocities included) and uses full lists; accepted for
+            // compatibility.
+            "comm_modify" | "newton" => {}
+            "group" => group::group(sim, a)?,
+            "velocity" => velocity::velocity(sim, a)?,
+            "read_data" => particles::read_data(sim, a)?,
+            "write_data" => particles::write_data(sim, a)?,
+            "write_restart" => particles::write_restart(sim, a)?,
+            "read_restart" => {
+                let (system, name, [before_box, after]) = particles::read_restart(sim, a)?;
+                self.execute_str(&name, &before_box)?;
+                self.sim.system = Some(system);
+                self.execute_str(&name, &after)?;
+                self.sim.restore_fix_state();
+            }
+            "pair_style" => styles::pair_style(sim, a)?,
+            "pair_coeff" => styles::pair_coeff(sim, a)?,
+            "fix" => styles::fix(sim, &mut outputs.averages, a)?,
+            "unfix" => styles::unfix(sim, &mut outputs.averages, a)?,
+            "compute" => styles::compute(sim, a)?,
+            "thermo" => output::thermo(&mut outputs.thermo, a)?,
+            "thermo_style" => output::thermo_style(&mut outputs.thermo, &self.vars, a)?,
+            "thermo_modify" => output::thermo_modify(&mut outputs.thermo, a)?,
+            "dump" => output::dump(&mut outputs.dumps, a)?,
+            "undump" => output::undump(&mut outputs.dumps, a)?,
+            "write_dump" => output::write_dump(sim, a)?,
+            "checkpoint" => outputs.checkpoint = Checkpoint::parse(a)?,
+            "print" => output::print(&mut self.out, a)?,
+            "log" => output::log(&mut self.out, self.mode, a)?,
+            "echo" => output::echo(a)?,
+            "variable" => self.vars.define(cmd)?,
+            "run" => run::run(sim, outputs, &mut self.out, &self.vars, self.mode, a)?,
+            other => return Err(a.err(format!("unknown command '{other}' (see docs/commands/ for the commands gendpde knows)")).into()),
+        }
+        Ok(())
+    }
+}
+
+/// Values of thermo keywords inside variables and `$(...)`; `norm` as `thermo_modify`.
+fn resolve(sim: &Sim, norm: bool, name: &str) -> Option<f64> {
+    let sys = sim.system.as_ref()?;
+    ThermoContext::new(sim, sys, norm, 0, 0.0).keyword(name)
+}

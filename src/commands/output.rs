@@ -1,0 +1,143 @@
+//! Output commands: thermo, thermo_style, thermo_modify, dump, undump, write_dump (the
+//! checkpoint command is `output::checkpoint`), and what the screen and log show: print,
+//! log and echo.
+
+use crate::base::args::Args;
+use crate::base::script::Mode;
+use crate::model::sim::Sim;
+use crate::output::console::Output;
+use crate::output::dump::TextDump;
+use crate::output::h5md::H5mdDump;
+use crate::output::thermo::{heading, ThermoConfig};
+use gendpde_io::{ScriptError, Variables};
+use std::path::Path;
+
+/// `thermo N`: thermo output every N steps (0: at the first and last step of a run).
+pub fn thermo(thermo: &mut ThermoConfig, a: &mut Args) -> Result<(), ScriptError> {
+    thermo.every = a.u64("the thermo interval")?;
+    a.done()
+}
+
+/// `thermo_style custom KEYWORDS...`.
+pub fn thermo_style(thermo: &mut ThermoConfig, vars: &Variables, a: &mut Args) -> Result<(), ScriptError> {
+    match a.word("a thermo style (custom)")? {
+        "custom" => {}
+        s => return Err(a.err(format!("unknown thermo style '{s}'; known: custom"))),
+    }
+    let mut keys = Vec::new();
+    while a.remaining() > 0 {
+        let k = a.word("a keyword")?;
+        let known = heading(k) != k || k.starts_with("v_") || k.starts_with("c_") || k.starts_with("f_");
+        if !known {
+            return Err(a.err(format!(
+                "unknown thermo keyword '{k}'; known: step elapsed time dt cpu atoms temp tint press pe ke etotal edrift vol density lx ly lz pxtot pytot pztot v_NAME c_ID[k] f_ID"
+            )));
+        }
+        if let Some(name) = k.strip_prefix("v_") {
+            if !vars.contains(name) {
+                return Err(a.err(format!("thermo keyword {k}: no variable named '{name}'")));
+            }
+        }
+        keys.push(k.to_string());
+    }
+    if keys.is_empty() {
+        return Err(a.err("missing argument: expected thermo keywords"));
+    }
+    thermo.keywords = keys;
+    Ok(())
+}
+
+/// `thermo_modify norm yes|no | format float F | flush yes|no`.
+pub fn thermo_modify(thermo: &mut ThermoConfig, a: &mut Args) -> Result<(), ScriptError> {
+    if a.remaining() == 0 {
+        return Err(a.err("missing argument: expected norm, format or flush"));
+    }
+    while a.remaining() > 0 {
+        match a.word("a keyword")? {
+            "norm" => thermo.norm = a.yes_no("norm")?,
+            "flush" => {
+                a.yes_no("flush")?;
+            }
+            "format" => match a.word("float or line")? {
+                "float" => {
+                    let f = a.word("a printf format such as %15.10f")?;
+                    gendpde_io::format_printf(f, 1.0).map_err(|e| a.err(format!("bad format '{f}': {e}")))?;
+                    thermo.float_format = Some(f.to_string());
+                }
+                k => return Err(a.err(format!("thermo_modify format {k}: only 'format float' is supported"))),
+            },
+            k => return Err(a.err(format!("unknown keyword '{k}'; known: norm, format, flush"))),
+        }
+    }
+    Ok(())
+}
+
+/// `dump ID all h5md N FILE fields...`.
+pub fn dump(dumps: &mut Vec<H5mdDump>, a: &mut Args) -> Result<(), ScriptError> {
+    let dump = H5mdDump::parse(a)?;
+    if dumps.iter().any(|d| d.id == dump.id) {
+        return Err(a.err(format!("dump ID '{}' is in use (undump it first)", dump.id)));
+    }
+    dumps.push(dump);
+    Ok(())
+}
+
+/// `undump ID`.
+pub fn undump(dumps: &mut Vec<H5mdDump>, a: &mut Args) -> Result<(), ScriptError> {
+    let id = a.word("a dump ID")?;
+    a.done()?;
+    let before = dumps.len();
+    dumps.retain(|d| d.id != id);
+    if dumps.len() == before {
+        return Err(a.err(format!("no dump with ID '{id}'")));
+    }
+    Ok(())
+}
+
+/// `write_dump all custom FILE COLUMNS...`.
+pub fn write_dump(sim: &Sim, a: &mut Args) -> Result<(), ScriptError> {
+    let dump = TextDump::parse(a)?;
+    let sys = sim.system.as_ref().ok_or_else(|| a.err("write_dump before create_box"))?;
+    dump.write(sys, sim.max_tag).map_err(|e| a.err(e))
+}
+
+/// `print TEXT [screen yes|no]`.
+pub fn print(out: &mut Output, a: &mut Args) -> Result<(), ScriptError> {
+    let text = a.word("the text to print")?;
+    let mut screen = true;
+    while a.remaining() > 0 {
+        match a.word("keyword")? {
+            "screen" => screen = a.yes_no("screen")?,
+            k => return Err(a.err(format!("unknown keyword '{k}'; known: screen"))),
+        }
+    }
+    if screen { out.line(text) } else { out.log_line(text) }
+    Ok(())
+}
+
+/// `log FILE [append]` or `log none`; a check opens no file.
+pub fn log(out: &mut Output, mode: Mode, a: &mut Args) -> Result<(), ScriptError> {
+    let file = a.word("a log file name")?;
+    let append = match a.peek() {
+        Some("append") => {
+            a.word("append")?;
+            true
+        }
+        _ => false,
+    };
+    a.done()?;
+    if file == "none" {
+        out.close_log();
+    } else if mode == Mode::Run {
+        out.open_log(Path::new(file), append).map_err(|e| a.err(format!("cannot open log file '{file}': {e}")))?;
+    }
+    Ok(())
+}
+
+/// `echo none|screen|log|both`: accepted (gendpde always echoes commands to the log).
+pub fn echo(a: &mut Args) -> Result<(), ScriptError> {
+    match a.word("none, screen, log or both")? {
+        "none" | "screen" | "log" | "both" => a.done(),
+        s => Err(a.err(format!("expected none, screen, log or both, got '{s}'"))),
+    }
+}

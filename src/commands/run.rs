@@ -1,0 +1,164 @@
+//! The `run` command: set up the dynamics, step, write the outputs that are due and
+//! print LAMMPS's summary.
+
+use crate::base::args::Args;
+use crate::base::memory;
+use crate::base::script::{AppError, Mode};
+use crate::model::sim::Sim;
+use crate::output::ave_time::AveTime;
+use crate::output::console::Output;
+use crate::output::restart;
+use crate::output::schedule::{Frame, Span};
+use crate::output::thermo::{header_line, Observables};
+use crate::output::Outputs;
+use crate::styles::physics::build_physics;
+use gendpde_integrators::{Physics, SetupError, Snapshot};
+use gendpde_io::{Command, ScriptError, Variables};
+use indicatif::ProgressBar;
+use std::time::Instant;
+
+/// Builds the dynamics of the current styles and sets the system up for it (lists,
+/// densities, forces); errors name `cmd`.
+pub fn prepare(sim: &mut Sim, averages: &[AveTime], cmd: &Command) -> Result<Box<dyn Physics>, AppError> {
+    let err = |m: String| AppError::Script(ScriptError::at(cmd, m));
+    let physics = build_physics(cmd, sim.pair.as_ref(), &sim.fixes, sim.dt, sim.skin, sim.rebuild.clone(), sim.units.kb)?;
+    let sys = sim.system.as_mut().ok_or_else(|| err("run before create_box".into()))?;
+    if sys.store.nlocal == 0 {
+        return Err(err("the box holds no particles (create_atoms)".into()));
+    }
+    // the cells must reach the pairs that the computes read by fix ave/time count
+    sys.min_cell = 0.0;
+    for rdf in sim.rdfs.iter().filter(|r| averages.iter().any(|f| f.computes().any(|c| c == r.id))) {
+        let rc = rdf.cutoff_for(sim.pair.as_ref()).unwrap_or(0.0);
+        rdf.check_reach(sys, rc + sim.skin).map_err(err)?;
+        sys.min_cell = sys.min_cell.max(rc + sim.skin);
+    }
+    if let Some(i) = (0..sys.store.nlocal).find(|&i| !sys.store.mass[i].is_finite()) {
+        return Err(err(format!("the mass of type {} is not set", sys.store.kind[i])));
+    }
+    // neighbour and sweep lists, estimated from the mean density before they are built
+    let (n, volume) = (sys.store.nlocal as f64, sys.domain.volume() / sys.comm.size() as f64);
+    let reach = physics.list_radius();
+    let neighbours = n / volume * 4.0 / 3.0 * std::f64::consts::PI * reach.powi(3);
+    let bytes = n * neighbours * (memory::NEIGHBOUR_ENTRY_BYTES + 0.5 * memory::SWEEP_PAIR_BYTES);
+    memory::check(bytes, &format!("the neighbour lists ({neighbours:.0} neighbours per particle)")).map_err(err)?;
+    // a continuation keeps the forces of the step its restart was written at: they
+    // depend on that step's velocities and noise, which the set-up cannot redo
+    let resume = sys.restored.then(|| sys.store.save_by_tag(gendpde_engine::stage::RESUME));
+    physics.setup(sys).map_err(|e| match e {
+        SetupError::Grid(g) | SetupError::Types(g) => err(g),
+        SetupError::State(s) => AppError::Step { cmd: cmd.clone(), err: s },
+    })?;
+    if let Some(saved) = resume.filter(|_| sys.restored_grid == sys.grid.as_ref().map(|g| g.count)) {
+        let exchanged = sys.store.restore_by_tag(&saved);
+        sys.comm.forward(&mut sys.store, exchanged);
+    }
+    if let Some(grid) = &sys.grid {
+        log::info!(
+            "cell grid {:?} of side {:?}; {} ghosts; {} neighbour pairs; {} sweep pairs",
+            grid.count,
+            grid.side,
+            sys.store.nghost(),
+            sys.nlist.pairs.len(),
+            sys.sweep.pairs.len()
+        );
+    }
+    Ok(physics)
+}
+
+/// `run N`: sets up, then advances N steps, writing the outputs that are due at the
+/// setup and after every step (a check only sets up).
+pub fn run(sim: &mut Sim, outputs: &mut Outputs, out: &mut Output, vars: &Variables, mode: Mode, a: &mut Args) -> Result<(), AppError> {
+    let nsteps = a.u64("the number of steps")?;
+    a.done()?;
+    let cmd = a.command();
+    let err = |m: String| AppError::Script(ScriptError::at(cmd, m));
+    let physics = prepare(sim, &outputs.averages, cmd)?;
+    if mode == Mode::Check {
+        return Ok(());
+    }
+    let sys = sim.system.as_mut().expect("prepared system");
+    sim.energy0.get_or_insert_with(|| Observables::measure(sys).energy());
+    let run = Span { first: sys.step, last: sys.step + nsteps };
+    let comm_before = sys.comm.time().as_secs_f64();
+    let clock = Instant::now();
+    let natoms = sys.comm.count(sys.store.nlocal);
+    out.line(&format!("Setting up GenDPDE run: {natoms} particles, timestep {} ...", sim.dt));
+    out.line(&header_line(&outputs.thermo.keywords));
+    let progress = progress_bar(sys.comm.rank() == 0, nsteps);
+    write_due(sim, outputs, out, vars, run, clock, &progress).map_err(err)?;
+    let mut last_good = Snapshot::default();
+    for k in 1..=nsteps {
+        if k % 16 == 0 {
+            progress.set_position(k);
+        }
+        let sys = sim.system.as_mut().expect("system exists during a run");
+        sys.save(&mut last_good);
+        if let Err(mut e) = physics.step(sys) {
+            progress.finish_and_clear();
+            sys.restore(&last_good);
+            let file = outputs.checkpoint.as_ref().map_or_else(|| "failed.restart.h5".to_string(), |c| c.file_at(e.step));
+            e.what = match restart::write(sim, &file) {
+                Ok(()) => format!("{}; the last good state (step {}) is in {file}", e.what, e.step),
+                Err(w) => format!("{}; writing the last good state to {file} failed: {w}", e.what),
+            };
+            out.flush();
+            return Err(AppError::Step { cmd: cmd.clone(), err: e });
+        }
+        write_due(sim, outputs, out, vars, run, clock, &progress).map_err(err)?;
+    }
+    progress.finish_and_clear();
+    let secs = clock.elapsed().as_secs_f64();
+    let sys = sim.system.as_ref().expect("system exists during a run");
+    let n = sys.comm.count(sys.store.nlocal);
+    out.line(&format!("Loop time of {secs:.6} on {} procs for {nsteps} steps with {n} atoms", sys.comm.size()));
+    out.line("");
+    if secs > 0.0 && nsteps > 0 {
+        let rate = nsteps as f64 / secs;
+        out.line(&format!(
+            "Performance: {:.3} tau/day, {:.3} timesteps/s, {:.3} katom-step/s",
+            rate * sim.dt * 86400.0,
+            rate,
+            rate * n as f64 / 1e3
+        ));
+    }
+    let comm = sys.comm.time().as_secs_f64() - comm_before;
+    if secs > 0.0 {
+        out.line(&format!("Comm time (rank 0) = {comm:.6} s ({:.1} % of the loop)", 100.0 * comm / secs));
+    }
+    out.line(&format!("Neighbor list builds = {}", sys.builds));
+    if sys.substeps > 0 || sys.rejected > 0 {
+        out.line(&format!(
+            "Shardlow pair updates split into half steps (theta -> 0 guard) = {}, left out = {}",
+            sys.substeps, sys.rejected
+        ));
+    }
+    out.flush();
+    Ok(())
+}
+
+/// Writes the outputs due at the current step, in the order of [`Outputs::all`], with
+/// the progress bar hidden.
+fn write_due(sim: &Sim, outputs: &mut Outputs, out: &mut Output, vars: &Variables, run: Span, clock: Instant, progress: &ProgressBar) -> Result<(), String> {
+    let sys = sim.system.as_ref().expect("system exists during a run");
+    let mut frame = Frame { sim, sys, vars, out, run, cpu: clock.elapsed().as_secs_f64() };
+    for o in outputs.all() {
+        if o.next_step(sys.step, run).is_some_and(|next| next <= sys.step) {
+            progress.suspend(|| o.write(&mut frame))?;
+        }
+    }
+    Ok(())
+}
+
+/// A progress bar with rate and ETA on stderr, shown only when stderr is a terminal.
+fn progress_bar(root: bool, nsteps: u64) -> ProgressBar {
+    use std::io::IsTerminal;
+    if !root || !std::io::stderr().is_terminal() || nsteps < 2 {
+        return ProgressBar::hidden();
+    }
+    let bar = ProgressBar::new(nsteps);
+    let style = indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} steps  {per_sec}  ETA {eta}")
+        .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar());
+    bar.set_style(style);
+    bar
+}

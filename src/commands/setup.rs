@@ -1,0 +1,353 @@
+//! Setup and settings: units, dimension, boundary, atom_style, lattice, region,
+//! processors, create_box, create_atoms, mass, set, timestep, neighbor, neigh_modify and
+//! reset_timestep.
+
+use crate::base::args::Args;
+use crate::base::groups;
+use crate::base::lattice::{Block, Lattice};
+use crate::base::memory;
+use crate::base::units::Units;
+use crate::model::sim::Sim;
+use crate::output::thermo::ThermoConfig;
+use gendpde_engine::{Comm, Domain, ProcGrid};
+use gendpde_integrators::System;
+use gendpde_io::{AtomStyle, ScriptError};
+
+/// `units lj|metal`: before the box; resets the timestep, skin and thermo norm to the
+/// units' defaults.
+pub fn units(sim: &mut Sim, thermo: &mut ThermoConfig, a: &mut Args) -> Result<(), ScriptError> {
+    let w = a.word("a unit style (lj or metal)")?;
+    let units = Units::parse(w).ok_or_else(|| a.err(format!("units {w}: known are lj and metal")))?;
+    a.done()?;
+    if sim.system.is_some() && units != sim.units {
+        return Err(a.err("units must come before the box is created"));
+    }
+    if units != sim.units {
+        sim.units = units;
+        sim.dt = units.default_dt;
+        sim.skin = units.default_skin;
+        thermo.norm = units.default_norm;
+    }
+    Ok(())
+}
+
+/// `dimension 3`.
+pub fn dimension(a: &mut Args) -> Result<(), ScriptError> {
+    match a.word("the dimension")? {
+        "3" => a.done(),
+        d => Err(a.err(format!("dimension {d}: only 3 is supported"))),
+    }
+}
+
+/// `boundary p p p`.
+pub fn boundary(a: &mut Args) -> Result<(), ScriptError> {
+    for axis in ["x", "y", "z"] {
+        match a.word(&format!("the boundary along {axis}"))? {
+            "p" => {}
+            b => return Err(a.err(format!("boundary '{b}' along {axis}: only periodic (p) is supported"))),
+        }
+    }
+    a.done()
+}
+
+/// `atom_style atomic|dpd|gendpde|mdpd`: the columns of data files.
+pub fn atom_style(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
+    sim.atom_style = match a.word("an atom style")? {
+        "atomic" => AtomStyle::Atomic,
+        "dpd" | "gendpde" => AtomStyle::Dpd,
+        "mdpd" => AtomStyle::Mdpd,
+        s => return Err(a.err(format!("unknown atom style '{s}'; known: atomic, dpd, gendpde, mdpd"))),
+    };
+    a.done()
+}
+
+/// `lattice sc|bcc|fcc RHO`.
+pub fn lattice(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
+    let style = a.word("a lattice style (sc, bcc, fcc)")?;
+    let rho = a.positive("the reduced density")?;
+    a.done()?;
+    sim.lattice = Some(Lattice::new(style, rho).ok_or_else(|| a.err(format!("unknown lattice '{style}'; known: sc, bcc, fcc")))?);
+    Ok(())
+}
+
+/// `region ID block xlo xhi ylo yhi zlo zhi [units box|lattice]`.
+pub fn region(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
+    let id = a.word("a region ID")?.to_string();
+    match a.word("a region style (block)")? {
+        "block" => {}
+        s => return Err(a.err(format!("unknown region style '{s}'; known: block"))),
+    }
+    // INF and EDGE (LAMMPS) leave a side open; create_atoms clips regions to the box
+    let mut b = [0.0; 6];
+    for (k, what) in ["xlo", "xhi", "ylo", "yhi", "zlo", "zhi"].iter().enumerate() {
+        b[k] = match a.peek() {
+            Some("INF" | "EDGE") => {
+                a.word(what)?;
+                if k % 2 == 0 { f64::NEG_INFINITY } else { f64::INFINITY }
+            }
+            _ => a.f64(what)?,
+        };
+    }
+    let mut scale = None;
+    while a.remaining() > 0 {
+        match a.word("keyword")? {
+            "units" => match a.word("box or lattice")? {
+                "box" => scale = Some(1.0),
+                "lattice" => scale = None,
+                u => return Err(a.err(format!("expected units box or lattice, got '{u}'"))),
+            },
+            k => return Err(a.err(format!("unknown keyword '{k}'; known: units"))),
+        }
+    }
+    let scale = match scale {
+        Some(s) => s,
+        None => sim.lattice.as_ref().map(|l| l.constant).ok_or_else(|| a.err("region in lattice units needs a lattice command first (or use 'units box')"))?,
+    };
+    let block = Block { lo: [b[0] * scale, b[2] * scale, b[4] * scale], hi: [b[1] * scale, b[3] * scale, b[5] * scale] };
+    if (0..3).any(|d| block.hi[d] <= block.lo[d]) {
+        return Err(a.err("each upper bound must exceed its lower bound"));
+    }
+    if sim.regions.contains_key(&id) {
+        return Err(a.err(format!("region ID '{id}' is in use")));
+    }
+    sim.regions.insert(id, block);
+    Ok(())
+}
+
+/// `processors Px Py Pz` (each a count or `*`): the shape of the grid of ranks.
+pub fn processors(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
+    if sim.system.is_some() {
+        return Err(a.err("processors must come before create_box"));
+    }
+    for d in 0..3 {
+        sim.procs[d] = match a.word("a rank count or *")? {
+            "*" => None,
+            w => match w.parse::<usize>() {
+                Ok(p) if p > 0 => Some(p),
+                _ => return Err(a.err(format!("expected a positive rank count or *, got '{w}'"))),
+            },
+        };
+    }
+    a.done()
+}
+
+/// `create_box N REGION`.
+pub fn create_box(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
+    let transport = sim.take_transport().map_err(|e| a.err(e))?;
+    let n = a.u64("the number of particle types")? as usize;
+    if n == 0 {
+        return Err(a.err("the number of particle types must be at least 1"));
+    }
+    let id = a.word("a region ID")?;
+    a.done()?;
+    let block = sim.regions.get(id).ok_or_else(|| a.err(format!("no region with ID '{id}'")))?;
+    if !block.lo.iter().chain(&block.hi).all(|x| x.is_finite()) {
+        return Err(a.err(format!("region '{id}' is open (INF/EDGE): a box needs finite bounds")));
+    }
+    let domain = Domain::new(block.lo, block.hi);
+    let procs = ProcGrid::choose(transport.size(), domain.len(), sim.procs).map_err(|e| a.err(e))?;
+    sim.ntypes = n;
+    sim.masses = vec![None; n];
+    sim.system = Some(System::new(domain, Comm::new(transport, procs)));
+    Ok(())
+}
+
+/// `create_atoms TYPE box|region ID` on the lattice points.
+pub fn create_atoms(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
+    let kind = a.u64("a particle type")? as usize;
+    if kind < 1 || kind > sim.ntypes {
+        return Err(a.err(format!("type {kind} is outside 1..{}", sim.ntypes)));
+    }
+    let sys = sim.system.as_mut().ok_or_else(|| a.err("create_atoms before create_box"))?;
+    let (lo, hi) = match a.word("box or region")? {
+        "box" => (sys.domain.lo, sys.domain.hi),
+        "region" => {
+            let id = a.word("a region ID")?;
+            let b = sim.regions.get(id).ok_or_else(|| a.err(format!("no region with ID '{id}'")))?;
+            let (d, mut lo, mut hi) = (&sys.domain, b.lo, b.hi);
+            for k in 0..3 {
+                lo[k] = lo[k].max(d.lo[k]);
+                hi[k] = hi[k].min(d.hi[k]);
+            }
+            (lo, hi)
+        }
+        s => return Err(a.err(format!("expected box or region, got '{s}'"))),
+    };
+    a.done()?;
+    let lattice = sim.lattice.as_ref().ok_or_else(|| a.err("create_atoms needs a lattice command first"))?;
+    let mass = sim.masses[kind - 1].map_or(f64::NAN, |m| m * sim.units.mvv2e);
+    let bound = lattice.count_bound(lo, hi);
+    memory::check(24.0 * bound + memory::STORE_BYTES_PER_PARTICLE * bound / sys.comm.size() as f64, &format!("create_atoms of up to {bound:.3e} particles"))
+        .map_err(|e| a.err(e))?;
+    let points = lattice.points(lo, hi);
+    if sim.max_tag + points.len() as u64 > u32::MAX as u64 {
+        return Err(a.err(format!("more than {} particles: particle IDs must fit in 32 bits", u32::MAX)));
+    }
+    sys.store.truncate_ghosts();
+    for r in points {
+        sim.max_tag += 1;
+        if sys.comm.keeps(&sys.domain, r) {
+            sys.store.push(sim.max_tag, kind as u32, mass, r);
+        }
+    }
+    sim.check_density_cap().map_err(|e| a.err(e))
+}
+
+/// `mass TYPES M`.
+pub fn mass(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
+    if sim.ntypes == 0 {
+        return Err(a.err("mass before create_box"));
+    }
+    let types = a.types(sim.ntypes)?;
+    let m = a.positive("the mass")?;
+    a.done()?;
+    for t in types.clone() {
+        sim.masses[t - 1] = Some(m);
+    }
+    let internal = m * sim.units.mvv2e;
+    if let Some(sys) = &mut sim.system {
+        let s = &mut sys.store;
+        for i in 0..s.nlocal {
+            if types.contains(&(s.kind[i] as usize)) {
+                if !s.mass[i].is_finite() {
+                    // read_data kept the velocity in p while the mass was unknown
+                    s.p[i] = s.p[i].map(|v| v * internal);
+                } else {
+                    s.p[i] = s.p[i].map(|p| p / s.mass[i] * internal);
+                }
+                s.mass[i] = internal;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Gives owned particle `i` type `kind` and that type's mass (NaN while unset), keeping
+/// its velocity (p holds the velocity while the mass is unknown, as after read_data).
+fn retype(s: &mut gendpde_engine::Particles, i: usize, kind: u32, masses: &[Option<f64>], mvv2e: f64) {
+    let new = masses[kind as usize - 1].map_or(f64::NAN, |m| m * mvv2e);
+    let old = s.mass[i];
+    let velocity = if old.is_finite() { s.p[i].map(|p| p / old) } else { s.p[i] };
+    s.p[i] = if new.is_finite() { velocity.map(|v| v * new) } else { velocity };
+    s.kind[i] = kind;
+    s.mass[i] = new;
+}
+
+/// `set atom|type|group ID KEYWORD VALUE ...` with keywords theta (dpd/theta), u, type T
+/// and type/fraction T FRACTION SEED (as LAMMPS: each selected particle becomes type T
+/// with probability FRACTION).
+pub fn set(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
+    let style = a.word("atom, type or group")?;
+    let group_mask = if style == "group" { Some(groups::mask(&sim.groups, a.word("a group ID")?, a)?) } else { None };
+    let sys = sim.system.as_mut().ok_or_else(|| a.err("set before create_box"))?;
+    let s = &mut sys.store;
+    let selected: Vec<usize> = match style {
+        "group" => {
+            let m = group_mask.unwrap_or(0);
+            (0..s.nlocal).filter(|&i| s.in_group(i, m)).collect()
+        }
+        "type" => {
+            let range = a.range("a particle type", sim.ntypes as u64)?;
+            (0..s.nlocal).filter(|&i| range.contains(&(s.kind[i] as u64))).collect()
+        }
+        "atom" => {
+            let range = a.range("a particle ID", sim.max_tag)?;
+            (0..s.nlocal).filter(|&i| range.contains(&s.tag[i])).collect()
+        }
+        _ => return Err(a.err(format!("expected atom, type or group, got '{style}'"))),
+    };
+    if a.remaining() == 0 {
+        return Err(a.err("missing argument: expected a keyword (theta or u) and its value"));
+    }
+    while a.remaining() > 0 {
+        let key = a.word("a keyword")?;
+        match key {
+            "theta" | "dpd/theta" => {
+                let t = a.positive("the particle temperature theta")?;
+                for &i in &selected {
+                    s.theta[i] = t;
+                    s.theta_given[i] = true;
+                }
+            }
+            "u" => {
+                let u = a.f64("the internal energy u")?;
+                for &i in &selected {
+                    s.u[i] = u;
+                    s.theta_given[i] = false;
+                }
+            }
+            "type" => {
+                let t = a.range("a particle type", sim.ntypes as u64)?;
+                if t.start() != t.end() {
+                    return Err(a.err("set type takes one type"));
+                }
+                for &i in &selected {
+                    retype(s, i, *t.start() as u32, &sim.masses, sim.units.mvv2e);
+                }
+            }
+            "type/fraction" => {
+                let t = a.range("a particle type", sim.ntypes as u64)?;
+                let fraction = a.f64("the fraction")?;
+                let seed = a.u64("the random seed")?;
+                if t.start() != t.end() || !(0.0..=1.0).contains(&fraction) || seed == 0 {
+                    return Err(a.err("set type/fraction takes one type, a fraction in [0, 1] and a positive seed"));
+                }
+                for &i in &selected {
+                    // keyed by the tag: the same particles on any number of ranks
+                    let x = gendpde_integrators::rng::uniform4(seed, 0, s.tag[i], 0, gendpde_integrators::rng::stream::SET_TYPE)[0];
+                    if x < fraction {
+                        retype(s, i, *t.start() as u32, &sim.masses, sim.units.mvv2e);
+                    }
+                }
+            }
+            k => return Err(a.err(format!("unknown set keyword '{k}'; known: theta, dpd/theta, u, type, type/fraction"))),
+        }
+    }
+    Ok(())
+}
+
+/// `timestep DT`.
+pub fn timestep(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
+    sim.dt = a.positive("the timestep")?;
+    a.done()
+}
+
+/// `neighbor SKIN bin`.
+pub fn neighbor(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
+    sim.skin = a.non_negative("the skin distance")?;
+    match a.word("the neighbour style (bin)")? {
+        "bin" | "nsq" => a.done(),
+        s => Err(a.err(format!("unknown neighbour style '{s}'; known: bin"))),
+    }
+}
+
+/// `neigh_modify every N delay N check yes|no [once no]`: the list rebuild rules.
+pub fn neigh_modify(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
+    if a.remaining() == 0 {
+        return Err(a.err("missing argument: expected every, delay, check or once"));
+    }
+    while a.remaining() > 0 {
+        match a.word("a keyword")? {
+            "every" => sim.rebuild.every = a.u64("the rebuild interval")?.max(1),
+            "delay" => sim.rebuild.delay = a.u64("the rebuild delay")?,
+            "check" => sim.rebuild.check = a.yes_no("check")?,
+            "once" => {
+                if a.yes_no("once")? {
+                    return Err(a.err("once yes is not supported: lists must follow the particles"));
+                }
+            }
+            k => return Err(a.err(format!("unknown keyword '{k}'; known: every, delay, check, once"))),
+        }
+    }
+    Ok(())
+}
+
+/// `reset_timestep N`: positions and lists stay; the build step follows the clock.
+pub fn reset_timestep(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
+    let n = a.u64("the new step number")?;
+    a.done()?;
+    let sys = sim.system.as_mut().ok_or_else(|| a.err("reset_timestep before create_box"))?;
+    sys.last_build = sys.last_build.saturating_sub(sys.step).saturating_add(n).min(n);
+    sys.step = n;
+    Ok(())
+}

@@ -1,0 +1,3 @@
+//! The model: everything a script defined (box, particles, styles, run settings).
+
+pub mod sim;

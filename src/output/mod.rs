@@ -1,0 +1,41 @@
+//! Output: the screen and log ([`console`]), and what runs and commands write: thermo,
+//! text and H5MD dumps, fix ave/time, checkpoints and restart files.
+
+pub mod ave_time;
+pub mod checkpoint;
+pub mod console;
+pub mod dump;
+pub mod h5md;
+pub mod restart;
+pub mod schedule;
+pub mod thermo;
+
+use self::ave_time::AveTime;
+use self::checkpoint::Checkpoint;
+use self::h5md::H5mdDump;
+use self::schedule::RunOutput;
+use self::thermo::ThermoConfig;
+
+/// The outputs of runs a script defined.
+#[derive(Default)]
+pub struct Outputs {
+    /// `thermo`, `thermo_style`, `thermo_modify`.
+    pub thermo: ThermoConfig,
+    /// `dump ... h5md`.
+    pub dumps: Vec<H5mdDump>,
+    /// `fix ID all ave/time`.
+    pub averages: Vec<AveTime>,
+    /// `checkpoint N FILE`.
+    pub checkpoint: Option<Checkpoint>,
+}
+
+impl Outputs {
+    /// All of them in the order a run writes them at one step: thermo, the dumps, the
+    /// fixes ave/time, the checkpoint.
+    pub fn all(&mut self) -> impl Iterator<Item = &mut dyn RunOutput> {
+        std::iter::once(&mut self.thermo as &mut dyn RunOutput)
+            .chain(self.dumps.iter_mut().map(|d| d as &mut dyn RunOutput))
+            .chain(self.averages.iter_mut().map(|f| f as &mut dyn RunOutput))
+            .chain(self.checkpoint.iter_mut().map(|c| c as &mut dyn RunOutput))
+    }
+}

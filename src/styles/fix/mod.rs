@@ -1,0 +1,119 @@
+//! Fix styles: `fix ID GROUP STYLE args...` parsed into declarative [`Fix`]es (the
+//! EOS models in [`eos`]); `styles::physics` turns them into the dynamics of a run.
+//! `fix ave/time` is an output (`output::ave_time`).
+
+pub mod eos;
+
+use self::eos::{parse_eos, EosModel};
+use crate::base::args::Args;
+use crate::base::script::echo;
+use crate::styles::FIX_STYLES;
+use gendpde_integrators::{HeatModel, Work};
+use gendpde_io::{Command, ScriptError};
+
+/// The fix styles.
+#[derive(Clone, Debug, PartialEq)]
+pub enum FixStyle {
+    Eos(EosModel),
+    /// `fix nve/gendpde [work split|isentropic]`: the reversible velocity-Verlet step.
+    Verlet { work: Work },
+    /// `fix vv/euler [heat original|fourier]`: velocity Verlet with all pair forces, Euler
+    /// for u (argon paper, sec 4.1).
+    VvEuler { heat: HeatModel },
+    /// `fix shardlow [heat original|fourier] [substeps N] [reject yes|no]`.
+    Shardlow { heat: HeatModel, substeps: u32, reject: bool },
+    /// `fix ID GROUP heat/reservoir T KAPPA SEED [heat original|fourier]`; `mask` is the
+    /// group's bit (`u32::MAX` for all).
+    Reservoir { temperature: f64, kappa: f64, seed: u64, heat: Option<HeatModel>, mask: u32 },
+    /// `fix nve` (LAMMPS's pairwise styles).
+    Nve,
+    /// `fix mvv/dpd [LAMBDA]` (pair mdpd).
+    Mvv { lambda: f64 },
+}
+
+#[derive(Clone, Debug)]
+pub struct Fix {
+    pub id: String,
+    pub style: FixStyle,
+    /// The command as written (restart files re-create fixes from it).
+    pub text: String,
+}
+
+/// Default and largest number of halving levels of a failing Shardlow pair update.
+pub const DEFAULT_SUBSTEPS: u32 = 4;
+pub const MAX_SUBSTEPS: u32 = 8;
+
+/// `fix ID GROUP STYLE args...`; `kb` is Boltzmann's constant of the units, `groups`
+/// the group names by bit.
+pub fn parse_fix(cmd: &Command, kb: f64, groups: &[String]) -> Result<Fix, ScriptError> {
+    let mut a = Args::new(cmd);
+    let id = a.word("a fix ID")?.to_string();
+    let group = a.word("a group")?;
+    let style_name = a.word("a fix style")?;
+    if group != "all" && style_name != "heat/reservoir" {
+        return Err(a.err(format!("group '{group}': fix {style_name} acts on group all (only heat/reservoir takes a group)")));
+    }
+    let style = match style_name {
+        s if s.starts_with("eos/") => FixStyle::Eos(parse_eos(s, &mut a, kb)?),
+        "nve/gendpde" => {
+            let mut work = Work::Split;
+            while let Some(k) = a.peek() {
+                a.word("keyword")?;
+                match k {
+                    "work" => {
+                        work = match a.word("split or isentropic")? {
+                            "split" => Work::Split,
+                            "isentropic" => Work::Isentropic,
+                            w => return Err(a.err(format!("unknown work rule '{w}'; known: split, isentropic"))),
+                        }
+                    }
+                    _ => return Err(a.err(format!("unknown keyword '{k}'; known: work"))),
+                }
+            }
+            FixStyle::Verlet { work }
+        }
+        "vv/euler" => FixStyle::VvEuler { heat: heat_keyword(&mut a)?.unwrap_or(HeatModel::Original) },
+        "nve" => FixStyle::Nve,
+        "mvv/dpd" => FixStyle::Mvv { lambda: if a.remaining() > 0 { a.positive("lambda")? } else { 0.5 } },
+        "shardlow" => {
+            let (mut heat, mut substeps, mut reject) = (HeatModel::Original, DEFAULT_SUBSTEPS, false);
+            while let Some(k) = a.peek() {
+                match k {
+                    "heat" => heat = heat_keyword(&mut a)?.unwrap_or(heat),
+                    "substeps" => {
+                        a.word("substeps")?;
+                        substeps = a.u64("the number of halving levels")?.min(MAX_SUBSTEPS as u64) as u32;
+                    }
+                    "reject" => {
+                        a.word("reject")?;
+                        reject = a.yes_no("reject")?;
+                    }
+                    _ => return Err(a.err(format!("unknown keyword '{k}'; known: heat, substeps, reject"))),
+                }
+            }
+            FixStyle::Shardlow { heat, substeps, reject }
+        }
+        "heat/reservoir" => {
+            let temperature = a.positive("the reservoir temperature")?;
+            let kappa = a.positive("the reservoir coupling kappa")?;
+            let seed = a.u64("the random seed")?;
+            let mask = crate::base::groups::mask(groups, group, &a)?;
+            FixStyle::Reservoir { temperature, kappa, seed, heat: heat_keyword(&mut a)?, mask }
+        }
+        other => return Err(a.err(format!("unknown fix style '{other}'; known: {FIX_STYLES}"))),
+    };
+    a.done()?;
+    Ok(Fix { id, style, text: echo(cmd) })
+}
+
+fn heat_keyword(a: &mut Args) -> Result<Option<HeatModel>, ScriptError> {
+    match a.peek() {
+        None => Ok(None),
+        Some("heat") => {
+            a.word("heat")?;
+            let w = a.word("a heat model (original or fourier)")?;
+            HeatModel::parse(w).map(Some).ok_or_else(|| a.err(format!("unknown heat model '{w}'; known: original, fourier")))
+        }
+        Some(other) => Err(a.err(format!("unknown keyword '{other}'; known: heat"))),
+    }
+}

@@ -1,0 +1,14 @@
+//! The styles a script names, by family (LAMMPS's pair, fix and compute styles): each
+//! family parses its commands into declarative types and never sees the model;
+//! [`physics`] assembles the dynamics of a run from them.
+
+pub mod compute;
+pub mod fix;
+pub mod pair;
+pub mod physics;
+
+/// The styles of each family, as error messages list them.
+pub const PAIR_STYLES: &str = "gendpde, dpd, dpd/fdt, dpd/fdt/energy, hybrid/overlay mdpd/rhosum mdpd";
+pub const FIX_STYLES: &str =
+    "eos/vdw, eos/lj, eos/lth, eos/ideal, eos/cv, eos/density, eos/linear, nve/gendpde, shardlow, vv/euler, heat/reservoir, nve, mvv/dpd, ave/time";
+pub const COMPUTE_STYLES: &str = "dpd, tint, rdf";
