@@ -1,6 +1,8 @@
-//! `lattice`, `region block` and the lattice points of `create_atoms`.
+//! `lattice`, `region block` and the points of `create_atoms` (lattice or random).
 
 use gendpde_engine::Vec3;
+use rand_pcg::rand_core::{RngCore, SeedableRng};
+use rand_pcg::Pcg64Mcg;
 
 /// A cubic lattice: `lattice sc|bcc|fcc RHO` (lj units: RHO is the reduced number
 /// density, so the lattice constant is (basis count / RHO)^(1/3), as in LAMMPS).
@@ -50,6 +52,22 @@ impl Lattice {
     }
 }
 
+/// `n` points uniform in the block [lo, hi), from the sequential stream of `seed`
+/// (rand_pcg's Pcg64Mcg, x then y then z of each point: the same points on every rank).
+pub fn random_points(n: u64, seed: u64, lo: Vec3, hi: Vec3) -> Vec<Vec3> {
+    let mut rng = Pcg64Mcg::seed_from_u64(seed);
+    let mut uniform = || (rng.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64);
+    let mut out = Vec::with_capacity(n as usize);
+    while out.len() < n as usize {
+        let r: Vec3 = std::array::from_fn(|d| lo[d] + uniform() * (hi[d] - lo[d]));
+        // rounding can land on hi, which belongs to the next image
+        if (0..3).all(|d| r[d] < hi[d]) {
+            out.push(r);
+        }
+    }
+    out
+}
+
 /// `region ID block xlo xhi ylo yhi zlo zhi`, in box units.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Block {
@@ -71,6 +89,31 @@ mod tests {
             let rho = pts.len() as f64 / side.powi(3);
             assert!((rho - 0.5).abs() < 1e-12);
         }
+    }
+
+    /// Chi-square of the counts in 4x4x4 bins against uniform (63 degrees of freedom:
+    /// mean 63, sd 11.2), for several seeds; every point lies in the block.
+    #[test]
+    fn random_points_are_uniform_in_the_block() {
+        let (lo, hi) = ([-1.0, 2.0, 0.5], [3.0, 2.5, 7.0]);
+        let mut chi2s = Vec::new();
+        for seed in 1..=20 {
+            let pts = random_points(6400, seed, lo, hi);
+            assert_eq!(pts.len(), 6400);
+            let mut bins = [0.0; 64];
+            for r in &pts {
+                assert!((0..3).all(|d| r[d] >= lo[d] && r[d] < hi[d]), "{r:?}");
+                let b: Vec<usize> = (0..3).map(|d| ((r[d] - lo[d]) / (hi[d] - lo[d]) * 4.0) as usize).collect();
+                bins[b[0] + 4 * b[1] + 16 * b[2]] += 1.0;
+            }
+            chi2s.push(bins.iter().map(|c| (c - 100.0) * (c - 100.0) / 100.0).sum::<f64>());
+        }
+        let mean = chi2s.iter().sum::<f64>() / 20.0;
+        // the mean of 20 chi-square(63) values: 63 +- 11.2 / sqrt(20) = 2.5; 4 sigma
+        assert!((mean - 63.0).abs() < 10.0, "mean chi-square {mean} over 20 seeds: {chi2s:?}");
+        assert!(chi2s.iter().all(|&c| c < 120.0), "a seed fails at p < 1e-5: {chi2s:?}");
+        assert_ne!(random_points(4, 1, lo, hi), random_points(4, 2, lo, hi));
+        assert_eq!(random_points(4, 7, lo, hi), random_points(4, 7, lo, hi));
     }
 
     #[test]

@@ -4,7 +4,7 @@
 
 use crate::base::args::Args;
 use crate::base::groups;
-use crate::base::lattice::{Block, Lattice};
+use crate::base::lattice::{random_points, Block, Lattice};
 use crate::base::memory;
 use crate::base::units::Units;
 use crate::model::sim::Sim;
@@ -99,10 +99,8 @@ pub fn region(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
             k => return Err(a.err(format!("unknown keyword '{k}'; known: units"))),
         }
     }
-    let scale = match scale {
-        Some(s) => s,
-        None => sim.lattice.as_ref().map(|l| l.constant).ok_or_else(|| a.err("region in lattice units needs a lattice command first (or use 'units box')"))?,
-    };
+    // LAMMPS's default lattice `lattice none 1.0` has spacing 1
+    let scale = scale.unwrap_or_else(|| sim.lattice.as_ref().map_or(1.0, |l| l.constant));
     let block = Block { lo: [b[0] * scale, b[2] * scale, b[4] * scale], hi: [b[1] * scale, b[3] * scale, b[5] * scale] };
     if (0..3).any(|d| block.hi[d] <= block.lo[d]) {
         return Err(a.err("each upper bound must exceed its lower bound"));
@@ -152,37 +150,68 @@ pub fn create_box(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     Ok(())
 }
 
-/// `create_atoms TYPE box|region ID` on the lattice points.
+/// `create_atoms TYPE box | region ID | random N SEED REGION|NULL`: on the lattice points,
+/// or N points uniform in the region (NULL: the box) from the sequential stream of SEED,
+/// which every rank replays in full, keeping its own particles.
 pub fn create_atoms(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     let kind = a.u64("a particle type")? as usize;
+    let sys = sim.system.as_mut().ok_or_else(|| a.err("create_atoms before the box exists (create_box, read_data or read_restart)"))?;
     if kind < 1 || kind > sim.ntypes {
         return Err(a.err(format!("type {kind} is outside 1..{}", sim.ntypes)));
     }
-    let sys = sim.system.as_mut().ok_or_else(|| a.err("create_atoms before create_box"))?;
-    let (lo, hi) = match a.word("box or region")? {
-        "box" => (sys.domain.lo, sys.domain.hi),
-        "region" => {
-            let id = a.word("a region ID")?;
-            let b = sim.regions.get(id).ok_or_else(|| a.err(format!("no region with ID '{id}'")))?;
-            let (d, mut lo, mut hi) = (&sys.domain, b.lo, b.hi);
-            for k in 0..3 {
-                lo[k] = lo[k].max(d.lo[k]);
-                hi[k] = hi[k].min(d.hi[k]);
-            }
-            (lo, hi)
+    let clip = |a: &Args, id: &str| {
+        let b = sim.regions.get(id).ok_or_else(|| a.err(format!("no region with ID '{id}'")))?;
+        let (d, mut lo, mut hi) = (&sys.domain, b.lo, b.hi);
+        for k in 0..3 {
+            lo[k] = lo[k].max(d.lo[k]);
+            hi[k] = hi[k].min(d.hi[k]);
         }
-        s => return Err(a.err(format!("expected box or region, got '{s}'"))),
+        Ok::<_, ScriptError>((lo, hi))
     };
-    a.done()?;
-    let lattice = sim.lattice.as_ref().ok_or_else(|| a.err("create_atoms needs a lattice command first"))?;
-    let mass = sim.masses[kind - 1].map_or(f64::NAN, |m| m * sim.units.mvv2e);
-    let bound = lattice.count_bound(lo, hi);
-    memory::check(24.0 * bound + memory::STORE_BYTES_PER_PARTICLE * bound / sys.comm.size() as f64, &format!("create_atoms of up to {bound:.3e} particles"))
-        .map_err(|e| a.err(e))?;
-    let points = lattice.points(lo, hi);
+    let size = sys.comm.size() as f64;
+    let check_memory = |a: &Args, bound: f64| {
+        memory::check(24.0 * bound + memory::STORE_BYTES_PER_PARTICLE * bound / size, &format!("create_atoms of up to {bound:.3e} particles"))
+            .map_err(|e| a.err(e))
+    };
+    let points = match a.word("box, region or random")? {
+        style @ ("box" | "region") => {
+            let (lo, hi) = if style == "box" { (sys.domain.lo, sys.domain.hi) } else {
+                let id = a.word("a region ID")?;
+                clip(a, id)?
+            };
+            a.done()?;
+            let lattice = sim.lattice.as_ref().ok_or_else(|| a.err("create_atoms needs a lattice command first"))?;
+            check_memory(a, lattice.count_bound(lo, hi))?;
+            lattice.points(lo, hi)
+        }
+        "random" => {
+            let n = a.u64("the number of particles")?;
+            let seed = a.u64("a positive random seed")?;
+            if seed == 0 {
+                return Err(a.err("the random seed must be positive"));
+            }
+            let (lo, hi) = match a.word("a region ID or NULL")? {
+                "NULL" => (sys.domain.lo, sys.domain.hi),
+                id => clip(a, id)?,
+            };
+            if let Some(k) = a.peek() {
+                return Err(a.err(match k {
+                    "overlap" | "maxtry" => format!("create_atoms random: keyword '{k}' is not supported"),
+                    _ => format!("unexpected argument '{k}'"),
+                }));
+            }
+            if (0..3).any(|d| hi[d] <= lo[d]) {
+                return Err(a.err("the region does not overlap the box"));
+            }
+            check_memory(a, n as f64)?;
+            random_points(n, seed, lo, hi)
+        }
+        s => return Err(a.err(format!("expected box, region or random, got '{s}'"))),
+    };
     if sim.max_tag + points.len() as u64 > u32::MAX as u64 {
         return Err(a.err(format!("more than {} particles: particle IDs must fit in 32 bits", u32::MAX)));
     }
+    let mass = sim.masses[kind - 1].map_or(f64::NAN, |m| m * sim.units.mvv2e);
     sys.store.truncate_ghosts();
     for r in points {
         sim.max_tag += 1;
