@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::lammps::{expect_success, parse_dump, run_lammps, DumpSnapshot};
+use common::lammps::{expect_success, parse_dump, parse_thermo_blocks, run_lammps, scripts_dir, DumpSnapshot, ThermoBlock};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
@@ -20,10 +20,22 @@ fn gendpde(dir: &Path, args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_gendpde")).args(args).current_dir(dir).output().expect("gendpde runs")
 }
 
-/// Writes `script` as `in.x` in a fresh directory and runs `gendpde run in.x`.
-fn run_script(name: &str, script: &str) -> (PathBuf, Output) {
+/// A fresh directory holding `script` as `in.x` and the data files of scripts/lammps/.
+fn stage(name: &str, script: &str) -> PathBuf {
     let dir = tempdir(name);
     std::fs::write(dir.join("in.x"), script).unwrap();
+    for entry in std::fs::read_dir(scripts_dir()).unwrap() {
+        let name = entry.unwrap().file_name();
+        if name.to_string_lossy().starts_with("data.") {
+            std::fs::copy(scripts_dir().join(&name), dir.join(&name)).unwrap();
+        }
+    }
+    dir
+}
+
+/// Runs `gendpde run in.x` on `script` in a fresh directory.
+fn run_script(name: &str, script: &str) -> (PathBuf, Output) {
+    let dir = stage(name, script);
     let out = gendpde(&dir, &["run", "in.x", "-log", "none"]);
     (dir, out)
 }
@@ -32,13 +44,19 @@ fn stderr(out: &Output) -> String {
     String::from_utf8_lossy(&out.stderr).into_owned()
 }
 
+/// Runs `script`, which must fail with a message containing `expected`.
+fn expect_error(name: &str, script: &str, expected: &str) {
+    let (_, out) = run_script(name, script);
+    assert!(!out.status.success(), "accepted:\n{script}");
+    assert!(stderr(&out).contains(expected), "expected '{expected}', got {}\nfor:\n{script}", stderr(&out));
+}
+
 /// Runs `script` in gendpde (which must succeed) and in LAMMPS; returns both directories
 /// and standard outputs.
 fn both(name: &str, script: &str) -> ((PathBuf, String), (PathBuf, String)) {
     let (dg, g) = run_script(&format!("{name}-gendpde"), script);
     assert!(g.status.success(), "gendpde failed on {name}:\n{}", stderr(&g));
-    let dl = tempdir(&format!("{name}-lammps"));
-    std::fs::write(dl.join("in.x"), script).unwrap();
+    let dl = stage(&format!("{name}-lammps"), script);
     let l = expect_success("LAMMPS", &run_lammps(&dl, "in.x", &[]));
     ((dg, String::from_utf8_lossy(&g.stdout).into_owned()), (dl, l))
 }
@@ -117,12 +135,9 @@ fn create_atoms_random_errors_name_the_line() {
         ("region far block 10 12 0 1 0 1 units box\ncreate_atoms 1 random 10 5 far", "in.x:5: create_atoms: the region does not overlap the box"),
         ("create_atoms 2 random 10 5 NULL", "in.x:4: create_atoms: type 2 is outside 1..1"),
     ] {
-        let (_, out) = run_script("random-errors", &format!("{head}{line}\n"));
-        assert!(!out.status.success(), "{line} was accepted");
-        assert!(stderr(&out).contains(expected), "{line}: expected '{expected}', got {}", stderr(&out));
+        expect_error("random-errors", &format!("{head}{line}\n"), expected);
     }
-    let (_, out) = run_script("random-nobox", "create_atoms 1 random 10 5 NULL\n");
-    assert!(stderr(&out).contains("in.x:1: create_atoms: create_atoms before the box exists"), "{}", stderr(&out));
+    expect_error("random-nobox", "create_atoms 1 random 10 5 NULL\n", "in.x:1: create_atoms: create_atoms before the box exists");
 }
 
 /// Every rank replays the whole stream: the same particles on 1, 2 and 3 ranks.
@@ -147,5 +162,82 @@ fn create_atoms_random_is_rank_independent() {
             None => first = Some(text),
             Some(f) => assert!(*f == text, "{np} ranks differ from 1 rank"),
         }
+    }
+}
+
+/// The last thermo block of a log or screen output.
+fn last_block(text: &str) -> ThermoBlock {
+    parse_thermo_blocks(text, "Step").pop().expect("a thermo block")
+}
+
+/// Every column of every row of two thermo blocks agrees to `rel` relative (of the
+/// column's largest magnitude); returns the largest relative difference.
+fn compare_blocks(g: &ThermoBlock, l: &ThermoBlock, rel: f64) -> f64 {
+    assert_eq!(g.header, l.header);
+    assert_eq!(g.rows.len(), l.rows.len());
+    let mut worst: f64 = 0.0;
+    for (c, name) in g.header.iter().enumerate() {
+        let scale = l.rows.iter().map(|r| r[c].abs()).fold(0.0, f64::max).max(1e-300);
+        for (rg, rl) in g.rows.iter().zip(&l.rows) {
+            let d = (rg[c] - rl[c]).abs() / scale;
+            assert!(d <= rel, "{name} at step {}: gendpde {} LAMMPS {}", rl[0], rg[c], rl[c]);
+            worst = worst.max(d);
+        }
+    }
+    worst
+}
+
+/// The deterministic DPDE scene of scripts/lammps/in.dpde-deterministic (conservative
+/// force only) with a temperature of half the box: `thermo_modify temp` makes temp, ke,
+/// etotal and the pressure's kinetic part those of the group, as in LAMMPS.
+const TEMP: &str = "units lj
+atom_style dpd
+comm_modify vel yes
+read_data data.dpde-small
+mass 1 1.0
+pair_style dpd/fdt/energy 1.0 34387
+pair_coeff 1 1 25.0 0.0 0.0 1.0
+neighbor 0.3 bin
+neigh_modify every 1 delay 0 check no
+timestep 0.01
+region half block 0 4.5 INF INF INF INF units box
+group half region half
+compute th half temp
+compute tall all temp
+compute_modify tall extra/dof 0
+variable t equal temp
+thermo 10
+thermo_style custom step temp c_th c_tall ke etotal press pxx pzz v_t
+thermo_modify temp th norm no format float %.17g
+fix 1 all shardlow
+fix 2 all nve
+fix 3 all eos/cv 10.0
+run 50
+";
+
+#[test]
+fn compute_temp_of_a_group_matches_lammps() {
+    let ((_, g), (_, l)) = both("temp", TEMP);
+    let (g, l) = (last_block(&g), last_block(&l));
+    let worst = compare_blocks(&g, &l, 1e-9);
+    eprintln!("compute temp of a group: largest relative difference to LAMMPS {worst:.2e} over {} rows", l.rows.len());
+    // the group's temperature is not the whole box's
+    let (t, tall) = (g.column_index("Temp").unwrap(), g.column_index("c_tall").unwrap());
+    assert!((g.rows[0][t] - g.rows[0][tall]).abs() > 1e-3 * g.rows[0][t]);
+}
+
+#[test]
+fn compute_temp_errors_name_the_line() {
+    let head = "units lj\nregion box block 0 4 0 4 0 4\ncreate_box 1 box\ncompute d all dpd\n";
+    for (line, expected) in [
+        ("thermo_modify temp nope", "in.x:5: thermo_modify: no compute with ID 'nope'"),
+        ("thermo_modify temp d", "in.x:5: thermo_modify: compute d does not compute a temperature (compute temp)"),
+        ("compute t nogroup temp", "in.x:5: compute: no group"),
+        ("compute t all temp extra", "in.x:5: compute: unexpected argument 'extra'"),
+        ("compute_modify d extra/dof 0", "in.x:5: compute_modify: compute d: compute_modify applies to compute temp only"),
+        ("compute t all temp\ncompute_modify t extra/dof", "in.x:6: compute_modify: missing argument: expected the extra degrees of freedom"),
+        ("compute t all temp\ncompute_modify t dynamic/dof yes", "in.x:6: compute_modify: unknown keyword 'dynamic/dof'; known: extra/dof"),
+    ] {
+        expect_error("temp-errors", &format!("{head}{line}\n"), expected);
     }
 }

@@ -14,7 +14,7 @@ use crate::base::script::{echo, AppError, Mode};
 use crate::model::sim::Sim;
 use crate::output::checkpoint::Checkpoint;
 use crate::output::console::Output;
-use crate::output::thermo::ThermoContext;
+use crate::output::thermo::{ThermoConfig, ThermoContext};
 use crate::output::Outputs;
 use gendpde_engine::{Local, Transport};
 use gendpde_integrators::{Physics, System};
@@ -67,8 +67,8 @@ impl Interpreter {
     fn execute_reader(&mut self, mut reader: ScriptReader) -> Result<(), AppError> {
         loop {
             let next = {
-                let (sim, vars, norm) = (&self.sim, &self.vars, self.outputs.thermo.norm);
-                reader.next_command(vars, &|name| resolve(sim, norm, name))?
+                let (sim, vars, thermo) = (&self.sim, &self.vars, &self.outputs.thermo);
+                reader.next_command(vars, &|name| resolve(sim, thermo, name))?
             };
             let Some(cmd) = next else { return Ok(()) };
             self.out.log_line(&echo(&cmd));
@@ -136,9 +136,10 @@ impl Interpreter {
             "fix" => styles::fix(sim, &mut outputs.averages, a)?,
             "unfix" => styles::unfix(sim, &mut outputs.averages, a)?,
             "compute" => styles::compute(sim, a)?,
+            "compute_modify" => crate::styles::compute::modify(&mut sim.computes, a)?,
             "thermo" => output::thermo(&mut outputs.thermo, a)?,
             "thermo_style" => output::thermo_style(&mut outputs.thermo, &self.vars, a)?,
-            "thermo_modify" => output::thermo_modify(&mut outputs.thermo, a)?,
+            "thermo_modify" => output::thermo_modify(&mut outputs.thermo, &sim.computes, a)?,
             "dump" => output::dump(&mut outputs.dumps, a)?,
             "undump" => output::undump(&mut outputs.dumps, a)?,
             "write_dump" => output::write_dump(sim, a)?,
@@ -154,8 +155,8 @@ impl Interpreter {
     }
 }
 
-/// Values of thermo keywords inside variables and `$(...)`; `norm` as `thermo_modify`.
-fn resolve(sim: &Sim, norm: bool, name: &str) -> Option<f64> {
+/// Values of thermo keywords inside variables and `$(...)`, with the thermo settings.
+fn resolve(sim: &Sim, thermo: &ThermoConfig, name: &str) -> Option<f64> {
     let sys = sim.system.as_ref()?;
-    ThermoContext::new(sim, sys, norm, 0, 0.0).keyword(name)
+    ThermoContext::new(sim, sys, thermo, 0, 0.0).keyword(name)
 }

@@ -9,6 +9,7 @@ use crate::output::console::Output;
 use crate::output::dump::TextDump;
 use crate::output::h5md::H5mdDump;
 use crate::output::thermo::{heading, ThermoConfig};
+use crate::styles::compute::{Compute, ComputeStyle};
 use gendpde_io::{ScriptError, Variables};
 use std::path::Path;
 
@@ -44,17 +45,27 @@ pub fn thermo_style(thermo: &mut ThermoConfig, vars: &Variables, a: &mut Args) -
         return Err(a.err("missing argument: expected thermo keywords"));
     }
     thermo.keywords = keys;
+    // as LAMMPS, a new thermo style uses its own temperature again
+    thermo.temp = None;
     Ok(())
 }
 
-/// `thermo_modify norm yes|no | format float F | flush yes|no`.
-pub fn thermo_modify(thermo: &mut ThermoConfig, a: &mut Args) -> Result<(), ScriptError> {
+/// `thermo_modify norm yes|no | format float F | flush yes|no | temp ID`.
+pub fn thermo_modify(thermo: &mut ThermoConfig, computes: &[Compute], a: &mut Args) -> Result<(), ScriptError> {
     if a.remaining() == 0 {
-        return Err(a.err("missing argument: expected norm, format or flush"));
+        return Err(a.err("missing argument: expected norm, format, flush or temp"));
     }
     while a.remaining() > 0 {
         match a.word("a keyword")? {
             "norm" => thermo.norm = a.yes_no("norm")?,
+            "temp" => {
+                let id = a.word("a compute ID")?;
+                match computes.iter().find(|c| c.id == id) {
+                    Some(Compute { style: ComputeStyle::Temp { .. }, .. }) => thermo.temp = Some(id.to_string()),
+                    Some(_) => return Err(a.err(format!("compute {id} does not compute a temperature (compute temp)"))),
+                    None => return Err(a.err(format!("no compute with ID '{id}'"))),
+                }
+            }
             "flush" => {
                 a.yes_no("flush")?;
             }
@@ -66,7 +77,7 @@ pub fn thermo_modify(thermo: &mut ThermoConfig, a: &mut Args) -> Result<(), Scri
                 }
                 k => return Err(a.err(format!("thermo_modify format {k}: only 'format float' is supported"))),
             },
-            k => return Err(a.err(format!("unknown keyword '{k}'; known: norm, format, flush"))),
+            k => return Err(a.err(format!("unknown keyword '{k}'; known: norm, format, flush, temp"))),
         }
     }
     Ok(())

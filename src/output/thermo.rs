@@ -9,10 +9,12 @@
 //! ke = sum p^2/2m; etotal = pe + ke; edrift = (E - E0)/|E0| since the first setup;
 //! pxtot, pytot, pztot = total momentum. Sums are decomposition-independent (exact_sums).
 //! With `thermo_modify norm yes` (the lj default) pe, ke and etotal are per particle.
+//! With `thermo_modify temp ID` (a compute temp of a group), temp, ke, etotal and the
+//! kinetic part of the pressure are those of the group, as in LAMMPS.
 
 use crate::model::sim::Sim;
 use crate::output::schedule::{Frame, RunOutput, Span};
-use crate::styles::compute::{self, Totals};
+use crate::styles::compute::{self, ComputeStyle, Kinetic, Totals};
 use gendpde_engine::exact_sums;
 use gendpde_integrators::System;
 use gendpde_io::format_printf;
@@ -24,12 +26,14 @@ pub struct ThermoConfig {
     pub keywords: Vec<String>,
     pub norm: bool,
     pub float_format: Option<String>,
+    /// `thermo_modify temp ID`: the compute temp of temp, ke, etotal and press.
+    pub temp: Option<String>,
 }
 
 impl Default for ThermoConfig {
     fn default() -> Self {
         let keywords = ["step", "temp", "tint", "pe", "ke", "etotal", "press"].map(String::from).to_vec();
-        Self { every: 0, keywords, norm: true, float_format: None }
+        Self { every: 0, keywords, norm: true, float_format: None, temp: None }
     }
 }
 
@@ -45,7 +49,7 @@ impl RunOutput for ThermoConfig {
 
     /// One value line on the screen and in the log.
     fn write(&mut self, f: &mut Frame) -> Result<(), String> {
-        let ctx = ThermoContext::new(f.sim, f.sys, self.norm, f.sys.step - f.run.first, f.cpu);
+        let ctx = ThermoContext::new(f.sim, f.sys, self, f.sys.step - f.run.first, f.cpu);
         let resolve = |name: &str| ctx.keyword(name);
         let mut values = Vec::with_capacity(self.keywords.len());
         for k in &self.keywords {
@@ -121,18 +125,28 @@ impl Observables {
         self.ke + self.u + self.epair
     }
 
+    /// The kinetic sums of all particles.
+    pub fn kinetic(&self) -> Kinetic {
+        Kinetic { count: self.atoms, mv2_diag: self.mv2_diag }
+    }
+
+    /// LAMMPS's temperature of group all: dof = 3N - 3.
     pub fn temperature(&self, kb: f64) -> f64 {
-        let dof = 3.0 * self.atoms - 3.0;
-        if dof > 0.0 { self.mv2 / (dof * kb) } else { 0.0 }
+        self.kinetic().temperature(kb, 3.0)
     }
 
     pub fn pressure(&self) -> f64 {
-        (self.mv2 + self.virial_diag.iter().sum::<f64>()) / (3.0 * self.volume)
+        self.pressure_with(&self.kinetic())
+    }
+
+    /// The pressure with the kinetic part of `k` (LAMMPS: that of the thermo temperature).
+    pub fn pressure_with(&self, k: &Kinetic) -> f64 {
+        (k.mv2() + self.virial_diag.iter().sum::<f64>()) / (3.0 * self.volume)
     }
 
     /// Diagonal component `a` of the pressure tensor (LAMMPS's pxx, pyy, pzz).
-    pub fn pressure_component(&self, a: usize) -> f64 {
-        (self.mv2_diag[a] + self.virial_diag[a]) / self.volume
+    pub fn pressure_component(&self, k: &Kinetic, a: usize) -> f64 {
+        (k.mv2_diag[a] + self.virial_diag[a]) / self.volume
     }
 }
 
@@ -141,15 +155,25 @@ pub struct ThermoContext<'a> {
     sim: &'a Sim,
     sys: &'a System,
     obs: Observables,
+    /// Kinetic sums of the thermo temperature's group, and its extra dof.
+    kinetic: Kinetic,
+    extra_dof: f64,
     norm: bool,
     elapsed: u64,
     cpu: f64,
 }
 
 impl<'a> ThermoContext<'a> {
-    /// Measures `sys` of `sim` (collective); `elapsed` steps and `cpu` seconds of the run.
-    pub fn new(sim: &'a Sim, sys: &'a System, norm: bool, elapsed: u64, cpu: f64) -> Self {
-        Self { sim, sys, obs: Observables::measure(sys), norm, elapsed, cpu }
+    /// Measures `sys` of `sim` (collective) for the thermo settings `config`; `elapsed`
+    /// steps and `cpu` seconds of the run.
+    pub fn new(sim: &'a Sim, sys: &'a System, config: &ThermoConfig, elapsed: u64, cpu: f64) -> Self {
+        let obs = Observables::measure(sys);
+        let temp = config.temp.as_deref().and_then(|id| sim.computes.iter().find(|c| c.id == id));
+        let (kinetic, extra_dof) = match temp.map(|c| c.style) {
+            Some(ComputeStyle::Temp { mask, extra_dof }) => (Kinetic::measure(sys, mask), extra_dof),
+            _ => (obs.kinetic(), 3.0),
+        };
+        Self { sim, sys, obs, kinetic, extra_dof, norm: config.norm, elapsed, cpu }
     }
 
     /// Value of a built-in keyword; None if the name is not one.
@@ -164,16 +188,16 @@ impl<'a> ThermoContext<'a> {
             "dt" => self.sim.dt,
             "cpu" => self.cpu,
             "atoms" => o.atoms,
-            "temp" => o.temperature(self.sim.units.kb),
+            "temp" => self.kinetic.temperature(self.sim.units.kb, self.extra_dof),
             "tint" => if o.atoms > 0.0 { o.theta / o.atoms } else { 0.0 },
             "nmean" => if o.atoms > 0.0 { o.n / o.atoms } else { 0.0 },
-            "press" => o.pressure(),
-            "pxx" => o.pressure_component(0),
-            "pyy" => o.pressure_component(1),
-            "pzz" => o.pressure_component(2),
+            "press" => o.pressure_with(&self.kinetic),
+            "pxx" => o.pressure_component(&self.kinetic, 0),
+            "pyy" => o.pressure_component(&self.kinetic, 1),
+            "pzz" => o.pressure_component(&self.kinetic, 2),
             "pe" => per(self.potential()),
-            "ke" => per(o.ke),
-            "etotal" => per(self.potential() + o.ke),
+            "ke" => per(0.5 * self.kinetic.mv2()),
+            "etotal" => per(self.potential() + 0.5 * self.kinetic.mv2()),
             "edrift" => match self.sim.energy0 {
                 Some(e0) if e0 != 0.0 => (o.energy() - e0) / e0.abs(),
                 _ => 0.0,
@@ -201,7 +225,7 @@ impl<'a> ThermoContext<'a> {
             return self.reservoir_heat(id);
         }
         let o = &self.obs;
-        let totals = Totals { atoms: o.atoms, u: o.u, u_cond: o.u_cond, inv_theta: o.inv_theta };
+        let totals = Totals { kb: self.sim.units.kb, atoms: o.atoms, u: o.u, u_cond: o.u_cond, inv_theta: o.inv_theta };
         compute::value(&self.sim.computes, self.sys, &totals, name)
     }
 

@@ -1,5 +1,5 @@
-//! Compute styles: `compute ID all dpd` and `compute ID GROUP tint`, global values read
-//! in thermo output as `c_ID` or `c_ID[k]`, and `compute ID all rdf` ([`rdf`], read by
+//! Compute styles: `compute ID all dpd`, `compute ID GROUP tint` and `compute ID GROUP
+//! temp`, global values read in thermo output as `c_ID` or `c_ID[k]`, and `compute ID all rdf` ([`rdf`], read by
 //! fix ave/time).
 
 pub mod rdf;
@@ -24,6 +24,39 @@ pub enum ComputeStyle {
     Dpd,
     /// Over a group (bit `mask`, `u32::MAX` for all): mean theta, mean u, count.
     Tint { mask: u32 },
+    /// LAMMPS's compute temp of a group: sum m v^2 / (dof k_B) with dof = 3 N_group -
+    /// `extra_dof` (3 unless `compute_modify ID extra/dof`).
+    Temp { mask: u32, extra_dof: f64 },
+}
+
+/// The kinetic sums of a group: its count and the diagonal of sum p p^T / m.
+#[derive(Clone, Copy, Debug)]
+pub struct Kinetic {
+    pub count: f64,
+    pub mv2_diag: [f64; 3],
+}
+
+impl Kinetic {
+    /// Sums over the particles of group bit `mask` on all ranks (collective).
+    pub fn measure(sys: &System, mask: u32) -> Self {
+        let s = &sys.store;
+        let rows = (0..s.nlocal).filter(|&i| s.in_group(i, mask)).map(|i| {
+            let (p, m) = (s.p[i], s.mass[i]);
+            [1.0, p[0] * p[0] / m, p[1] * p[1] / m, p[2] * p[2] / m]
+        });
+        let [count, xx, yy, zz] = exact_sums(sys.comm.transport(), rows);
+        Self { count, mv2_diag: [xx, yy, zz] }
+    }
+
+    pub fn mv2(&self) -> f64 {
+        self.mv2_diag.iter().sum()
+    }
+
+    /// LAMMPS's temperature with dof = 3 N - `extra_dof` (zero without degrees of freedom).
+    pub fn temperature(&self, kb: f64, extra_dof: f64) -> f64 {
+        let dof = 3.0 * self.count - extra_dof;
+        if dof > 0.0 { self.mv2() / (dof * kb) } else { 0.0 }
+    }
 }
 
 /// What a `compute` command defines.
@@ -49,6 +82,7 @@ pub fn parse(a: &mut Args, groups: &[String]) -> Result<Definition, ScriptError>
         "dpd" if group == "all" => ComputeStyle::Dpd,
         "dpd" => return Err(a.err(format!("compute dpd on group '{group}': only group all is supported"))),
         "tint" => ComputeStyle::Tint { mask: crate::base::groups::mask(groups, group, a)? },
+        "temp" => ComputeStyle::Temp { mask: crate::base::groups::mask(groups, group, a)?, extra_dof: 3.0 },
         "rdf" if group == "all" => return Ok(Definition::Rdf(Rdf::parse(id, a)?)),
         "rdf" => return Err(a.err(format!("compute rdf on group {group}: only group all is supported"))),
         other => return Err(a.err(format!("unknown compute style '{other}'; known: {COMPUTE_STYLES}"))),
@@ -59,6 +93,8 @@ pub fn parse(a: &mut Args, groups: &[String]) -> Result<Definition, ScriptError>
 
 /// The global sums a thermo line needs from the whole system (`output::thermo`).
 pub struct Totals {
+    /// Boltzmann's constant of the units.
+    pub kb: f64,
     pub atoms: f64,
     pub u: f64,
     pub u_cond: f64,
@@ -93,5 +129,26 @@ pub fn value(computes: &[Compute], sys: &System, totals: &Totals, name: &str) ->
             let mean = |x: f64| if count > 0.0 { x / count } else { 0.0 };
             Some([mean(theta), mean(u), count][k - 1])
         }
+        // the scalar only (LAMMPS's vector, the kinetic energy tensor, is not provided)
+        ComputeStyle::Temp { mask, extra_dof } => (rest == id).then(|| Kinetic::measure(sys, mask).temperature(totals.kb, extra_dof)),
     }
+}
+
+/// `compute_modify ID extra/dof N` (or `extra N`) of a compute temp.
+pub fn modify(computes: &mut [Compute], a: &mut Args) -> Result<(), ScriptError> {
+    let id = a.word("a compute ID")?;
+    let c = computes.iter_mut().find(|c| c.id == id).ok_or_else(|| a.err(format!("no compute with ID '{id}'")))?;
+    let ComputeStyle::Temp { extra_dof, .. } = &mut c.style else {
+        return Err(a.err(format!("compute {id}: compute_modify applies to compute temp only")));
+    };
+    if a.remaining() == 0 {
+        return Err(a.err("missing argument: expected extra/dof"));
+    }
+    while a.remaining() > 0 {
+        match a.word("a keyword")? {
+            "extra/dof" | "extra" => *extra_dof = a.f64("the extra degrees of freedom")?,
+            k => return Err(a.err(format!("unknown keyword '{k}'; known: extra/dof"))),
+        }
+    }
+    Ok(())
 }
