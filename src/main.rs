@@ -3,6 +3,7 @@
 use clap::{Parser, Subcommand};
 use gendpde::{AppError, Interpreter, Mode, Output};
 use gendpde_engine::Transport;
+use std::io::{IsTerminal, Read};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -142,6 +143,70 @@ fn eos(model: String, params: Vec<String>, theta: Option<f64>, u: Option<f64>, n
     print_lines(result, 15)
 }
 
+/// What a script reads and where its output goes.
+struct Session {
+    input: Input,
+    mode: Mode,
+    /// `-var NAME VALUE...`
+    vars: Vec<(String, Vec<String>)>,
+    /// Log file (None or `none`: no log).
+    log: Option<String>,
+    screen: bool,
+    /// Echo commands to the screen as well (`-echo screen|both`).
+    echo_screen: bool,
+}
+
+enum Input {
+    File(PathBuf),
+    /// The script on standard input (`gendpde < in.x`), read by rank 0.
+    Stdin,
+}
+
+/// LAMMPS's command line: `gendpde [-in FILE] [-var NAME VALUE...] [-log FILE] [-echo STYLE]
+/// [-screen none] [-nocite] [-nonbuf]`, the script on standard input without `-in`.
+fn lammps_command_line(args: &[String]) -> Result<Session, String> {
+    let mut s = Session { input: Input::Stdin, mode: Mode::Run, vars: Vec::new(), log: Some("log.lammps".into()), screen: true, echo_screen: false };
+    let mut i = 0;
+    let value = |i: usize, flag: &str| args.get(i + 1).cloned().ok_or_else(|| format!("option {flag} needs a value"));
+    while i < args.len() {
+        let flag = args[i].as_str();
+        match flag {
+            "-in" | "-i" => s.input = Input::File(value(i, flag)?.into()),
+            "-log" | "-l" => s.log = Some(value(i, flag)?),
+            "-screen" | "-sc" => match value(i, flag)?.as_str() {
+                "none" => s.screen = false,
+                f => return Err(format!("-screen {f}: only -screen none is supported (the screen goes to standard output)")),
+            },
+            "-echo" | "-e" => {
+                s.echo_screen = match value(i, flag)?.as_str() {
+                    "screen" | "both" => true,
+                    "log" | "none" => false,
+                    e => return Err(format!("-echo {e}: expected none, screen, log or both")),
+                }
+            }
+            "-var" | "-v" => {
+                let name = value(i, flag)?;
+                let values: Vec<String> = args[i + 2..].iter().take_while(|a| !a.starts_with('-')).cloned().collect();
+                if values.is_empty() {
+                    return Err(format!("-var {name} needs at least one value"));
+                }
+                i += values.len();
+                s.vars.push((name, values));
+            }
+            "-nocite" | "-nc" | "-nonbuf" | "-nb" => {
+                i += 1;
+                continue;
+            }
+            "-sf" | "-suffix" | "-pk" | "-package" | "-k" | "-kokkos" | "-p" | "-partition" | "-pl" | "-plog" | "-ps" | "-pscreen"
+            | "-ro" | "-reorder" | "-r2data" | "-restart2data" | "-r2dump" | "-restart2dump" | "-m" | "-mpicolor" | "-c" | "-cite"
+            | "-sr" | "-skiprun" | "-mdi" => return Err(format!("LAMMPS option {flag} is not supported")),
+            _ => return Err(format!("unknown command-line option '{flag}' (see gendpde --help)")),
+        }
+        i += 2;
+    }
+    Ok(s)
+}
+
 /// LAMMPS spells long options with one dash (`-var`, `-log`, `-in`).
 fn lammps_style_args() -> Vec<String> {
     std::env::args()
@@ -171,15 +236,50 @@ fn transport() -> Box<dyn Transport> {
     Box::new(gendpde_engine::Local)
 }
 
+/// Rank 0's `text` on every rank.
+fn broadcast(t: &dyn Transport, text: String) -> String {
+    let len = t.all_gather(&[text.len() as u64])[0] as usize;
+    let words = len.div_ceil(8);
+    let mut local = vec![0u64; words];
+    if t.rank() == 0 {
+        for (w, chunk) in local.iter_mut().zip(text.as_bytes().chunks(8)) {
+            let mut b = [0u8; 8];
+            b[..chunk.len()].copy_from_slice(chunk);
+            *w = u64::from_le_bytes(b);
+        }
+    }
+    let bytes: Vec<u8> = t.all_gather(&local)[..words].iter().flat_map(|w| w.to_le_bytes()).take(len).collect();
+    String::from_utf8_lossy(&bytes).into_owned()
+}
+
 fn main() -> ExitCode {
     env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn")).init();
     std::panic::set_hook(Box::new(|info| {
         eprintln!("ERROR: internal error in gendpde (please report it): {info}");
     }));
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let lammps = match args.first().map(String::as_str) {
+        None => !std::io::stdin().is_terminal(),
+        Some(a) => a.starts_with('-') && !a.starts_with("--") && !matches!(a, "-h" | "-V"),
+    };
+    if lammps {
+        return match lammps_command_line(&args) {
+            Ok(session) => run(session),
+            Err(e) => {
+                eprintln!("ERROR: {e}");
+                ExitCode::FAILURE
+            }
+        };
+    }
     let cli = Cli::parse_from(lammps_style_args());
-    let (script, mode, log) = match cli.command {
-        Cmd::Run { script, log } => (script, Mode::Run, Some(log)),
-        Cmd::Check { script } => (script, Mode::Check, None),
+    let pairs = |v: Vec<String>| v.chunks(2).map(|p| (p[0].clone(), p[1..].to_vec())).collect();
+    let session = match cli.command {
+        Cmd::Run { script, log } => {
+            Session { input: Input::File(script.input), mode: Mode::Run, vars: pairs(script.var), log: Some(log), screen: true, echo_screen: false }
+        }
+        Cmd::Check { script } => {
+            Session { input: Input::File(script.input), mode: Mode::Check, vars: pairs(script.var), log: None, screen: true, echo_screen: false }
+        }
         Cmd::Eos { model, params, theta, u, n } => return eos(model, params, theta, u, n),
         Cmd::LthParams { state } => return lth_params(&state),
         Cmd::LthMacro { params, rc, fcut, density, temperature, gr, .. } => {
@@ -198,23 +298,47 @@ fn main() -> ExitCode {
             }
         }
     };
+    run(session)
+}
+
+/// Runs (or checks) the script of `session`.
+fn run(session: Session) -> ExitCode {
     let transport = transport();
     let rank = transport.rank();
-    let mut out = Output::new(rank == 0);
-    if let Some(log) = log.filter(|l| l != "none" && rank == 0) {
+    let mut out = Output::new(rank == 0 && session.screen);
+    if let Some(log) = session.log.filter(|l| l != "none" && rank == 0) {
         if let Err(e) = out.open_log(std::path::Path::new(&log), false) {
             eprintln!("ERROR: cannot open log file '{log}': {e}");
             return ExitCode::FAILURE;
         }
     }
+    let mode = session.mode;
+    let stdin = match session.input {
+        Input::Stdin => {
+            let mut text = String::new();
+            if rank == 0 {
+                if let Err(e) = std::io::stdin().read_to_string(&mut text) {
+                    eprintln!("ERROR: cannot read the input script from standard input: {e}");
+                    return ExitCode::FAILURE;
+                }
+            }
+            Some(broadcast(transport.as_ref(), text))
+        }
+        Input::File(_) => None,
+    };
     let mut it = Interpreter::with_transport(mode, out, transport);
-    for v in script.var.chunks(2) {
-        it.vars.set_command_line(&v[0], v[1..].to_vec());
+    it.echo_screen = session.echo_screen;
+    for (name, values) in session.vars {
+        it.vars.set_command_line(&name, values);
     }
-    match it.execute_file(&script.input) {
+    let (result, name) = match (&session.input, stdin) {
+        (Input::File(path), _) => (it.execute_file(path), path.display().to_string()),
+        (Input::Stdin, text) => (it.execute_str("stdin", &text.unwrap_or_default()), "stdin".to_string()),
+    };
+    match result {
         Ok(()) => {
             if mode == Mode::Check {
-                it.out.line(&format!("{}: OK", script.input.display()));
+                it.out.line(&format!("{name}: OK"));
             }
             ExitCode::SUCCESS
         }

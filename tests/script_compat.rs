@@ -241,3 +241,107 @@ fn compute_temp_errors_name_the_line() {
         expect_error("temp-errors", &format!("{head}{line}\n"), expected);
     }
 }
+
+/// `cmd` run in `dir` with standard input from `stdin` (or none).
+fn run_with(cmd: &mut Command, dir: &Path, stdin: Option<&str>) -> Output {
+    use std::io::Write;
+    let mut child = cmd
+        .current_dir(dir)
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("starts");
+    let mut pipe = child.stdin.take().unwrap();
+    pipe.write_all(stdin.unwrap_or("").as_bytes()).unwrap();
+    drop(pipe);
+    child.wait_with_output().unwrap()
+}
+
+/// The deterministic scene of [`TEMP`] with `run_style verlet`, `atom_modify` and a
+/// variable step count, for the command line.
+fn cli_scene() -> String {
+    TEMP.replace("units lj\n", "units lj\natom_modify map array sort 0 0.0\nvariable steps index 50\n")
+        .replace("mass 1 1.0\n", "mass 1 1.0\nrun_style verlet\n")
+        .replace("run 50", "run ${steps}")
+}
+
+/// LAMMPS's command line, with the same arguments in both codes: `-in`, `-var`, `-log`,
+/// `-screen none`, `-nocite`; the logs hold the same thermo lines.
+#[test]
+fn lammps_command_line_runs_the_same_script_as_lammps() {
+    let script = cli_scene();
+    let args = ["-in", "in.x", "-var", "steps", "20", "-log", "log.x", "-screen", "none", "-nocite"];
+    let dg = stage("cli-gendpde", &script);
+    let out = run_with(Command::new(env!("CARGO_BIN_EXE_gendpde")).args(args), &dg, None);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert_eq!(String::from_utf8_lossy(&out.stdout), "", "-screen none leaves the screen empty");
+    let dl = stage("cli-lammps", &script);
+    let lmp = run_with(Command::new(common::lammps::lmp()).args(args), &dl, None);
+    assert!(lmp.status.success(), "{}", String::from_utf8_lossy(&lmp.stdout));
+    let read = |d: &Path| last_block(&std::fs::read_to_string(d.join("log.x")).unwrap());
+    let (g, l) = (read(&dg), read(&dl));
+    assert_eq!(l.rows.last().unwrap()[0], 20.0);
+    let worst = compare_blocks(&g, &l, 1e-9);
+    eprintln!("command line: thermo of both logs agree to {worst:.1e}");
+}
+
+/// `-i`, `-v` with several values, `-echo screen`, standard input, the default log file
+/// log.lammps, and LAMMPS options gendpde does not implement.
+#[test]
+fn lammps_command_line_forms() {
+    let script = "variable a index 3 4\nprint \"a=$a\"\nunits lj\n";
+    let dir = stage("cli-forms", script);
+    let gendpde = || Command::new(env!("CARGO_BIN_EXE_gendpde"));
+    let stdout = |o: &Output| String::from_utf8_lossy(&o.stdout).into_owned();
+    let out = run_with(gendpde().args(["-i", "in.x", "-v", "a", "7", "8", "-echo", "screen"]), &dir, None);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(stdout(&out).contains("a=7"), "{}", stdout(&out));
+    assert!(stdout(&out).contains("units lj"), "-echo screen echoes commands: {}", stdout(&out));
+    let log = std::fs::read_to_string(dir.join("log.lammps")).expect("LAMMPS's default log file");
+    assert!(log.contains("a=7"));
+    // the script on standard input, with and without options
+    for args in [&[][..], &["-log", "none"][..]] {
+        let out = run_with(gendpde().args(args), &dir, Some(script));
+        assert!(out.status.success(), "{}", stderr(&out));
+        assert!(stdout(&out).contains("a=3") && !stdout(&out).contains("units lj"), "{}", stdout(&out));
+    }
+    let out = run_with(gendpde().args(["-in", "in.x", "-log", "none", "-echo", "none"]), &dir, None);
+    assert!(!stdout(&out).contains("units lj"));
+    for (args, expected) in [
+        (&["-in", "in.x", "-sf", "omp"][..], "ERROR: LAMMPS option -sf is not supported"),
+        (&["-pk", "omp", "2", "-in", "in.x"][..], "ERROR: LAMMPS option -pk is not supported"),
+        (&["-k", "on", "-in", "in.x"][..], "ERROR: LAMMPS option -k is not supported"),
+        (&["-in", "in.x", "-bogus"][..], "ERROR: unknown command-line option '-bogus'"),
+        (&["-in"][..], "ERROR: option -in needs a value"),
+        (&["-in", "in.x", "-var", "a"][..], "ERROR: -var a needs at least one value"),
+        (&["-in", "in.x", "-screen", "out.txt"][..], "ERROR: -screen out.txt: only -screen none is supported"),
+        (&["-in", "missing.in"][..], "ERROR: cannot open input script 'missing.in'"),
+    ] {
+        let out = run_with(gendpde().args(args), &dir, None);
+        assert!(!out.status.success(), "{args:?} accepted");
+        assert!(stderr(&out).starts_with(expected), "{args:?}: expected {expected}, got {}", stderr(&out));
+    }
+    // the subcommands keep working
+    let out = run_with(gendpde().args(["run", "in.x", "-log", "none", "-var", "a", "5"]), &dir, None);
+    assert!(stdout(&out).contains("a=5"), "{}", stdout(&out));
+}
+
+#[test]
+fn run_style_and_atom_modify() {
+    let head = "units lj\n";
+    for ok in ["run_style verlet", "atom_modify map array", "atom_modify map hash sort 1000 0.0", "atom_modify id yes map yes"] {
+        let (_, out) = run_script("settings", &format!("{head}{ok}\n"));
+        assert!(out.status.success(), "{ok}: {}", stderr(&out));
+    }
+    for (line, expected) in [
+        ("run_style respa 2 2", "in.x:2: run_style: run style 'respa' is not supported (only verlet)"),
+        ("run_style verlet extra", "in.x:2: run_style: unexpected argument 'extra'"),
+        ("atom_modify map list", "in.x:2: atom_modify: expected map array, hash or yes, got 'list'"),
+        ("atom_modify sort 100", "in.x:2: atom_modify: missing argument: expected the sort bin size"),
+        ("atom_modify id no", "in.x:2: atom_modify: id no is not supported"),
+        ("atom_modify", "in.x:2: atom_modify: missing argument: expected map, sort or id"),
+    ] {
+        expect_error("settings-errors", &format!("{head}{line}\n"), expected);
+    }
+}

@@ -27,6 +27,8 @@ pub struct Interpreter {
     pub vars: Variables,
     pub out: Output,
     pub mode: Mode,
+    /// Commands are echoed to the screen too (`echo screen|both`, `-echo`); always to the log.
+    pub echo_screen: bool,
     /// A `next` exhausted its variables: the next `jump` falls through.
     skip_jump: bool,
 }
@@ -39,7 +41,7 @@ impl Interpreter {
 
     /// An interpreter whose box is split over the ranks of `transport`.
     pub fn with_transport(mode: Mode, out: Output, transport: Box<dyn Transport>) -> Self {
-        Self { sim: Sim::new(transport), outputs: Outputs::default(), vars: Variables::new(), out, mode, skip_jump: false }
+        Self { sim: Sim::new(transport), outputs: Outputs::default(), vars: Variables::new(), out, mode, echo_screen: false, skip_jump: false }
     }
 
     /// Executes a script file to its end.
@@ -71,7 +73,11 @@ impl Interpreter {
                 reader.next_command(vars, &|name| resolve(sim, thermo, name))?
             };
             let Some(cmd) = next else { return Ok(()) };
-            self.out.log_line(&echo(&cmd));
+            if self.echo_screen {
+                self.out.line(&echo(&cmd));
+            } else {
+                self.out.log_line(&echo(&cmd));
+            }
             match cmd.name.as_str() {
                 // LAMMPS loops: `label L`, `next V ...`, `jump SELF L`; a `next` that
                 // exhausts its variables makes the following `jump` fall through
@@ -115,6 +121,8 @@ impl Interpreter {
             "neighbor" => setup::neighbor(sim, a)?,
             "neigh_modify" => setup::neigh_modify(sim, a)?,
             "reset_timestep" => setup::reset_timestep(sim, a)?,
+            "run_style" => setup::run_style(a)?,
+            "atom_modify" => setup::atom_modify(a)?,
             // LAMMPS communication settings: gendpde always exchanges what its styles
             // need (ghost velocities included) and uses full lists; accepted for
             // compatibility.
@@ -146,7 +154,7 @@ impl Interpreter {
             "checkpoint" => outputs.checkpoint = Checkpoint::parse(a)?,
             "print" => output::print(&mut self.out, a)?,
             "log" => output::log(&mut self.out, self.mode, a)?,
-            "echo" => output::echo(a)?,
+            "echo" => self.echo_screen = output::echo(a)?,
             "variable" => self.vars.define(cmd)?,
             "run" => run::run(sim, outputs, &mut self.out, &self.vars, self.mode, a)?,
             other => return Err(a.err(format!("unknown command '{other}' (see docs/commands/ for the commands gendpde knows)")).into()),

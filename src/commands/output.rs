@@ -145,10 +145,14 @@ pub fn log(out: &mut Output, mode: Mode, a: &mut Args) -> Result<(), ScriptError
     Ok(())
 }
 
-/// `echo none|screen|log|both`: accepted (gendpde always echoes commands to the log).
-pub fn echo(a: &mut Args) -> Result<(), ScriptError> {
-    match a.word("none, screen, log or both")? {
-        "none" | "screen" | "log" | "both" => a.done(),
-        s => Err(a.err(format!("expected none, screen, log or both, got '{s}'"))),
-    }
+/// `echo none|screen|log|both`: whether commands are echoed to the screen too (gendpde
+/// always echoes them to the log).
+pub fn echo(a: &mut Args) -> Result<bool, ScriptError> {
+    let screen = match a.word("none, screen, log or both")? {
+        "screen" | "both" => true,
+        "none" | "log" => false,
+        s => return Err(a.err(format!("expected none, screen, log or both, got '{s}'"))),
+    };
+    a.done()?;
+    Ok(screen)
 }

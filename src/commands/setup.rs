@@ -1,6 +1,6 @@
 //! Setup and settings: units, dimension, boundary, atom_style, lattice, region,
-//! processors, create_box, create_atoms, mass, set, timestep, neighbor, neigh_modify and
-//! reset_timestep.
+//! processors, create_box, create_atoms, mass, set, timestep, neighbor, neigh_modify,
+//! reset_timestep, run_style and atom_modify.
 
 use crate::base::args::Args;
 use crate::base::groups;
@@ -378,5 +378,42 @@ pub fn reset_timestep(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     let sys = sim.system.as_mut().ok_or_else(|| a.err("reset_timestep before create_box"))?;
     sys.last_build = sys.last_build.saturating_sub(sys.step).saturating_add(n).min(n);
     sys.step = n;
+    Ok(())
+}
+
+/// `run_style verlet`: gendpde's step is LAMMPS's verlet (its fixes split it); other run
+/// styles are refused.
+pub fn run_style(a: &mut Args) -> Result<(), ScriptError> {
+    match a.word("a run style (verlet)")? {
+        "verlet" => a.done(),
+        s => Err(a.err(format!("run style '{s}' is not supported (only verlet)"))),
+    }
+}
+
+/// `atom_modify map array|hash|yes | sort Nfreq binsize | id yes`: LAMMPS's storage
+/// settings; gendpde manages its own storage, so they are accepted and have no effect.
+pub fn atom_modify(a: &mut Args) -> Result<(), ScriptError> {
+    if a.remaining() == 0 {
+        return Err(a.err("missing argument: expected map, sort or id"));
+    }
+    while a.remaining() > 0 {
+        match a.word("a keyword")? {
+            "map" => match a.word("array, hash or yes")? {
+                "array" | "hash" | "yes" => {}
+                m => return Err(a.err(format!("expected map array, hash or yes, got '{m}'"))),
+            },
+            "sort" => {
+                a.u64("the sort interval")?;
+                a.non_negative("the sort bin size")?;
+            }
+            "id" => {
+                if !a.yes_no("id")? {
+                    return Err(a.err("id no is not supported: particles always have IDs"));
+                }
+            }
+            "first" => return Err(a.err("atom_modify first is not supported")),
+            k => return Err(a.err(format!("unknown keyword '{k}'; known: map, sort, id"))),
+        }
+    }
     Ok(())
 }
