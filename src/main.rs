@@ -303,6 +303,7 @@ fn main() -> ExitCode {
 
 /// Runs (or checks) the script of `session`.
 fn run(session: Session) -> ExitCode {
+    let start = std::time::Instant::now();
     let transport = transport();
     let rank = transport.rank();
     let mut out = Output::new(rank == 0 && session.screen);
@@ -340,6 +341,8 @@ fn run(session: Session) -> ExitCode {
             if mode == Mode::Check {
                 it.out.line(&format!("{name}: OK"));
             }
+            let s = start.elapsed().as_secs();
+            it.out.line(&format!("Total wall time: {}:{:02}:{:02}", s / 3600, s / 60 % 60, s % 60));
             ExitCode::SUCCESS
         }
         Err(e) => {

@@ -13,7 +13,7 @@ fn gendpde(args: &[&str], dir: &Path) -> Output {
 fn thermo(out: &Output) -> String {
     String::from_utf8_lossy(&out.stdout)
         .lines()
-        .filter(|l| !["Loop time", "Performance", "Comm time"].iter().any(|t| l.starts_with(t)))
+        .filter(|l| !["Loop time", "Performance", "Comm time", "Total wall time"].iter().any(|t| l.starts_with(t)))
         .collect::<Vec<_>>()
         .join("\n")
 }

@@ -345,3 +345,134 @@ fn run_style_and_atom_modify() {
         expect_error("settings-errors", &format!("{head}{line}\n"), expected);
     }
 }
+
+/// Box keywords (and density, in g/cm^3 in real and metal) in every unit system, in
+/// thermo and in an equal-style variable; the positions are random (they differ from
+/// LAMMPS's), the keywords do not depend on them.
+const BOX: &str = "units UNITS
+region box block -2 13 1.5 15 -3 12 units box
+create_box 1 box
+create_atoms 1 random 200 99 NULL
+mass 1 2.5
+comm_modify vel yes
+pair_style dpd 1.0 1.0 3421
+pair_coeff 1 1 25.0 4.5
+fix 1 all nve
+variable w equal xhi-xlo+yhi*ylo-zlo/zhi+lx*ly*lz/vol+cella+cellb+cellc+density
+thermo_style custom step atoms vol density lx ly lz xlo xhi ylo yhi zlo zhi cella cellb cellc v_w
+thermo_modify format float %.15g
+run 0
+";
+
+/// LAMMPS's DPDE example data (metal: 1000 particles at 300 K, conservative force at step
+/// 0): temperature, pressure (bar in metal, atm in real), energies and enthalpy.
+const DPDE: &str = "units UNITS
+atom_style dpd
+read_data data.dpde
+comm_modify vel yes
+mass 1 100.0
+pair_style dpd/fdt/energy 10.0 245455
+pair_coeff 1 1 0.075 0.022 3.2E-5 10.00
+neighbor 2.0 bin
+timestep 0.001
+variable p equal press
+variable h equal enthalpy
+thermo_style custom step temp press pxx pyy pzz pe ke etotal enthalpy density v_p v_h
+thermo_modify format float %.15g
+fix 1 all shardlow
+fix 2 all nve
+fix 3 all eos/cv 0.05
+run 0
+";
+
+#[test]
+fn thermo_keywords_in_every_unit_system_match_lammps() {
+    for (scene, text, units) in [("box", BOX, &["lj", "real", "metal"][..]), ("dpde", DPDE, &["real", "metal"][..])] {
+        for u in units {
+            let ((_, g), (_, l)) = both(&format!("{scene}-{u}"), &text.replace("UNITS", u));
+            let (g, l) = (last_block(&g), last_block(&l));
+            let worst = compare_blocks(&g, &l, 1e-12);
+            eprintln!("{scene} in {u} units: {} columns agree with LAMMPS to {worst:.1e}", g.header.len());
+        }
+    }
+}
+
+/// Everything after the thermo block of a run, and the memory line before it.
+fn summary_lines(text: &str) -> (String, String) {
+    let memory = text.lines().find(|l| l.starts_with("Per MPI rank memory allocation")).expect("the memory line").to_string();
+    let perf = text.lines().find(|l| l.starts_with("Performance:")).expect("the Performance line").to_string();
+    (memory, perf)
+}
+
+/// The words (not the numbers) of the lines around a run are LAMMPS's: the memory line just
+/// before the heading, `Loop time of`, `Performance:` in tau/day (lj) or ns/day and hours/ns
+/// (real, metal), and `Total wall time: h:mm:ss` at the end.
+#[test]
+fn run_summary_lines_follow_lammps() {
+    let words = |l: &str| l.split_whitespace().filter(|w| w.parse::<f64>().is_err() && *w != "|").map(String::from).collect::<Vec<_>>();
+    for u in ["lj", "metal", "real"] {
+        let ((_, g), (_, l)) = both(&format!("summary-{u}"), &BOX.replace("UNITS", u).replace("run 0", "run 20"));
+        let ((gm, gp), (lm, lp)) = (summary_lines(&g), summary_lines(&l));
+        assert_eq!(words(&gm), words(&lm));
+        let (gp, lp) = (words(&gp), words(&lp));
+        // the prefix of atom-step/s follows the rate
+        assert_eq!(gp[..gp.len() - 1], lp[..lp.len() - 1], "{gp:?} vs {lp:?}");
+        assert!(gp.last().unwrap().ends_with("atom-step/s"));
+        for out in [&g, &l] {
+            let heading = out.lines().skip_while(|l| !l.starts_with("Per MPI rank memory")).nth(1).unwrap();
+            assert!(heading.trim_start().starts_with("Step"), "{heading}");
+            let wall = out.lines().last().unwrap();
+            let hms: Vec<&str> = wall.strip_prefix("Total wall time: ").expect(wall).split(':').collect();
+            assert!(hms.len() == 3 && hms[1].len() == 2 && hms[2].len() == 2, "{wall}");
+        }
+        let loop_line = g.lines().find(|l| l.starts_with("Loop time of")).unwrap();
+        assert!(loop_line.ends_with("on 1 procs for 20 steps with 200 atoms"), "{loop_line}");
+    }
+}
+
+/// tpcpu and spcpu: 0 at the first line of a run, then simulated time and steps per CPU
+/// second since the previous line (tpcpu = spcpu dt); cpu grows.
+#[test]
+fn cpu_keywords_measure_the_run() {
+    let script = BOX.replace("UNITS", "lj").replace("thermo_style custom step", "thermo 50\nthermo_style custom step cpu tpcpu spcpu").replace("run 0", "run 200");
+    let (_, out) = run_script("cpu", &script);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let b = last_block(&String::from_utf8_lossy(&out.stdout));
+    let (cpu, tp, sp) = (b.column_index("CPU").unwrap(), b.column_index("T/CPU").unwrap(), b.column_index("S/CPU").unwrap());
+    assert_eq!(b.rows.len(), 5);
+    assert_eq!((b.rows[0][tp], b.rows[0][sp]), (0.0, 0.0));
+    for w in b.rows.windows(2) {
+        assert!(w[1][cpu] > w[0][cpu]);
+        assert!(w[1][sp] > 0.0 && (w[1][tp] - 0.005 * w[1][sp]).abs() <= 1e-6 * w[1][tp], "{:?}", w[1]);
+        // 50 steps in the CPU time between the lines
+        let expected = 50.0 / (w[1][cpu] - w[0][cpu]);
+        assert!((w[1][sp] - expected).abs() <= 1e-3 * expected, "{} vs {expected}", w[1][sp]);
+    }
+}
+
+/// The lammps-logfile package (scripts/requirements.txt) reads a gendpde log of two runs:
+/// the thermo columns of both, with the values gendpde printed.
+#[test]
+fn lammps_logfile_reads_a_gendpde_log() {
+    let script = TEMP.replace("run 50", "run 20\nrun 30");
+    let dir = stage("logfile", &script);
+    let out = gendpde(&dir, &["-in", "in.x", "-log", "log.x", "-screen", "none"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let read = "import sys, lammps_logfile\n\
+                log = lammps_logfile.File(sys.argv[1])\n\
+                print(log.get_num_partial_logs())\n\
+                print(' '.join(log.get_keywords()))\n\
+                print(' '.join(repr(float(x)) for x in log.get('Step')))\n\
+                print(repr(float(log.get('c_th', run_num=0)[-1])))\n";
+    let py = Command::new("python3").args(["-c", read, "log.x"]).current_dir(&dir).output().expect("python3 runs");
+    assert!(py.status.success(), "lammps-logfile failed (pip install -r scripts/requirements.txt):\n{}", String::from_utf8_lossy(&py.stderr));
+    let text = String::from_utf8_lossy(&py.stdout).into_owned();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines[0], "2", "{text}");
+    assert_eq!(lines[1], "KinEng Press Pxx Pzz Step Temp TotEng c_tall c_th v_t", "sorted by lammps-logfile");
+    assert_eq!(lines[2], "0.0 10.0 20.0 20.0 30.0 40.0 50.0", "the steps of both runs: {text}");
+    let log = std::fs::read_to_string(dir.join("log.x")).unwrap();
+    let first = parse_thermo_blocks(&log, "Step").remove(0);
+    let th = first.rows.last().unwrap()[first.column_index("c_th").unwrap()];
+    assert_eq!(lines[3].parse::<f64>().unwrap(), th);
+}

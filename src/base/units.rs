@@ -1,8 +1,9 @@
-//! `units lj` and `units metal`, with LAMMPS's constants.
+//! `units lj`, `units real` and `units metal`, with LAMMPS's constants.
 //!
 //! Internally masses are kept in energy * time^2 / length^2 (m * mvv2e), so that
 //! momenta p = m v give K = p^2 / 2m in energy units and dp/dt = f directly: every
-//! formula of the dynamics is free of conversion factors in every unit system.
+//! formula of the dynamics is free of conversion factors in every unit system. Output
+//! converts as LAMMPS does: pressure by nktv2p, density by mv2d.
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Units {
@@ -11,6 +12,12 @@ pub struct Units {
     pub kb: f64,
     /// mass * velocity^2 to energy.
     pub mvv2e: f64,
+    /// energy / volume to pressure (LAMMPS's nktv2p: bar in metal, atm in real).
+    pub nktv2p: f64,
+    /// mass / volume to density (g/cm^3 in metal and real).
+    pub mv2d: f64,
+    /// One femtosecond in time units (the Performance line's ns/day).
+    pub femtosecond: f64,
     pub default_dt: f64,
     pub default_skin: f64,
     /// Whether thermo normalises extensive quantities by N by default.
@@ -19,14 +26,46 @@ pub struct Units {
 
 impl Units {
     /// Reduced Lennard-Jones units: k_B = 1.
-    pub const LJ: Self = Self { name: "lj", kb: 1.0, mvv2e: 1.0, default_dt: 0.005, default_skin: 0.3, default_norm: true };
-    /// g/mol, Angstrom, ps, eV, K (LAMMPS's update.cpp and force.cpp values).
-    pub const METAL: Self =
-        Self { name: "metal", kb: 8.617343e-5, mvv2e: 1.0364269e-4, default_dt: 0.001, default_skin: 2.0, default_norm: false };
+    pub const LJ: Self = Self {
+        name: "lj",
+        kb: 1.0,
+        mvv2e: 1.0,
+        nktv2p: 1.0,
+        mv2d: 1.0,
+        femtosecond: 1.0,
+        default_dt: 0.005,
+        default_skin: 0.3,
+        default_norm: true,
+    };
+    /// g/mol, Angstrom, fs, kcal/mol, K, atm (LAMMPS's update.cpp and force.cpp values).
+    pub const REAL: Self = Self {
+        name: "real",
+        kb: 0.0019872067,
+        mvv2e: 48.88821291 * 48.88821291,
+        nktv2p: 68568.415,
+        mv2d: 1.0 / 0.602214129,
+        femtosecond: 1.0,
+        default_dt: 1.0,
+        default_skin: 2.0,
+        default_norm: false,
+    };
+    /// g/mol, Angstrom, ps, eV, K, bar (LAMMPS's update.cpp and force.cpp values).
+    pub const METAL: Self = Self {
+        name: "metal",
+        kb: 8.617343e-5,
+        mvv2e: 1.0364269e-4,
+        nktv2p: 1.6021765e6,
+        mv2d: 1.0 / 0.602214129,
+        femtosecond: 0.001,
+        default_dt: 0.001,
+        default_skin: 2.0,
+        default_norm: false,
+    };
 
     pub fn parse(name: &str) -> Option<Self> {
         match name {
             "lj" => Some(Self::LJ),
+            "real" => Some(Self::REAL),
             "metal" => Some(Self::METAL),
             _ => None,
         }

@@ -31,7 +31,7 @@ pub fn thermo_style(thermo: &mut ThermoConfig, vars: &Variables, a: &mut Args) -
         let known = heading(k) != k || k.starts_with("v_") || k.starts_with("c_") || k.starts_with("f_");
         if !known {
             return Err(a.err(format!(
-                "unknown thermo keyword '{k}'; known: step elapsed time dt cpu atoms temp tint press pe ke etotal edrift vol density lx ly lz pxtot pytot pztot v_NAME c_ID[k] f_ID"
+                "unknown thermo keyword '{k}'; known: step elapsed time dt cpu tpcpu spcpu atoms temp tint nmean press pxx pyy pzz pe ke etotal enthalpy edrift vol density lx ly lz xlo xhi ylo yhi zlo zhi cella cellb cellc pxtot pytot pztot v_NAME c_ID[k] f_ID"
             )));
         }
         if let Some(name) = k.strip_prefix("v_") {

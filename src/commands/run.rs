@@ -4,6 +4,7 @@
 use crate::base::args::Args;
 use crate::base::memory;
 use crate::base::script::{AppError, Mode};
+use crate::base::units::Units;
 use crate::model::sim::Sim;
 use crate::output::ave_time::AveTime;
 use crate::output::console::Output;
@@ -84,6 +85,9 @@ pub fn run(sim: &mut Sim, outputs: &mut Outputs, out: &mut Output, vars: &Variab
     let clock = Instant::now();
     let natoms = sys.comm.count(sys.store.nlocal);
     out.line(&format!("Setting up GenDPDE run: {natoms} particles, timestep {} ...", sim.dt));
+    // LAMMPS's log readers (lammps-logfile) start a thermo block at this line
+    let [min, avg, max] = memory_per_rank(sys).map(|b| gendpde_io::format_g(b / 1048576.0, 4));
+    out.line(&format!("Per MPI rank memory allocation (min/avg/max) = {min} | {avg} | {max} Mbytes"));
     out.line(&header_line(&outputs.thermo.keywords));
     let progress = progress_bar(sys.comm.rank() == 0, nsteps);
     write_due(sim, outputs, out, vars, run, clock, &progress).map_err(err)?;
@@ -111,16 +115,10 @@ pub fn run(sim: &mut Sim, outputs: &mut Outputs, out: &mut Output, vars: &Variab
     let secs = clock.elapsed().as_secs_f64();
     let sys = sim.system.as_ref().expect("system exists during a run");
     let n = sys.comm.count(sys.store.nlocal);
-    out.line(&format!("Loop time of {secs:.6} on {} procs for {nsteps} steps with {n} atoms", sys.comm.size()));
+    out.line(&format!("Loop time of {} on {} procs for {nsteps} steps with {n} atoms", gendpde_io::format_g(secs, 6), sys.comm.size()));
     out.line("");
     if secs > 0.0 && nsteps > 0 {
-        let rate = nsteps as f64 / secs;
-        out.line(&format!(
-            "Performance: {:.3} tau/day, {:.3} timesteps/s, {:.3} katom-step/s",
-            rate * sim.dt * 86400.0,
-            rate,
-            rate * n as f64 / 1e3
-        ));
+        out.line(&performance(sim.units, sim.dt, nsteps as f64 / secs, n as f64));
     }
     let comm = sys.comm.time().as_secs_f64() - comm_before;
     if secs > 0.0 {
@@ -135,6 +133,36 @@ pub fn run(sim: &mut Sim, outputs: &mut Outputs, out: &mut Output, vars: &Variab
     }
     out.flush();
     Ok(())
+}
+
+/// LAMMPS's Performance line: simulated time per day (tau/day in lj units, ns/day and
+/// hours/ns in real and metal), steps and atom-steps per second.
+fn performance(units: Units, dt: f64, steps_per_s: f64, atoms: f64) -> String {
+    let day = 86400.0 * steps_per_s * dt / units.femtosecond;
+    let simulated = if units.name == "lj" {
+        format!("{day:.3} tau/day")
+    } else {
+        format!("{:.3} ns/day, {:.3} hours/ns", day / 1e6, 24.0 / (day / 1e6))
+    };
+    let rate = steps_per_s * atoms;
+    let (scaled, prefix) = match rate {
+        r if r < 1e6 => (r / 1e3, "k"),
+        r if r < 1e9 => (r / 1e6, "M"),
+        r => (r / 1e9, "G"),
+    };
+    format!("Performance: {simulated}, {steps_per_s:.3} timesteps/s, {scaled:.3} {prefix}atom-step/s")
+}
+
+/// Bytes held per rank (min, mean, max over the ranks): particles with their ghosts,
+/// neighbour and sweep lists (collective).
+fn memory_per_rank(sys: &gendpde_integrators::System) -> [f64; 3] {
+    let local = sys.store.nlocal as f64 * memory::STORE_BYTES_PER_PARTICLE
+        + sys.nlist.pairs.len() as f64 * memory::NEIGHBOUR_ENTRY_BYTES
+        + sys.sweep.pairs.len() as f64 * memory::SWEEP_PAIR_BYTES;
+    let all = sys.comm.transport().all_gather(&[local as u64]);
+    let min = all.iter().copied().min().unwrap_or(0) as f64;
+    let max = all.iter().copied().max().unwrap_or(0) as f64;
+    [min, all.iter().sum::<u64>() as f64 / all.len().max(1) as f64, max]
 }
 
 /// Writes the outputs due at the current step, in the order of [`Outputs::all`], with

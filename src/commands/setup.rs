@@ -13,11 +13,11 @@ use gendpde_engine::{Comm, Domain, ProcGrid};
 use gendpde_integrators::System;
 use gendpde_io::{AtomStyle, ScriptError};
 
-/// `units lj|metal`: before the box; resets the timestep, skin and thermo norm to the
+/// `units lj|real|metal`: before the box; resets the timestep, skin and thermo norm to the
 /// units' defaults.
 pub fn units(sim: &mut Sim, thermo: &mut ThermoConfig, a: &mut Args) -> Result<(), ScriptError> {
-    let w = a.word("a unit style (lj or metal)")?;
-    let units = Units::parse(w).ok_or_else(|| a.err(format!("units {w}: known are lj and metal")))?;
+    let w = a.word("a unit style (lj, real or metal)")?;
+    let units = Units::parse(w).ok_or_else(|| a.err(format!("units {w}: known are lj, real and metal")))?;
     a.done()?;
     if sim.system.is_some() && units != sim.units {
         return Err(a.err("units must come before the box is created"));

@@ -1,7 +1,10 @@
 //! Thermodynamic output: keywords, their values and LAMMPS's line format.
 //!
 //! temp = sum p^2/m / (3N - 3) k_B; tint = mean theta; press = the virial pressure of
-//! the conservative force (eq 52; dissipative and random forces are not included);
+//! the conservative force (eq 52; dissipative and random forces are not included), in
+//! LAMMPS's pressure unit (bar in metal, atm in real); density = mass / volume (g/cm^3 in
+//! metal and real); tpcpu, spcpu = simulated time and steps per CPU second since the
+//! previous thermo line of the run;
 //! nmean = mean local density n_i (the density the EOS reads);
 //! pe = sum u for GenDPDE (the internal energy holds the EOS's configurational energy),
 //! the pair energy for LAMMPS's pairwise styles (whose u = uCond + uMech is reported by
@@ -28,12 +31,22 @@ pub struct ThermoConfig {
     pub float_format: Option<String>,
     /// `thermo_modify temp ID`: the compute temp of temp, ke, etotal and press.
     pub temp: Option<String>,
+    /// The previous thermo line of the current run, for tpcpu and spcpu.
+    last: Option<Mark>,
+}
+
+/// When a thermo line was written: step, simulated time and CPU seconds into the run.
+#[derive(Clone, Copy, Debug)]
+struct Mark {
+    step: u64,
+    time: f64,
+    cpu: f64,
 }
 
 impl Default for ThermoConfig {
     fn default() -> Self {
         let keywords = ["step", "temp", "tint", "pe", "ke", "etotal", "press"].map(String::from).to_vec();
-        Self { every: 0, keywords, norm: true, float_format: None, temp: None }
+        Self { every: 0, keywords, norm: true, float_format: None, temp: None, last: None }
     }
 }
 
@@ -60,6 +73,7 @@ impl RunOutput for ThermoConfig {
             values.push(v);
         }
         f.out.line(&value_line(&self.keywords, &values, self.float_format.as_deref()));
+        self.last = Some(Mark { step: f.sys.step, time: f.sys.time, cpu: f.cpu });
         Ok(())
     }
 }
@@ -159,6 +173,8 @@ pub struct ThermoContext<'a> {
     kinetic: Kinetic,
     extra_dof: f64,
     norm: bool,
+    /// The previous thermo line of this run (None at its first).
+    last: Option<Mark>,
     elapsed: u64,
     cpu: f64,
 }
@@ -173,45 +189,66 @@ impl<'a> ThermoContext<'a> {
             Some(ComputeStyle::Temp { mask, extra_dof }) => (Kinetic::measure(sys, mask), extra_dof),
             _ => (obs.kinetic(), 3.0),
         };
-        Self { sim, sys, obs, kinetic, extra_dof, norm: config.norm, elapsed, cpu }
+        let last = config.last.filter(|_| elapsed > 0);
+        Self { sim, sys, obs, kinetic, extra_dof, norm: config.norm, last, elapsed, cpu }
     }
 
     /// Value of a built-in keyword; None if the name is not one.
     pub fn keyword(&self, name: &str) -> Option<f64> {
         let o = &self.obs;
         let per = |x: f64| if self.norm && o.atoms > 0.0 { x / o.atoms } else { x };
-        let l = self.sys.domain.len();
+        let (d, units) = (&self.sys.domain, &self.sim.units);
+        let l = d.len();
+        let press = o.pressure_with(&self.kinetic);
+        let etotal = self.potential() + 0.5 * self.kinetic.mv2();
         Some(match name {
             "step" => self.sys.step as f64,
             "elapsed" => self.elapsed as f64,
             "time" => self.sys.time,
             "dt" => self.sim.dt,
             "cpu" => self.cpu,
+            "tpcpu" => self.rate(|m| self.sys.time - m.time),
+            "spcpu" => self.rate(|m| (self.sys.step - m.step) as f64),
             "atoms" => o.atoms,
             "temp" => self.kinetic.temperature(self.sim.units.kb, self.extra_dof),
             "tint" => if o.atoms > 0.0 { o.theta / o.atoms } else { 0.0 },
             "nmean" => if o.atoms > 0.0 { o.n / o.atoms } else { 0.0 },
-            "press" => o.pressure_with(&self.kinetic),
-            "pxx" => o.pressure_component(&self.kinetic, 0),
-            "pyy" => o.pressure_component(&self.kinetic, 1),
-            "pzz" => o.pressure_component(&self.kinetic, 2),
+            "press" => press * units.nktv2p,
+            "pxx" => o.pressure_component(&self.kinetic, 0) * units.nktv2p,
+            "pyy" => o.pressure_component(&self.kinetic, 1) * units.nktv2p,
+            "pzz" => o.pressure_component(&self.kinetic, 2) * units.nktv2p,
             "pe" => per(self.potential()),
             "ke" => per(0.5 * self.kinetic.mv2()),
-            "etotal" => per(self.potential() + 0.5 * self.kinetic.mv2()),
+            "etotal" => per(etotal),
+            "enthalpy" => per(etotal + press * o.volume),
             "edrift" => match self.sim.energy0 {
                 Some(e0) if e0 != 0.0 => (o.energy() - e0) / e0.abs(),
                 _ => 0.0,
             },
             "vol" => o.volume,
-            "density" => o.mass / self.sim.units.mvv2e / o.volume,
-            "lx" => l[0],
-            "ly" => l[1],
-            "lz" => l[2],
+            "density" => o.mass / units.mvv2e * units.mv2d / o.volume,
+            "lx" | "cella" => l[0],
+            "ly" | "cellb" => l[1],
+            "lz" | "cellc" => l[2],
+            "xlo" => d.lo[0],
+            "xhi" => d.hi[0],
+            "ylo" => d.lo[1],
+            "yhi" => d.hi[1],
+            "zlo" => d.lo[2],
+            "zhi" => d.hi[2],
             "pxtot" => o.momentum[0],
             "pytot" => o.momentum[1],
             "pztot" => o.momentum[2],
             _ => return self.compute(name),
         })
+    }
+
+    /// `diff` of the previous thermo line of the run per CPU second since it (0 at the
+    /// first line of a run, as LAMMPS).
+    fn rate(&self, diff: impl Fn(&Mark) -> f64) -> f64 {
+        let Some(m) = &self.last else { return 0.0 };
+        let (d, cpu) = (diff(m), self.cpu - m.cpu);
+        if d > 0.0 && cpu > 0.0 { d / cpu } else { 0.0 }
     }
 
     /// `pe`: the pair energy for LAMMPS's pairwise styles, sum u for GenDPDE.
@@ -252,6 +289,18 @@ pub fn heading(name: &str) -> String {
         "time" => "Time".into(),
         "dt" => "Dt".into(),
         "cpu" => "CPU".into(),
+        "tpcpu" => "T/CPU".into(),
+        "spcpu" => "S/CPU".into(),
+        "enthalpy" => "Enthalpy".into(),
+        "xlo" => "Xlo".into(),
+        "xhi" => "Xhi".into(),
+        "ylo" => "Ylo".into(),
+        "yhi" => "Yhi".into(),
+        "zlo" => "Zlo".into(),
+        "zhi" => "Zhi".into(),
+        "cella" => "Cella".into(),
+        "cellb" => "Cellb".into(),
+        "cellc" => "Cellc".into(),
         "atoms" => "Atoms".into(),
         "temp" => "Temp".into(),
         "tint" => "Tint".into(),
