@@ -476,3 +476,37 @@ fn lammps_logfile_reads_a_gendpde_log() {
     let th = first.rows.last().unwrap()[first.column_index("c_th").unwrap()];
     assert_eq!(lines[3].parse::<f64>().unwrap(), th);
 }
+
+/// Misplaced commands and missing files: one prefix, the script's file:line, the right
+/// complaint first.
+#[test]
+fn messages_name_the_line_once() {
+    let head = "units lj\natom_style dpd\n";
+    for (lines, expected) in [
+        ("read_data nofile.data", "ERROR: in.x:3: read_data: cannot open data file 'nofile.data'"),
+        ("read_data data.dpde-small\nread_data data.dpde-small", "ERROR: in.x:4: read_data: the box exists already\n"),
+        ("read_data data.dpde-small\nread_restart x.h5", "ERROR: in.x:4: read_restart: the box exists already\n"),
+        ("create_atoms 1 box", "ERROR: in.x:3: create_atoms: create_atoms before the box exists"),
+        ("pair_style dpd 1.0 1.0 1\npair_coeff 1 1 25 4.5", "ERROR: in.x:4: pair_coeff: pair_coeff before the box exists"),
+        ("read_data data.dpde-small\nfix 1 all bogus", "ERROR: in.x:4: fix: unknown fix style 'bogus'"),
+        ("read_data data.dpde-small\nfix 1 nogroup nve", "ERROR: in.x:4: fix: no group 'nogroup'"),
+        ("read_data data.dpde-small\ngroup g type 1\nfix 1 g bogus", "ERROR: in.x:5: fix: unknown fix style 'bogus'"),
+        ("read_data data.dpde-small\ngroup g type 1\nfix 1 g nve", "ERROR: in.x:5: fix: group 'g': fix nve acts on group all"),
+    ] {
+        expect_error("messages", &format!("{head}{lines}\n"), expected);
+    }
+}
+
+/// `pair_style` before `read_data` and a region in lattice units without a lattice
+/// (LAMMPS's default lattice of spacing 1) run as in LAMMPS.
+#[test]
+fn lammps_orders_and_defaults_are_accepted() {
+    let script = TEMP
+        .replace("pair_style dpd/fdt/energy 1.0 34387\n", "")
+        .replace("atom_style dpd\n", "atom_style dpd\npair_style dpd/fdt/energy 1.0 34387\n")
+        .replace("region half block 0 4.5 INF INF INF INF units box", "region half block 0 4.5 INF INF INF INF")
+        .replace("run 50", "run 20");
+    let ((_, g), (_, l)) = both("orders", &script);
+    let worst = compare_blocks(&last_block(&g), &last_block(&l), 1e-9);
+    eprintln!("pair_style before read_data, region in default lattice units: agree to {worst:.1e}");
+}

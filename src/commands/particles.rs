@@ -15,12 +15,12 @@ use std::path::Path;
 /// file. Every rank parses the file and keeps the particles of its part of the box.
 pub fn read_data(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     if sim.system.is_some() {
-        return Err(a.err("read_data: the box exists already"));
+        return Err(a.err("the box exists already"));
     }
     let transport = sim.take_transport().map_err(|e| a.err(e))?;
     let file = a.word("a data file")?;
     a.done()?;
-    let data = gendpde_io::read_data(Path::new(file), sim.atom_style)?;
+    let data = gendpde_io::read_data(Path::new(file), sim.atom_style).map_err(|e| if e.loc.is_some() { e } else { a.err(e.message) })?;
     let domain = Domain::new(data.lo, data.hi);
     let procs = ProcGrid::choose(transport.size(), domain.len(), sim.procs).map_err(|e| a.err(e))?;
     let mut sys = System::new(domain, Comm::new(transport, procs));
@@ -115,7 +115,7 @@ pub fn read_restart(sim: &mut Sim, a: &mut Args) -> Result<(System, String, [Str
     let file = a.word("a restart file")?;
     a.done()?;
     if sim.system.is_some() {
-        return Err(a.err("read_restart: the box exists already"));
+        return Err(a.err("the box exists already"));
     }
     let transport = sim.take_transport().map_err(|e| a.err(e))?;
     let (system, commands) = restart::read(sim, file, transport).map_err(|e| a.err(e))?;

@@ -10,11 +10,8 @@ use crate::styles::fix::parse_fix;
 use crate::styles::pair::{parse_pair_coeff, parse_pair_style};
 use gendpde_io::ScriptError;
 
-/// `pair_style STYLE args...` (after create_box).
+/// `pair_style STYLE args...` (before or after the box, as LAMMPS).
 pub fn pair_style(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
-    if sim.system.is_none() {
-        return Err(a.err("pair_style comes after create_box"));
-    }
     sim.pair = Some(parse_pair_style(a.command())?);
     sim.pair_text = vec![echo(a.command())];
     Ok(())
@@ -22,6 +19,9 @@ pub fn pair_style(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
 
 /// `pair_coeff I J args...` for the pair style in force.
 pub fn pair_coeff(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
+    if sim.system.is_none() {
+        return Err(a.err("pair_coeff before the box exists (create_box, read_data or read_restart)"));
+    }
     let pair = sim.pair.as_mut().ok_or_else(|| a.err("pair_coeff before pair_style"))?;
     parse_pair_coeff(a.command(), pair, sim.ntypes)?;
     sim.pair_text.push(echo(a.command()));

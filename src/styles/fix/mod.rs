@@ -50,9 +50,8 @@ pub fn parse_fix(cmd: &Command, kb: f64, groups: &[String]) -> Result<Fix, Scrip
     let id = a.word("a fix ID")?.to_string();
     let group = a.word("a group")?;
     let style_name = a.word("a fix style")?;
-    if group != "all" && style_name != "heat/reservoir" {
-        return Err(a.err(format!("group '{group}': fix {style_name} acts on group all (only heat/reservoir takes a group)")));
-    }
+    // as LAMMPS: the group must exist, then the style; then gendpde's restriction to all
+    let mask = crate::base::groups::mask(groups, group, &a)?;
     let style = match style_name {
         s if s.starts_with("eos/") => FixStyle::Eos(parse_eos(s, &mut a, kb)?),
         "nve/gendpde" => {
@@ -97,11 +96,13 @@ pub fn parse_fix(cmd: &Command, kb: f64, groups: &[String]) -> Result<Fix, Scrip
             let temperature = a.positive("the reservoir temperature")?;
             let kappa = a.positive("the reservoir coupling kappa")?;
             let seed = a.u64("the random seed")?;
-            let mask = crate::base::groups::mask(groups, group, &a)?;
             FixStyle::Reservoir { temperature, kappa, seed, heat: heat_keyword(&mut a)?, mask }
         }
         other => return Err(a.err(format!("unknown fix style '{other}'; known: {FIX_STYLES}"))),
     };
+    if group != "all" && !matches!(style, FixStyle::Reservoir { .. }) {
+        return Err(a.err(format!("group '{group}': fix {style_name} acts on group all (only heat/reservoir takes a group)")));
+    }
     a.done()?;
     Ok(Fix { id, style, text: echo(cmd) })
 }
