@@ -132,7 +132,7 @@ fn create_atoms_random_errors_name_the_line() {
         ("create_atoms 1 random ten 5 NULL", "in.x:4: create_atoms: expected the number of particles (a non-negative integer), got 'ten'"),
         ("create_atoms 1 random 10 5 nowhere", "in.x:4: create_atoms: no region with ID 'nowhere'"),
         ("create_atoms 1 random 10 5 NULL overlap 0.5", "in.x:4: create_atoms: create_atoms random: keyword 'overlap' is not supported"),
-        ("region far block 10 12 0 1 0 1 units box\ncreate_atoms 1 random 10 5 far", "in.x:5: create_atoms: the region does not overlap the box"),
+        ("region far block 10 12 0 1 0 1 units box\ncreate_atoms 1 random 10 5 far", "in.x:5: create_atoms: region 'far' does not overlap the box"),
         ("create_atoms 2 random 10 5 NULL", "in.x:4: create_atoms: type 2 is outside 1..1"),
     ] {
         expect_error("random-errors", &format!("{head}{line}\n"), expected);
@@ -509,4 +509,114 @@ fn lammps_orders_and_defaults_are_accepted() {
     let ((_, g), (_, l)) = both("orders", &script);
     let worst = compare_blocks(&last_block(&g), &last_block(&l), 1e-9);
     eprintln!("pair_style before read_data, region in default lattice units: agree to {worst:.1e}");
+}
+
+/// Regions of every style and side, in lattice and box units, filled on an fcc lattice
+/// (6 types, one a region): the same particles as LAMMPS, ID by ID.
+const REGIONS: &str = "units lj
+lattice fcc 0.8442
+region box block 0 8 0 8 0 8
+create_box 6 box
+region s sphere 4 4 4 2.5
+region c cylinder z 2 3 1.5 1 6
+region cy cylinder x 6 6 1.2 INF INF units lattice
+region b block 0.5 3 0.5 3 5 8 side in
+region o sphere 4 4 4 3.7 side out
+region sb cylinder y 10.0 10.0 4.0 INF EDGE units box side out
+create_atoms 1 region s
+create_atoms 2 region c
+create_atoms 3 region cy
+create_atoms 4 region b
+create_atoms 5 region o
+create_atoms 6 region sb
+mass * 1.0
+write_dump all custom regions.dump id type x y z modify sort id format float %.17g
+";
+
+/// The particles of two dumps agree ID by ID (type and position to 1e-12); returns the
+/// count per type.
+fn same_particles(g: &DumpSnapshot, l: &DumpSnapshot) -> Vec<usize> {
+    assert_eq!(g.atoms.len(), l.atoms.len(), "particle counts");
+    let (t, x) = (l.column_index("type").unwrap(), l.column_index("x").unwrap());
+    let mut per_type = Vec::new();
+    for ((ig, rg), (il, rl)) in g.atoms.iter().zip(&l.atoms) {
+        assert_eq!((ig, rg[t]), (il, rl[t]));
+        for d in 0..3 {
+            assert!((rg[x + d] - rl[x + d]).abs() <= 1e-12, "particle {ig}: {rg:?} vs {rl:?}");
+        }
+        let k = rl[t] as usize;
+        per_type.resize(per_type.len().max(k), 0);
+        per_type[k - 1] += 1;
+    }
+    per_type
+}
+
+#[test]
+fn regions_of_every_style_fill_as_lammps() {
+    let ((dg, _), (dl, _)) = both("regions", REGIONS);
+    let counts = same_particles(&dump(&dg.join("regions.dump")), &dump(&dl.join("regions.dump")));
+    eprintln!("regions: particles per type as LAMMPS {counts:?}");
+    assert_eq!(counts, [249, 153, 168, 108, 1161, 1576]);
+}
+
+#[test]
+fn region_errors_name_the_line() {
+    let head = "units lj\n";
+    for (line, expected) in [
+        ("region s sphere 0 0 0 -1", "in.x:2: region: the radius must be positive, got -1"),
+        ("region s sphere 0 0 0", "in.x:2: region: missing argument: expected the radius"),
+        ("region c cylinder w 0 0 1 0 1", "in.x:2: region: expected the axis x, y or z, got 'w'"),
+        ("region c cylinder z 0 0 1 2 1", "in.x:2: region: each upper bound must exceed its lower bound"),
+        ("region b block 0 1 0 1 0 1 side up", "in.x:2: region: expected side in or out, got 'up'"),
+        ("region b block 0 1 0 1 0 1 move v_x NULL NULL", "in.x:2: region: unknown keyword 'move'; known: side, units"),
+        ("region p prism 0 1 0 1 0 1 0 0 0", "in.x:2: region: unknown region style 'prism'; known: block, sphere, cylinder"),
+        ("region s sphere 1 1 1 1\ncreate_box 1 s", "in.x:3: create_box: region 's': a box needs a block region (side in)"),
+        ("region b block 0 1 0 1 0 1 side out\ncreate_box 1 b", "in.x:3: create_box: region 'b': a box needs a block region (side in)"),
+    ] {
+        expect_error("region-errors", &format!("{head}{line}\n"), expected);
+    }
+}
+
+/// create_atoms random in a sphere, a cylinder and outside a sphere: every particle in its
+/// region, counts as LAMMPS's, and the fraction in each half of the region's bounding
+/// box near 1/2 (uniform).
+#[test]
+fn create_atoms_random_in_curved_regions() {
+    let script = "units lj
+region box block 0 10 0 10 0 10
+create_box 3 box
+region s sphere 5 5 5 3
+region c cylinder z 3 7 2 INF INF
+region o sphere 5 5 5 4 side out
+create_atoms 1 random 1000 11 s
+create_atoms 2 random 1000 12 c
+create_atoms 3 random 1000 13 o
+mass * 1.0
+write_dump all custom rand.dump id type x y z
+";
+    let ((dg, _), (dl, _)) = both("random-curved", script);
+    for (who, d) in [("gendpde", &dg), ("LAMMPS", &dl)] {
+        let s = dump(&d.join("rand.dump"));
+        let (t, x) = (s.column_index("type").unwrap(), s.column_index("x").unwrap());
+        let mut n = [0usize; 3];
+        let mut upper = [0usize; 3];
+        for (_, r) in &s.atoms {
+            let k = r[t] as usize - 1;
+            let p = [r[x], r[x + 1], r[x + 2]];
+            let dist = |c: [f64; 3], dims: &[usize]| dims.iter().map(|&d| (p[d] - c[d]).powi(2)).sum::<f64>().sqrt();
+            let inside = match k {
+                0 => dist([5.0; 3], &[0, 1, 2]) <= 3.0 + 1e-6,
+                1 => dist([3.0, 7.0, 0.0], &[0, 1]) <= 2.0 + 1e-6,
+                _ => dist([5.0; 3], &[0, 1, 2]) >= 4.0 - 1e-6,
+            };
+            assert!(inside, "{who}: type {} at {p:?}", k + 1);
+            n[k] += 1;
+            upper[k] += usize::from(p[0] > [5.0, 3.0, 5.0][k]);
+        }
+        assert_eq!(n, [1000; 3], "{who}");
+        // binomial(1000, 1/2): sd 15.8; 4 sd
+        for k in 0..3 {
+            assert!((upper[k] as f64 - 500.0).abs() < 64.0, "{who}: type {}: {} of 1000 in the upper half", k + 1, upper[k]);
+        }
+    }
 }

@@ -1,4 +1,4 @@
-//! `lattice`, `region block` and the points of `create_atoms` (lattice or random).
+//! `lattice` and the points of `create_atoms` (lattice or random).
 
 use gendpde_engine::Vec3;
 use rand_pcg::rand_core::{RngCore, SeedableRng};
@@ -52,27 +52,29 @@ impl Lattice {
     }
 }
 
-/// `n` points uniform in the block [lo, hi), from the sequential stream of `seed`
-/// (rand_pcg's Pcg64Mcg, x then y then z of each point: the same points on every rank).
-pub fn random_points(n: u64, seed: u64, lo: Vec3, hi: Vec3) -> Vec<Vec3> {
+/// `n` points uniform in the block [lo, hi) that `accept` takes (the others are drawn
+/// again), from the sequential stream of `seed` (rand_pcg's Pcg64Mcg, x then y then z of
+/// each point: the same points on every rank). Err when a million draws in a row fail.
+pub fn random_points(n: u64, seed: u64, lo: Vec3, hi: Vec3, accept: impl Fn(Vec3) -> bool) -> Result<Vec<Vec3>, String> {
+    const MAX_TRIES: u32 = 1_000_000;
     let mut rng = Pcg64Mcg::seed_from_u64(seed);
     let mut uniform = || (rng.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64);
     let mut out = Vec::with_capacity(n as usize);
+    let mut failed = 0;
     while out.len() < n as usize {
         let r: Vec3 = std::array::from_fn(|d| lo[d] + uniform() * (hi[d] - lo[d]));
         // rounding can land on hi, which belongs to the next image
-        if (0..3).all(|d| r[d] < hi[d]) {
+        if (0..3).all(|d| r[d] < hi[d]) && accept(r) {
             out.push(r);
+            failed = 0;
+        } else {
+            failed += 1;
+            if failed == MAX_TRIES {
+                return Err(format!("{MAX_TRIES} random points in a row missed the region: it has (almost) no volume in the box"));
+            }
         }
     }
-    out
-}
-
-/// `region ID block xlo xhi ylo yhi zlo zhi`, in box units.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Block {
-    pub lo: Vec3,
-    pub hi: Vec3,
+    Ok(out)
 }
 
 #[cfg(test)]
@@ -98,7 +100,7 @@ mod tests {
         let (lo, hi) = ([-1.0, 2.0, 0.5], [3.0, 2.5, 7.0]);
         let mut chi2s = Vec::new();
         for seed in 1..=20 {
-            let pts = random_points(6400, seed, lo, hi);
+            let pts = random_points(6400, seed, lo, hi, |_| true).unwrap();
             assert_eq!(pts.len(), 6400);
             let mut bins = [0.0; 64];
             for r in &pts {
@@ -112,8 +114,10 @@ mod tests {
         // the mean of 20 chi-square(63) values: 63 +- 11.2 / sqrt(20) = 2.5; 4 sigma
         assert!((mean - 63.0).abs() < 10.0, "mean chi-square {mean} over 20 seeds: {chi2s:?}");
         assert!(chi2s.iter().all(|&c| c < 120.0), "a seed fails at p < 1e-5: {chi2s:?}");
-        assert_ne!(random_points(4, 1, lo, hi), random_points(4, 2, lo, hi));
-        assert_eq!(random_points(4, 7, lo, hi), random_points(4, 7, lo, hi));
+        let some = |seed| random_points(4, seed, lo, hi, |_| true).unwrap();
+        assert_ne!(some(1), some(2));
+        assert_eq!(some(7), some(7));
+        assert!(random_points(1, 1, lo, hi, |_| false).is_err());
     }
 
     #[test]

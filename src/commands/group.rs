@@ -31,8 +31,8 @@ pub fn group(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     let member: Vec<bool> = match style {
         "region" => {
             let id = a.word("a region ID")?;
-            let b = sim.regions.get(id).ok_or_else(|| a.err(format!("no region with ID '{id}'")))?;
-            (0..s.nlocal).map(|i| (0..3).all(|d| s.r[i][d] >= b.lo[d] && s.r[i][d] <= b.hi[d])).collect()
+            let region = sim.regions.get(id).ok_or_else(|| a.err(format!("no region with ID '{id}'")))?;
+            (0..s.nlocal).map(|i| region.contains(s.r[i])).collect()
         }
         "type" => {
             let mut m = vec![false; s.nlocal];

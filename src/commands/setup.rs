@@ -4,7 +4,8 @@
 
 use crate::base::args::Args;
 use crate::base::groups;
-use crate::base::lattice::{random_points, Block, Lattice};
+use crate::base::lattice::{random_points, Lattice};
+use crate::base::region::{Region, Shape};
 use crate::base::memory;
 use crate::base::units::Units;
 use crate::model::sim::Sim;
@@ -70,25 +71,45 @@ pub fn lattice(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     Ok(())
 }
 
-/// `region ID block xlo xhi ylo yhi zlo zhi [units box|lattice]`.
+/// `region ID block xlo xhi ylo yhi zlo zhi | sphere x y z r | cylinder dim c1 c2 r lo hi`
+/// with keywords `side in|out` and `units box|lattice`.
 pub fn region(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     let id = a.word("a region ID")?.to_string();
-    match a.word("a region style (block)")? {
-        "block" => {}
-        s => return Err(a.err(format!("unknown region style '{s}'; known: block"))),
-    }
-    // INF and EDGE (LAMMPS) leave a side open; create_atoms clips regions to the box
-    let mut b = [0.0; 6];
-    for (k, what) in ["xlo", "xhi", "ylo", "yhi", "zlo", "zhi"].iter().enumerate() {
-        b[k] = match a.peek() {
-            Some("INF" | "EDGE") => {
-                a.word(what)?;
-                if k % 2 == 0 { f64::NEG_INFINITY } else { f64::INFINITY }
+    // INF, -INF and EDGE (LAMMPS) leave a side open; create_atoms clips regions to the box
+    let bound = |a: &mut Args, what: &str, upper: bool| match a.peek() {
+        Some("INF" | "-INF" | "EDGE") => {
+            a.word(what)?;
+            Ok(if upper { f64::INFINITY } else { f64::NEG_INFINITY })
+        }
+        _ => a.f64(what),
+    };
+    let style = a.word("a region style (block, sphere or cylinder)")?;
+    let shape = match style {
+        "block" => {
+            let mut b = [0.0; 6];
+            for (k, what) in ["xlo", "xhi", "ylo", "yhi", "zlo", "zhi"].iter().enumerate() {
+                b[k] = bound(a, what, k % 2 == 1)?;
             }
-            _ => a.f64(what)?,
-        };
-    }
-    let mut scale = None;
+            Shape::Block { lo: [b[0], b[2], b[4]], hi: [b[1], b[3], b[5]] }
+        }
+        "sphere" => {
+            let centre = [a.f64("the centre's x")?, a.f64("the centre's y")?, a.f64("the centre's z")?];
+            Shape::Sphere { centre, radius: a.positive("the radius")? }
+        }
+        "cylinder" => {
+            let axis = match a.word("the axis (x, y or z)")? {
+                "x" => 0,
+                "y" => 1,
+                "z" => 2,
+                w => return Err(a.err(format!("expected the axis x, y or z, got '{w}'"))),
+            };
+            let c = [a.f64("the first coordinate of the axis")?, a.f64("the second coordinate of the axis")?];
+            let radius = a.positive("the radius")?;
+            Shape::Cylinder { axis, c, radius, lo: bound(a, "the lower end", false)?, hi: bound(a, "the upper end", true)? }
+        }
+        s => return Err(a.err(format!("unknown region style '{s}'; known: block, sphere, cylinder"))),
+    };
+    let (mut scale, mut outside) = (None, false);
     while a.remaining() > 0 {
         match a.word("keyword")? {
             "units" => match a.word("box or lattice")? {
@@ -96,19 +117,33 @@ pub fn region(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
                 "lattice" => scale = None,
                 u => return Err(a.err(format!("expected units box or lattice, got '{u}'"))),
             },
-            k => return Err(a.err(format!("unknown keyword '{k}'; known: units"))),
+            "side" => match a.word("in or out")? {
+                "in" => outside = false,
+                "out" => outside = true,
+                w => return Err(a.err(format!("expected side in or out, got '{w}'"))),
+            },
+            k => return Err(a.err(format!("unknown keyword '{k}'; known: side, units"))),
         }
     }
     // LAMMPS's default lattice `lattice none 1.0` has spacing 1
-    let scale = scale.unwrap_or_else(|| sim.lattice.as_ref().map_or(1.0, |l| l.constant));
-    let block = Block { lo: [b[0] * scale, b[2] * scale, b[4] * scale], hi: [b[1] * scale, b[3] * scale, b[5] * scale] };
-    if (0..3).any(|d| block.hi[d] <= block.lo[d]) {
+    let f = scale.unwrap_or_else(|| sim.lattice.as_ref().map_or(1.0, |l| l.constant));
+    let shape = match shape {
+        Shape::Block { lo, hi } => Shape::Block { lo: lo.map(|x| x * f), hi: hi.map(|x| x * f) },
+        Shape::Sphere { centre, radius } => Shape::Sphere { centre: centre.map(|x| x * f), radius: radius * f },
+        Shape::Cylinder { axis, c, radius, lo, hi } => Shape::Cylinder { axis, c: c.map(|x| x * f), radius: radius * f, lo: lo * f, hi: hi * f },
+    };
+    let ordered = match &shape {
+        Shape::Block { lo, hi } => (0..3).all(|d| hi[d] > lo[d]),
+        Shape::Sphere { .. } => true,
+        Shape::Cylinder { lo, hi, .. } => hi > lo,
+    };
+    if !ordered {
         return Err(a.err("each upper bound must exceed its lower bound"));
     }
     if sim.regions.contains_key(&id) {
         return Err(a.err(format!("region ID '{id}' is in use")));
     }
-    sim.regions.insert(id, block);
+    sim.regions.insert(id, Region { shape, outside });
     Ok(())
 }
 
@@ -138,11 +173,14 @@ pub fn create_box(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     }
     let id = a.word("a region ID")?;
     a.done()?;
-    let block = sim.regions.get(id).ok_or_else(|| a.err(format!("no region with ID '{id}'")))?;
-    if !block.lo.iter().chain(&block.hi).all(|x| x.is_finite()) {
+    let (lo, hi) = match sim.regions.get(id).ok_or_else(|| a.err(format!("no region with ID '{id}'")))? {
+        Region { shape: Shape::Block { lo, hi }, outside: false } => (*lo, *hi),
+        _ => return Err(a.err(format!("region '{id}': a box needs a block region (side in)"))),
+    };
+    if !lo.iter().chain(&hi).all(|x| x.is_finite()) {
         return Err(a.err(format!("region '{id}' is open (INF/EDGE): a box needs finite bounds")));
     }
-    let domain = Domain::new(block.lo, block.hi);
+    let domain = Domain::new(lo, hi);
     let procs = ProcGrid::choose(transport.size(), domain.len(), sim.procs).map_err(|e| a.err(e))?;
     sim.ntypes = n;
     sim.masses = vec![None; n];
@@ -150,23 +188,33 @@ pub fn create_box(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     Ok(())
 }
 
-/// `create_atoms TYPE box | region ID | random N SEED REGION|NULL`: on the lattice points,
-/// or N points uniform in the region (NULL: the box) from the sequential stream of SEED,
-/// which every rank replays in full, keeping its own particles.
+/// `create_atoms TYPE box | region ID | random N SEED REGION|NULL`: on the lattice points
+/// in the box (and region), or N points uniform in the region (NULL: the box) from the
+/// sequential stream of SEED, which every rank replays in full, keeping its own particles.
 pub fn create_atoms(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     let kind = a.u64("a particle type")? as usize;
     let sys = sim.system.as_mut().ok_or_else(|| a.err("create_atoms before the box exists (create_box, read_data or read_restart)"))?;
     if kind < 1 || kind > sim.ntypes {
         return Err(a.err(format!("type {kind} is outside 1..{}", sim.ntypes)));
     }
+    // a region, and its bounding box clipped to the box; a region's upper face inside
+    // the box belongs to it (the box is half-open)
     let clip = |a: &Args, id: &str| {
-        let b = sim.regions.get(id).ok_or_else(|| a.err(format!("no region with ID '{id}'")))?;
-        let (d, mut lo, mut hi) = (&sys.domain, b.lo, b.hi);
-        for k in 0..3 {
-            lo[k] = lo[k].max(d.lo[k]);
-            hi[k] = hi[k].min(d.hi[k]);
+        let region = sim.regions.get(id).ok_or_else(|| a.err(format!("no region with ID '{id}'")))?;
+        let (d, len) = (&sys.domain, sys.domain.len());
+        let (mut lo, mut hi) = (d.lo, d.hi);
+        if let Some((rlo, rhi)) = region.extent() {
+            for k in 0..3 {
+                lo[k] = lo[k].max(rlo[k]);
+                if rhi[k] < d.hi[k] {
+                    hi[k] = (rhi[k] + 1e-6 * len[k]).min(d.hi[k]);
+                }
+            }
         }
-        Ok::<_, ScriptError>((lo, hi))
+        if (0..3).any(|d| hi[d] <= lo[d]) {
+            return Err(a.err(format!("region '{id}' does not overlap the box")));
+        }
+        Ok::<_, ScriptError>((region, lo, hi))
     };
     let size = sys.comm.size() as f64;
     let check_memory = |a: &Args, bound: f64| {
@@ -175,14 +223,19 @@ pub fn create_atoms(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     };
     let points = match a.word("box, region or random")? {
         style @ ("box" | "region") => {
-            let (lo, hi) = if style == "box" { (sys.domain.lo, sys.domain.hi) } else {
+            let (region, lo, hi) = if style == "box" { (None, sys.domain.lo, sys.domain.hi) } else {
                 let id = a.word("a region ID")?;
-                clip(a, id)?
+                let (region, lo, hi) = clip(a, id)?;
+                (Some(region), lo, hi)
             };
             a.done()?;
             let lattice = sim.lattice.as_ref().ok_or_else(|| a.err("create_atoms needs a lattice command first"))?;
             check_memory(a, lattice.count_bound(lo, hi))?;
-            lattice.points(lo, hi)
+            let mut points = lattice.points(lo, hi);
+            if let Some(region) = region {
+                points.retain(|&r| region.contains(r));
+            }
+            points
         }
         "random" => {
             let n = a.u64("the number of particles")?;
@@ -190,9 +243,12 @@ pub fn create_atoms(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
             if seed == 0 {
                 return Err(a.err("the random seed must be positive"));
             }
-            let (lo, hi) = match a.word("a region ID or NULL")? {
-                "NULL" => (sys.domain.lo, sys.domain.hi),
-                id => clip(a, id)?,
+            let (region, lo, hi) = match a.word("a region ID or NULL")? {
+                "NULL" => (None, sys.domain.lo, sys.domain.hi),
+                id => {
+                    let (region, lo, hi) = clip(a, id)?;
+                    (Some(region), lo, hi)
+                }
             };
             if let Some(k) = a.peek() {
                 return Err(a.err(match k {
@@ -200,11 +256,8 @@ pub fn create_atoms(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
                     _ => format!("unexpected argument '{k}'"),
                 }));
             }
-            if (0..3).any(|d| hi[d] <= lo[d]) {
-                return Err(a.err("the region does not overlap the box"));
-            }
             check_memory(a, n as f64)?;
-            random_points(n, seed, lo, hi)
+            random_points(n, seed, lo, hi, |r| region.map_or(true, |g| g.contains(r))).map_err(|e| a.err(e))?
         }
         s => return Err(a.err(format!("expected box, region or random, got '{s}'"))),
     };

@@ -1,7 +1,8 @@
 //! The model a script builds: box, particles, styles and run settings (its outputs are
 //! `output::Outputs`).
 
-use crate::base::lattice::{Block, Lattice};
+use crate::base::lattice::Lattice;
+use crate::base::region::Region;
 use crate::base::units::Units;
 use crate::styles::compute::rdf::Rdf;
 use crate::styles::compute::Compute;
@@ -21,7 +22,7 @@ pub struct Sim {
     /// them to its communicator).
     transport: Option<Box<dyn Transport>>,
     pub lattice: Option<Lattice>,
-    pub regions: HashMap<String, Block>,
+    pub regions: HashMap<String, Region>,
     pub ntypes: usize,
     /// Mass of each type (index type - 1).
     pub masses: Vec<Option<f64>>,
