@@ -620,3 +620,48 @@ write_dump all custom rand.dump id type x y z
         }
     }
 }
+
+/// Lattices fcc, bcc, hcp, diamond and sc with origin, orient and spacing, in lj units
+/// (SCALE = density) and metal units (SCALE = lattice constant), filling a box and a
+/// sphere in lattice units: the same particles as LAMMPS, ID by ID.
+#[test]
+fn lattices_with_origin_and_orient_match_lammps() {
+    for (units, lattice) in [
+        ("lj", "fcc 0.8442 orient x 1 1 1 orient y -1 1 0 orient z -1 -1 2 origin 0.1 0.2 0.3"),
+        ("metal", "bcc 3.3 orient x 1 1 0 orient y -1 1 0 orient z 0 0 1 origin 0.5 0 0.25"),
+        ("lj", "hcp 0.9 origin 0.2 0.1 0.05"),
+        ("metal", "diamond 5.43 orient x 1 -1 0 orient y 1 1 1 orient z -1 -1 2"),
+        ("real", "hcp 2.9"),
+        ("lj", "sc 0.5 spacing 1 2 1"),
+    ] {
+        let script = format!(
+            "units {units}\nlattice {lattice}\nregion box block 0 4 0 3 -1 2\ncreate_box 2 box\nregion s sphere 2 1.5 0.5 1.2\n\
+             create_atoms 1 box\ncreate_atoms 2 region s\nmass * 1.0\n\
+             write_dump all custom lat.dump id type x y z modify sort id format float %.17g\n"
+        );
+        let ((dg, _), (dl, _)) = both("lattice", &script);
+        let counts = same_particles(&dump(&dg.join("lat.dump")), &dump(&dl.join("lat.dump")));
+        eprintln!("{units} lattice {lattice}: {counts:?} particles as LAMMPS");
+        assert!(counts.len() == 2 && counts.iter().all(|&n| n > 0));
+    }
+}
+
+#[test]
+fn lattice_errors_name_the_line() {
+    for (line, expected) in [
+        ("lattice fcc 0.8 orient x 1 1 0", "in.x:2: lattice: the orient vectors are not orthogonal"),
+        ("lattice fcc 0.8 orient z 0 0 -1", "in.x:2: lattice: the orient vectors are not right-handed"),
+        ("lattice fcc 0.8 orient x 1 0.5 0", "in.x:2: lattice: expected an integer component of the orient vector, got '0.5'"),
+        ("lattice fcc 0.8 origin 0 0 1", "in.x:2: lattice: each origin fraction must lie in [0, 1)"),
+        ("lattice fcc -1", "in.x:2: lattice: the reduced density must be positive, got -1"),
+        ("lattice sq 1.0", "in.x:2: lattice: unknown lattice style 'sq'; known: none, sc, bcc, fcc, hcp, diamond"),
+        ("lattice fcc 0.8 basis 0 0 0", "in.x:2: lattice: unknown keyword 'basis'; known: origin, orient, spacing"),
+        ("lattice none 2.0 origin 0 0 0", "in.x:2: lattice: unexpected argument 'origin'"),
+        (
+            "lattice none 2.0\nregion box block 0 4 0 4 0 4\ncreate_box 1 box\ncreate_atoms 1 box",
+            "in.x:5: create_atoms: create_atoms needs a lattice with points",
+        ),
+    ] {
+        expect_error("lattice-errors", &format!("units lj\n{line}\n"), expected);
+    }
+}

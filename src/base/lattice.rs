@@ -3,45 +3,145 @@
 use gendpde_engine::Vec3;
 use rand_pcg::rand_core::{RngCore, SeedableRng};
 use rand_pcg::Pcg64Mcg;
+use nalgebra::{Matrix3, Vector3};
 
-/// A cubic lattice: `lattice sc|bcc|fcc RHO` (lj units: RHO is the reduced number
-/// density, so the lattice constant is (basis count / RHO)^(1/3), as in LAMMPS).
+/// A lattice as LAMMPS's `lattice STYLE SCALE [origin x y z] [orient dim i j k]...
+/// [spacing x y z]`: basis points in the unit cell of primitive vectors a1 a2 a3, scaled,
+/// rotated so that the orient directions lie along x, y, z, shifted by the origin.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Lattice {
-    pub constant: f64,
+    /// Primitive vectors as columns (cubic; a2 = sqrt 3, a3 = sqrt(8/3) for hcp).
+    primitive: Matrix3<f64>,
+    /// Rows: the normalised orient vectors.
+    rotate: Matrix3<f64>,
+    scale: f64,
+    /// Basis points in lattice coordinates (none for `lattice none`).
     pub basis: Vec<Vec3>,
+    /// LAMMPS's xlattice, ylattice, zlattice: the lengths of `units lattice`.
+    pub spacing: Vec3,
+    /// The origin shift in box units (spacing times the origin fractions).
+    shift: Vector3<f64>,
+}
+
+/// The settings of a `lattice` command besides its style and scale.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LatticeOptions {
+    /// Fractions of the spacings, each in [0, 1).
+    pub origin: Vec3,
+    /// The lattice directions along x, y and z (rows).
+    pub orient: [[i64; 3]; 3],
+    /// Spacings in units of the scale (default: the extent of the rotated unit cell).
+    pub spacing: Option<Vec3>,
+}
+
+impl Default for LatticeOptions {
+    fn default() -> Self {
+        Self { origin: [0.0; 3], orient: [[1, 0, 0], [0, 1, 0], [0, 0, 1]], spacing: None }
+    }
 }
 
 impl Lattice {
-    pub fn new(style: &str, density: f64) -> Option<Self> {
+    /// `lattice none S`: no points, spacing S.
+    pub fn none(spacing: f64) -> Self {
+        let identity = Matrix3::identity();
+        Self { primitive: identity, rotate: identity, scale: spacing, basis: Vec::new(), spacing: [spacing; 3], shift: Vector3::zeros() }
+    }
+
+    /// Lattice `style` (sc, bcc, fcc, hcp, diamond) of `scale`: the reduced density of
+    /// points in lj units (`reduced`), else the lattice constant. Err names the problem.
+    pub fn new(style: &str, scale: f64, reduced: bool, o: &LatticeOptions) -> Result<Self, String> {
         let basis: Vec<Vec3> = match style {
             "sc" => vec![[0.0; 3]],
             "bcc" => vec![[0.0; 3], [0.5; 3]],
             "fcc" => vec![[0.0; 3], [0.5, 0.5, 0.0], [0.5, 0.0, 0.5], [0.0, 0.5, 0.5]],
-            _ => return None,
+            "hcp" => vec![[0.0; 3], [0.5, 0.5, 0.0], [0.5, 5.0 / 6.0, 0.5], [0.0, 1.0 / 3.0, 0.5]],
+            "diamond" => vec![
+                [0.0; 3],
+                [0.0, 0.5, 0.5],
+                [0.5, 0.0, 0.5],
+                [0.5, 0.5, 0.0],
+                [0.25; 3],
+                [0.25, 0.75, 0.75],
+                [0.75, 0.25, 0.75],
+                [0.75, 0.75, 0.25],
+            ],
+            _ => return Err(format!("unknown lattice style '{style}'; known: none, sc, bcc, fcc, hcp, diamond")),
         };
-        let constant = (basis.len() as f64 / density).cbrt();
-        Some(Self { constant, basis })
+        let primitive = if style == "hcp" { Matrix3::from_diagonal(&Vector3::new(1.0, 3f64.sqrt(), (8.0f64 / 3.0).sqrt())) } else { Matrix3::identity() };
+        let [x, y, z] = o.orient.map(|v| Vector3::new(v[0] as f64, v[1] as f64, v[2] as f64));
+        if [x, y, z].iter().any(|v| v.norm() == 0.0) {
+            return Err("an orient vector has zero length".into());
+        }
+        if x.dot(&y) != 0.0 || y.dot(&z) != 0.0 || x.dot(&z) != 0.0 {
+            return Err("the orient vectors are not orthogonal".into());
+        }
+        if x.cross(&y).dot(&z) <= 0.0 {
+            return Err("the orient vectors are not right-handed".into());
+        }
+        if o.origin.iter().any(|f| !(0.0..1.0).contains(f)) {
+            return Err("each origin fraction must lie in [0, 1)".into());
+        }
+        let rotate = Matrix3::from_rows(&[x.normalize().transpose(), y.normalize().transpose(), z.normalize().transpose()]);
+        // lj units: SCALE is the number density of points (as LAMMPS)
+        let scale = if reduced { (basis.len() as f64 / primitive.determinant() / scale).cbrt() } else { scale };
+        let mut lattice = Self { primitive, rotate, scale, basis, spacing: [0.0; 3], shift: Vector3::zeros() };
+        lattice.spacing = match o.spacing {
+            Some(s) => s.map(|x| x * scale),
+            // the extent of the rotated unit cell
+            None => {
+                let corners: Vec<Vec3> = (0..8).map(|c| lattice.to_box([(c & 1) as f64, (c >> 1 & 1) as f64, (c >> 2 & 1) as f64])).collect();
+                std::array::from_fn(|d| {
+                    let v = corners.iter().map(|r| r[d]);
+                    v.clone().fold(f64::NEG_INFINITY, f64::max) - v.fold(f64::INFINITY, f64::min)
+                })
+            }
+        };
+        lattice.shift = Vector3::from(std::array::from_fn(|d| lattice.spacing[d] * o.origin[d]));
+        Ok(lattice)
     }
 
-    /// An upper bound of the number of points in the block [lo, hi) (no allocation).
+    /// Box coordinates of lattice coordinates `x` (LAMMPS's lattice2box).
+    pub fn to_box(&self, x: Vec3) -> Vec3 {
+        let r = self.rotate * (self.primitive * Vector3::from(x) * self.scale) + self.shift;
+        [r.x, r.y, r.z]
+    }
+
+    /// Lattice coordinates of box coordinates `r`.
+    fn to_lattice(&self, r: Vec3) -> Option<Vec3> {
+        let inverse = self.primitive.try_inverse()?;
+        let x = inverse * (self.rotate.transpose() * (Vector3::from(r) - self.shift) / self.scale);
+        Some([x.x, x.y, x.z])
+    }
+
+    /// The unit cells whose points can fall in the block [lo, hi], per lattice axis.
+    fn cells(&self, lo: Vec3, hi: Vec3) -> [std::ops::RangeInclusive<i64>; 3] {
+        let corners: Vec<Vec3> = (0..8)
+            .map(|c| [if c & 1 == 0 { lo[0] } else { hi[0] }, if c & 2 == 0 { lo[1] } else { hi[1] }, if c & 4 == 0 { lo[2] } else { hi[2] }])
+            .filter_map(|r| self.to_lattice(r))
+            .collect();
+        std::array::from_fn(|d| {
+            let v = corners.iter().map(|x| x[d]);
+            let (min, max) = (v.clone().fold(f64::INFINITY, f64::min), v.fold(f64::NEG_INFINITY, f64::max));
+            (min.floor() as i64 - 1)..=(max.ceil() as i64 + 1)
+        })
+    }
+
+    /// An upper bound of the number of points in the block [lo, hi] (no allocation).
     pub fn count_bound(&self, lo: Vec3, hi: Vec3) -> f64 {
-        let cells: f64 = (0..3).map(|d| ((hi[d] - lo[d]) / self.constant).ceil() + 1.0).product();
-        cells * self.basis.len() as f64
+        self.cells(lo, hi).iter().map(|r| (r.end() - r.start() + 1) as f64).product::<f64>() * self.basis.len() as f64
     }
 
-    /// Lattice points inside the block [lo, hi), in LAMMPS's order (z, y, x, basis).
-    pub fn points(&self, lo: Vec3, hi: Vec3) -> Vec<Vec3> {
-        let a = self.constant;
-        let eps = 1e-10 * (hi[0] - lo[0]).max(hi[1] - lo[1]).max(hi[2] - lo[2]);
-        let range = |d: usize| ((lo[d] / a).floor() as i64 - 1)..=((hi[d] / a).ceil() as i64 + 1);
+    /// The lattice points near the block [lo, hi] that `keep` takes, in LAMMPS's order
+    /// (z, y, x, basis).
+    pub fn points(&self, lo: Vec3, hi: Vec3, keep: impl Fn(Vec3) -> bool) -> Vec<Vec3> {
+        let [ri, rj, rk] = self.cells(lo, hi);
         let mut out = Vec::new();
-        for k in range(2) {
-            for j in range(1) {
-                for i in range(0) {
+        for k in rk {
+            for j in rj.clone() {
+                for i in ri.clone() {
                     for b in &self.basis {
-                        let r = [(i as f64 + b[0]) * a, (j as f64 + b[1]) * a, (k as f64 + b[2]) * a];
-                        if (0..3).all(|d| r[d] >= lo[d] - eps && r[d] < hi[d] - eps) {
+                        let r = self.to_box([i as f64 + b[0], j as f64 + b[1], k as f64 + b[2]]);
+                        if keep(r) {
                             out.push(r);
                         }
                     }
@@ -81,16 +181,35 @@ pub fn random_points(n: u64, seed: u64, lo: Vec3, hi: Vec3, accept: impl Fn(Vec3
 mod tests {
     use super::*;
 
+    /// Points of the half-open block [lo, hi), with a tolerance.
+    fn inside(lo: Vec3, hi: Vec3) -> impl Fn(Vec3) -> bool {
+        move |r| (0..3).all(|d| r[d] >= lo[d] - 1e-9 && r[d] < hi[d] - 1e-9)
+    }
+
     #[test]
     fn lattices_hold_the_requested_density() {
-        for (style, per_cell) in [("sc", 1), ("bcc", 2), ("fcc", 4)] {
-            let l = Lattice::new(style, 0.5).unwrap();
-            let side = 5.0 * l.constant;
-            let pts = l.points([0.0; 3], [side; 3]);
+        for (style, per_cell) in [("sc", 1), ("bcc", 2), ("fcc", 4), ("hcp", 4), ("diamond", 8)] {
+            let l = Lattice::new(style, 0.5, true, &LatticeOptions::default()).unwrap();
+            let side = l.spacing.map(|s| 5.0 * s);
+            let pts = l.points([0.0; 3], side, inside([0.0; 3], side));
             assert_eq!(pts.len(), 125 * per_cell, "{style}");
-            let rho = pts.len() as f64 / side.powi(3);
-            assert!((rho - 0.5).abs() < 1e-12);
+            let rho = pts.len() as f64 / side.iter().product::<f64>();
+            assert!((rho - 0.5).abs() < 1e-12, "{style}: {rho}");
         }
+    }
+
+    /// A rotated lattice keeps its density; the orient vectors are checked.
+    #[test]
+    fn orient_rotates_and_is_checked() {
+        let o = LatticeOptions { orient: [[1, 1, 0], [-1, 1, 0], [0, 0, 1]], ..Default::default() };
+        let l = Lattice::new("fcc", 3.0, false, &o).unwrap();
+        let s = 3.0 * 2f64.sqrt();
+        assert!((l.spacing[0] - s).abs() < 1e-12 && (l.spacing[2] - 3.0).abs() < 1e-12, "{:?}", l.spacing);
+        let side = [4.0 * s, 4.0 * s, 12.0];
+        assert_eq!(l.points([0.0; 3], side, inside([0.0; 3], side)).len(), 4 * 4 * 4 * 8);
+        let bad = |orient| Lattice::new("sc", 1.0, false, &LatticeOptions { orient, ..Default::default() }).unwrap_err();
+        assert_eq!(bad([[1, 1, 0], [1, 0, 0], [0, 0, 1]]), "the orient vectors are not orthogonal");
+        assert_eq!(bad([[1, 0, 0], [0, 1, 0], [0, 0, -1]]), "the orient vectors are not right-handed");
     }
 
     /// Chi-square of the counts in 4x4x4 bins against uniform (63 degrees of freedom:
@@ -122,8 +241,8 @@ mod tests {
 
     #[test]
     fn points_follow_lammps_order() {
-        let l = Lattice::new("sc", 1.0).unwrap();
-        let pts = l.points([0.0; 3], [2.0; 3]);
+        let l = Lattice::new("sc", 1.0, true, &LatticeOptions::default()).unwrap();
+        let pts = l.points([0.0; 3], [2.0; 3], inside([0.0; 3], [2.0; 3]));
         assert_eq!(pts[0], [0.0, 0.0, 0.0]);
         assert_eq!(pts[1], [1.0, 0.0, 0.0]);
         assert_eq!(pts[2], [0.0, 1.0, 0.0]);

@@ -4,13 +4,13 @@
 
 use crate::base::args::Args;
 use crate::base::groups;
-use crate::base::lattice::{random_points, Lattice};
+use crate::base::lattice::{random_points, Lattice, LatticeOptions};
 use crate::base::region::{Region, Shape};
 use crate::base::memory;
 use crate::base::units::Units;
 use crate::model::sim::Sim;
 use crate::output::thermo::ThermoConfig;
-use gendpde_engine::{Comm, Domain, ProcGrid};
+use gendpde_engine::{Comm, Domain, ProcGrid, Vec3};
 use gendpde_integrators::System;
 use gendpde_io::{AtomStyle, ScriptError};
 
@@ -62,13 +62,42 @@ pub fn atom_style(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     a.done()
 }
 
-/// `lattice sc|bcc|fcc RHO`.
+/// `lattice none S | STYLE SCALE [origin x y z] [orient x|y|z i j k] [spacing x y z]`.
 pub fn lattice(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
-    let style = a.word("a lattice style (sc, bcc, fcc)")?;
-    let rho = a.positive("the reduced density")?;
-    a.done()?;
-    sim.lattice = Some(Lattice::new(style, rho).ok_or_else(|| a.err(format!("unknown lattice '{style}'; known: sc, bcc, fcc")))?);
+    let style = a.word("a lattice style (none, sc, bcc, fcc, hcp, diamond)")?;
+    let scale = a.positive(if sim.units == Units::LJ { "the reduced density" } else { "the lattice constant" })?;
+    if style == "none" {
+        a.done()?;
+        sim.lattice = Some(Lattice::none(scale));
+        return Ok(());
+    }
+    let mut o = LatticeOptions::default();
+    while a.remaining() > 0 {
+        match a.word("a keyword")? {
+            "origin" => o.origin = [a.f64("the origin's x fraction")?, a.f64("the origin's y fraction")?, a.f64("the origin's z fraction")?],
+            "orient" => {
+                let d = axis(a, "orient")?;
+                for k in 0..3 {
+                    let w = a.word("an integer component of the orient vector")?;
+                    o.orient[d][k] = w.parse().map_err(|_| a.err(format!("expected an integer component of the orient vector, got '{w}'")))?;
+                }
+            }
+            "spacing" => o.spacing = Some([a.positive("the x spacing")?, a.positive("the y spacing")?, a.positive("the z spacing")?]),
+            k => return Err(a.err(format!("unknown keyword '{k}'; known: origin, orient, spacing"))),
+        }
+    }
+    sim.lattice = Some(Lattice::new(style, scale, sim.units == Units::LJ, &o).map_err(|e| a.err(e))?);
     Ok(())
+}
+
+/// An axis `x`, `y` or `z` as 0, 1 or 2; `what` names it in the error.
+fn axis(a: &mut Args, what: &str) -> Result<usize, ScriptError> {
+    match a.word(&format!("{what} (x, y or z)"))? {
+        "x" => Ok(0),
+        "y" => Ok(1),
+        "z" => Ok(2),
+        w => Err(a.err(format!("expected {what} x, y or z, got '{w}'"))),
+    }
 }
 
 /// `region ID block xlo xhi ylo yhi zlo zhi | sphere x y z r | cylinder dim c1 c2 r lo hi`
@@ -97,12 +126,7 @@ pub fn region(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
             Shape::Sphere { centre, radius: a.positive("the radius")? }
         }
         "cylinder" => {
-            let axis = match a.word("the axis (x, y or z)")? {
-                "x" => 0,
-                "y" => 1,
-                "z" => 2,
-                w => return Err(a.err(format!("expected the axis x, y or z, got '{w}'"))),
-            };
+            let axis = axis(a, "the axis")?;
             let c = [a.f64("the first coordinate of the axis")?, a.f64("the second coordinate of the axis")?];
             let radius = a.positive("the radius")?;
             Shape::Cylinder { axis, c, radius, lo: bound(a, "the lower end", false)?, hi: bound(a, "the upper end", true)? }
@@ -125,12 +149,16 @@ pub fn region(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
             k => return Err(a.err(format!("unknown keyword '{k}'; known: side, units"))),
         }
     }
-    // LAMMPS's default lattice `lattice none 1.0` has spacing 1
-    let f = scale.unwrap_or_else(|| sim.lattice.as_ref().map_or(1.0, |l| l.constant));
+    // lattice spacings, as LAMMPS scales each style; its default lattice `lattice none 1.0`
+    // has spacing 1
+    let f = scale.map_or_else(|| sim.lattice.as_ref().map_or([1.0; 3], |l| l.spacing), |s| [s; 3]);
     let shape = match shape {
-        Shape::Block { lo, hi } => Shape::Block { lo: lo.map(|x| x * f), hi: hi.map(|x| x * f) },
-        Shape::Sphere { centre, radius } => Shape::Sphere { centre: centre.map(|x| x * f), radius: radius * f },
-        Shape::Cylinder { axis, c, radius, lo, hi } => Shape::Cylinder { axis, c: c.map(|x| x * f), radius: radius * f, lo: lo * f, hi: hi * f },
+        Shape::Block { lo, hi } => Shape::Block { lo: std::array::from_fn(|d| lo[d] * f[d]), hi: std::array::from_fn(|d| hi[d] * f[d]) },
+        Shape::Sphere { centre, radius } => Shape::Sphere { centre: std::array::from_fn(|d| centre[d] * f[d]), radius: radius * f[0] },
+        Shape::Cylinder { axis, c, radius, lo, hi } => {
+            let (a, b) = Region::others(axis);
+            Shape::Cylinder { axis, c: [c[0] * f[a], c[1] * f[b]], radius: radius * f[a], lo: lo * f[axis], hi: hi * f[axis] }
+        }
     };
     let ordered = match &shape {
         Shape::Block { lo, hi } => (0..3).all(|d| hi[d] > lo[d]),
@@ -229,13 +257,12 @@ pub fn create_atoms(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
                 (Some(region), lo, hi)
             };
             a.done()?;
-            let lattice = sim.lattice.as_ref().ok_or_else(|| a.err("create_atoms needs a lattice command first"))?;
+            let lattice = sim.lattice.as_ref().filter(|l| !l.basis.is_empty()).ok_or_else(|| a.err("create_atoms needs a lattice with points (a lattice command other than none)"))?;
             check_memory(a, lattice.count_bound(lo, hi))?;
-            let mut points = lattice.points(lo, hi);
-            if let Some(region) = region {
-                points.retain(|&r| region.contains(r));
-            }
-            points
+            // in the box as LAMMPS: a point on both periodic faces is created once
+            let (d, len) = (&sys.domain, sys.domain.len());
+            let in_box = |r: Vec3| (0..3).all(|k| r[k] >= d.lo[k] - 1e-6 * len[k] && r[k] < d.hi[k] - 2e-6 * len[k]);
+            lattice.points(lo, hi, |r| in_box(r) && region.map(|g| g.contains(r)) != Some(false))
         }
         "random" => {
             let n = a.u64("the number of particles")?;
@@ -257,7 +284,7 @@ pub fn create_atoms(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
                 }));
             }
             check_memory(a, n as f64)?;
-            random_points(n, seed, lo, hi, |r| region.map_or(true, |g| g.contains(r))).map_err(|e| a.err(e))?
+            random_points(n, seed, lo, hi, |r| region.map(|g| g.contains(r)) != Some(false)).map_err(|e| a.err(e))?
         }
         s => return Err(a.err(format!("expected box, region or random, got '{s}'"))),
     };
