@@ -14,8 +14,6 @@ Writes docs/validation/heat_flow.json and docs/validation/heat_flow.png.
 import argparse
 import json
 import math
-import subprocess
-import time
 
 import numpy as np
 
@@ -42,15 +40,11 @@ def run(heat, t, dt_rel, seed, equil, steps, every, dt):
                       f"reset_timestep 0\ndump traj all h5md {every} traj.h5 x theta\nthermo {steps // BLOCKS}\nrun {steps}\n")
     (wd / "traj.h5").unlink(missing_ok=True)
     v = {"heat": heat, "T": t, "dT": dt_rel, "seed": seed, "steps": equil, "dt": dt}
-    cmd = [common.GENDPDE, "run", str(script), "-log", "log.gendpde"]
-    for k, val in v.items():
-        cmd += ["-var", k, str(val)]
-    start = time.time()
-    out = subprocess.run(cmd, cwd=wd, capture_output=True, text=True)
-    wall = time.time() - start
-    if out.returncode != 0:
-        raise SystemExit(out.stdout[-2000:] + out.stderr[-2000:])
-    prod = common.thermo_blocks(out.stdout)[-1]
+    try:
+        r = common.gendpde.run(script, v, cwd=wd, binary=common.GENDPDE)
+    except common.gendpde.GendpdeError as e:
+        raise SystemExit(e.stdout[-2000:] + e.stderr[-2000:])
+    prod, wall = r.logs[-1], r.wall_s
     x = common.h5md_frames(wd / "traj.h5", "position")[0, :, 0]
     theta = common.h5md_frames(wd / "traj.h5", "temperature")[1:]  # frames after the start
     lx = 2 * (L + W)

@@ -65,7 +65,7 @@ def relaxation(T, rho, rc, args, points=60):
     """(time, P, <n_i>) from the lattice start, block means of the whole run's thermo."""
     import numpy as np
     _, wd = run_dir(T, rho, rc, args)
-    blocks = common.thermo_blocks((wd / "log.gendpde").read_text())
+    blocks = common.gendpde.read_log(wd / "log.gendpde")
     t = np.concatenate([np.array(b["Step"]) + (0 if i == 0 else args.equil) for i, b in enumerate(blocks)]) * 0.01
     cols = [t] + [np.concatenate([b[c] for b in blocks]) for c in ("Press", "Nmean")]
     k = max(1, len(t) // points)
