@@ -107,6 +107,17 @@ def save(scene, entry):
     path.write_text(json.dumps(data, indent=1, sort_keys=True) + "\n")
 
 
+def series(run, **columns):
+    """{name: column of the thermo DataFrame `run`} as lists of 6-digit floats (a driver
+    stores its time series in results.json with it, to redraw its figure)."""
+    return {name: [float(f"{v:.6g}") for v in run[col]] for name, col in columns.items()}
+
+
+def saved(scene):
+    """The results.json entry of `scene` (what a driver's --plot redraws its figure from)."""
+    return json.loads((OUT / "results.json").read_text())[scene]
+
+
 def figure_path(scene):
     OUT.mkdir(parents=True, exist_ok=True)
     return OUT / f"{scene}.png"
