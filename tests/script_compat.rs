@@ -385,8 +385,34 @@ fix 3 all eos/cv 0.05
 run 0
 ";
 
+/// The clock keywords over a run (time in ps in metal, fs in real, tau in lj; the default
+/// timestep of each units).
+const CLOCK: &str = "units UNITS
+region box block 0 20 0 20 0 20 units box
+create_box 1 box
+create_atoms 1 random 100 5 NULL
+mass 1 1.0
+comm_modify vel yes
+pair_style dpd 1.0 1.0 3421
+pair_coeff 1 1 25.0 4.5
+fix 1 all nve
+thermo 10
+thermo_style custom step elapsed time dt atoms vol
+thermo_modify format float %.15g
+run 20
+run 10
+";
+
 #[test]
 fn thermo_keywords_in_every_unit_system_match_lammps() {
+    for u in ["lj", "real", "metal"] {
+        let ((_, g), (_, l)) = both(&format!("clock-{u}"), &CLOCK.replace("UNITS", u));
+        let (g, l) = (parse_thermo_blocks(&g, "Step"), parse_thermo_blocks(&l, "Step"));
+        assert_eq!(g.len(), 2);
+        for (g, l) in g.iter().zip(&l) {
+            compare_blocks(g, l, 1e-12);
+        }
+    }
     for (scene, text, units) in [("box", BOX, &["lj", "real", "metal"][..]), ("dpde", DPDE, &["real", "metal"][..])] {
         for u in units {
             let ((_, g), (_, l)) = both(&format!("{scene}-{u}"), &text.replace("UNITS", u));
