@@ -6,7 +6,7 @@ an axis and the histogram of the particle temperature theta (PNG).
     python3 scripts/h5md_profile.py run.h5 --frame -1 --axis x --bins 50 --out profile.png
 
 The file layout is H5MD 1.1 (h5md.nongnu.org): /particles/all/{position, temperature,
-internal_energy, momentum, ...}/{value, step, time} and /particles/all/box/edges.
+internal_energy, momentum, ...}/{value, step, time} and /particles/all/box/edges/value.
 """
 import argparse
 import sys
@@ -30,7 +30,6 @@ def load(path, frame):
         if "h5md" not in f or "particles/all" not in f:
             sys.exit(f"{path}: not an H5MD file (no /h5md or /particles/all)")
         part = f["particles/all"]
-        edges = np.asarray(part["box/edges"])
         pos = part["position"]
         nframes = len(pos["step"])  # frames counted by completed steps
         if nframes == 0:
@@ -38,6 +37,8 @@ def load(path, frame):
         k = frame if frame >= 0 else nframes + frame
         if not 0 <= k < nframes:
             sys.exit(f"{path}: frame {frame} outside 0..{nframes - 1}")
+        edges = part["box/edges"]  # a time-dependent element (older files: a dataset)
+        edges = np.asarray(edges["value"][k] if hasattr(edges, "keys") else edges)
         r = np.asarray(pos["value"][k])
         theta = np.asarray(part["temperature/value"][k]) if "temperature" in part else None
         return r, theta, edges, int(pos["step"][k]), float(pos["time"][k])

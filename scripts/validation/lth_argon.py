@@ -99,7 +99,7 @@ def rdf(path, rmax, bins=400):
     from scipy.spatial import cKDTree
     with h5py.File(path, "r") as f:
         x = f["particles/all/position/value"][()]
-        box = f["particles/all/box/edges"][()]
+        box = f["particles/all/box/edges/value"][0]  # the box is fixed
     edges = np.linspace(0.0, rmax, bins + 1)
     hist = np.zeros(bins)
     frames = x[len(x) // 5:]

@@ -8,7 +8,7 @@ use crate::model::sim::Sim;
 use crate::output::ave_time::AveTime;
 use crate::output::console::Output;
 use crate::output::restart;
-use crate::output::schedule::{Frame, Span};
+use crate::output::schedule::{Frame, RunOutput, Span};
 use crate::output::thermo::{header_line, Observables};
 use crate::output::Outputs;
 use crate::styles::physics::build_physics;
@@ -141,11 +141,14 @@ pub fn run(sim: &mut Sim, outputs: &mut Outputs, out: &mut Output, vars: &Variab
 /// the progress bar hidden.
 fn write_due(sim: &Sim, outputs: &mut Outputs, out: &mut Output, vars: &Variables, run: Span, clock: Instant, progress: &ProgressBar) -> Result<(), String> {
     let sys = sim.system.as_ref().expect("system exists during a run");
-    let mut frame = Frame { sim, sys, vars, out, run, cpu: clock.elapsed().as_secs_f64() };
-    for o in outputs.all() {
-        if o.next_step(sys.step, run).is_some_and(|next| next <= sys.step) {
-            progress.suspend(|| o.write(&mut frame))?;
-        }
+    let due = |o: &dyn RunOutput| o.next_step(sys.step, run).is_some_and(|next| next <= sys.step);
+    if !outputs.all().any(|o| due(o)) {
+        return Ok(());
+    }
+    let thermo = outputs.thermo.clone();
+    let mut frame = Frame { sim, sys, vars, thermo: &thermo, out, run, cpu: clock.elapsed().as_secs_f64() };
+    for o in outputs.all().filter(|o| due(&**o)) {
+        progress.suspend(|| o.write(&mut frame))?;
     }
     Ok(())
 }

@@ -6,7 +6,7 @@ use crate::base::args::Args;
 use crate::base::gather::sorted_rows;
 use crate::output::dump::{readers, Dump, Every, Keyword};
 use crate::output::schedule::{Frame, RunOutput, Span};
-use gendpde_io::{H5mdField, H5mdWriter, ScriptError};
+use gendpde_io::{H5mdField, H5mdMeta, H5mdWriter, ScriptError};
 use std::path::Path;
 
 pub struct H5mdDump {
@@ -17,6 +17,9 @@ pub struct H5mdDump {
     /// Continue an existing file (a run restarted from a checkpoint) instead of
     /// truncating it.
     append: bool,
+    /// `dump_modify author NAME email ADDRESS` (default name: $USER).
+    author: String,
+    email: Option<String>,
     writer: Option<H5mdWriter>,
 }
 
@@ -61,7 +64,8 @@ impl H5mdDump {
         if fields.is_empty() {
             return Err(a.err(format!("missing argument: expected fields ({FIELDS})")));
         }
-        Ok(Self { id: id.to_string(), every: Every::new(every), file, fields, append, writer: None })
+        let author = std::env::var("USER").unwrap_or_else(|_| "unknown".into());
+        Ok(Self { id: id.to_string(), every: Every::new(every), file, fields, append, author, email: None, writer: None })
     }
 }
 
@@ -86,7 +90,9 @@ impl Dump for H5mdDump {
         }
         match key {
             "append" => self.append = a.yes_no("append")?,
-            _ => return Err(a.err(format!("dump {}: unknown dump_modify keyword '{key}' for h5md; known: every, first, append", self.id))),
+            "author" => self.author = a.word("an author name (quoted if it has spaces)")?.to_string(),
+            "email" => self.email = Some(a.word("an email address")?.to_string()),
+            _ => return Err(a.err(format!("dump {}: unknown dump_modify keyword '{key}' for h5md; known: every, first, append, author, email", self.id))),
         }
         Ok(())
     }
@@ -103,12 +109,22 @@ impl H5mdDump {
     fn write_frame(&mut self, frame: &Frame) -> Result<(), String> {
         let (sys, natoms) = (frame.sys, frame.sys.comm.count(frame.sys.store.nlocal) as usize);
         self.every.wrote(sys.step);
+        // the thermo keywords at this step, the observables (every rank: collective)
+        let values = frame.thermo.values(frame)?;
+        let observables: Vec<(&str, f64)> = frame.thermo.keywords.iter().map(String::as_str).zip(values).filter(|(k, _)| *k != "step").collect();
         if sys.comm.rank() == 0 && self.writer.is_none() {
             let path = Path::new(&self.file);
             let w = if self.append && path.exists() {
                 H5mdWriter::append(path, natoms, &self.fields)
             } else {
-                H5mdWriter::create(path, natoms, sys.domain.len(), &self.fields, "gendpde user", env!("CARGO_PKG_VERSION"))
+                let meta = H5mdMeta {
+                    author: self.author.clone(),
+                    email: self.email.clone(),
+                    creator_version: env!("CARGO_PKG_VERSION").into(),
+                    units: Some(frame.sim.units.name.into()),
+                    observables: observables.iter().map(|(n, _)| n.to_string()).collect(),
+                };
+                H5mdWriter::create(path, natoms, sys.domain.len(), &self.fields, &meta)
             };
             self.writer = Some(w.map_err(|e| e.0)?);
         }
@@ -120,7 +136,9 @@ impl H5mdDump {
             b.extend(readers.iter().map(|r| r.get(sys, i)));
         };
         if let Some(w) = self.writer.as_mut() {
+            w.set_edges(sys.domain.len());
             w.begin_frame(sys.step, sys.time).map_err(|e| e.0)?;
+            w.write_observables(&observables).map_err(|e| e.0)?;
         }
         let mut first_row = 0;
         let mut column = Vec::new();

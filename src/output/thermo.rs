@@ -45,6 +45,15 @@ impl RunOutput for ThermoConfig {
 
     /// One value line on the screen and in the log.
     fn write(&mut self, f: &mut Frame) -> Result<(), String> {
+        let values = self.values(f)?;
+        f.out.line(&value_line(&self.keywords, &values, self.float_format.as_deref()));
+        Ok(())
+    }
+}
+
+impl ThermoConfig {
+    /// The values of the keywords at the frame's step (collective: every rank calls).
+    pub fn values(&self, f: &Frame) -> Result<Vec<f64>, String> {
         let ctx = ThermoContext::new(f.sim, f.sys, self.norm, f.sys.step - f.run.first, f.cpu);
         let resolve = |name: &str| ctx.keyword(name);
         let mut values = Vec::with_capacity(self.keywords.len());
@@ -55,8 +64,7 @@ impl RunOutput for ThermoConfig {
             };
             values.push(v);
         }
-        f.out.line(&value_line(&self.keywords, &values, self.float_format.as_deref()));
-        Ok(())
+        Ok(values)
     }
 }
 
