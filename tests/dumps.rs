@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::lammps::{expect_success, parse_dump, run_lammps, stage_inputs};
+use common::lammps::{expect_success, parse_dump, run_lammps, stage_with};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -24,14 +24,7 @@ fn gendpde(dir: &Path, input: &str) -> std::process::Output {
 /// scripts/lammps/in.dpde-deterministic with `dumps` before its run (and no write_dump),
 /// staged in `dir` as in.dumps.
 fn dump_scene(dir: &Path, dumps: &str) {
-    stage_inputs(dir, "in.dpde-deterministic");
-    let text = std::fs::read_to_string(dir.join("in.dpde-deterministic")).unwrap();
-    let text: String = text
-        .lines()
-        .filter(|l| !l.starts_with("write_dump"))
-        .map(|l| if l.starts_with("run ") { format!("{dumps}{l}\n") } else { format!("{l}\n") })
-        .collect();
-    std::fs::write(dir.join("in.dumps"), text).unwrap();
+    stage_with(dir, "in.dpde-deterministic", "in.dumps", dumps, "");
 }
 
 /// The frames of a text dump: (lines other than particle rows, particle rows sorted).

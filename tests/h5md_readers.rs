@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::lammps::{parse_thermo, stage_inputs};
+use common::lammps::{parse_thermo, stage_with};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -18,14 +18,7 @@ fn dir(name: &str) -> PathBuf {
 
 /// Runs scripts/lammps/`input` with `dump` before its run; returns gendpde's stdout.
 fn run_with_dump(dir: &Path, input: &str, dump: &str) -> String {
-    stage_inputs(dir, input);
-    let text = std::fs::read_to_string(dir.join(input)).unwrap();
-    let text: String = text
-        .lines()
-        .filter(|l| !l.starts_with("write_dump"))
-        .map(|l| if l.starts_with("run ") { format!("{dump}\n{l}\n") } else { format!("{l}\n") })
-        .collect();
-    std::fs::write(dir.join("in.h5md"), text).unwrap();
+    stage_with(dir, input, "in.h5md", &format!("{dump}\n"), "");
     let out = Command::new(env!("CARGO_BIN_EXE_gendpde")).current_dir(dir).args(["run", "in.h5md", "-log", "none"]).output().unwrap();
     assert!(out.status.success(), "gendpde failed:\n{}", String::from_utf8_lossy(&out.stderr));
     String::from_utf8(out.stdout).unwrap()

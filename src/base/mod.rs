@@ -1,5 +1,6 @@
 //! Shared types with no upward imports: argument reading, script errors and modes,
-//! units, memory checks, collectives over the particles, lattices and group masks.
+//! units, memory checks, collectives over the particles, lattices, group masks and the
+//! signals that stop a run.
 
 pub mod args;
 pub mod gather;
@@ -7,4 +8,5 @@ pub mod groups;
 pub mod lattice;
 pub mod memory;
 pub mod script;
+pub mod signals;
 pub mod units;

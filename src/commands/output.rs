@@ -55,9 +55,7 @@ pub fn thermo_modify(thermo: &mut ThermoConfig, a: &mut Args) -> Result<(), Scri
     while a.remaining() > 0 {
         match a.word("a keyword")? {
             "norm" => thermo.norm = a.yes_no("norm")?,
-            "flush" => {
-                a.yes_no("flush")?;
-            }
+            "flush" => thermo.flush = a.yes_no("flush")?,
             "format" => match a.word("float or line")? {
                 "float" => {
                     let f = a.word("a printf format such as %15.10f")?;

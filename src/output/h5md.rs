@@ -6,6 +6,7 @@ use crate::base::args::Args;
 use crate::base::gather::sorted_rows;
 use crate::output::dump::{readers, Dump, Every, Keyword};
 use crate::output::schedule::{Frame, RunOutput, Span};
+use crate::output::thermo;
 use gendpde_io::{H5mdField, H5mdMeta, H5mdWriter, ScriptError};
 use std::path::Path;
 
@@ -110,8 +111,8 @@ impl H5mdDump {
         let (sys, natoms) = (frame.sys, frame.sys.comm.count(frame.sys.store.nlocal) as usize);
         self.every.wrote(sys.step);
         // the thermo keywords at this step, the observables (every rank: collective)
-        let values = frame.thermo.values(frame)?;
-        let observables: Vec<(&str, f64)> = frame.thermo.keywords.iter().map(String::as_str).zip(values).filter(|(k, _)| *k != "step").collect();
+        let values = thermo::values(frame.thermo_keywords, frame.norm, frame)?;
+        let observables: Vec<(&str, f64)> = frame.thermo_keywords.iter().map(String::as_str).zip(values).filter(|(k, _)| *k != "step").collect();
         if sys.comm.rank() == 0 && self.writer.is_none() {
             let path = Path::new(&self.file);
             let w = if self.append && path.exists() {

@@ -24,12 +24,14 @@ pub struct ThermoConfig {
     pub keywords: Vec<String>,
     pub norm: bool,
     pub float_format: Option<String>,
+    /// `thermo_modify flush yes`: the log is synced to disk after each row.
+    pub flush: bool,
 }
 
 impl Default for ThermoConfig {
     fn default() -> Self {
         let keywords = ["step", "temp", "tint", "pe", "ke", "etotal", "press"].map(String::from).to_vec();
-        Self { every: 0, keywords, norm: true, float_format: None }
+        Self { every: 0, keywords, norm: true, float_format: None, flush: false }
     }
 }
 
@@ -45,27 +47,28 @@ impl RunOutput for ThermoConfig {
 
     /// One value line on the screen and in the log.
     fn write(&mut self, f: &mut Frame) -> Result<(), String> {
-        let values = self.values(f)?;
+        let values = values(&self.keywords, self.norm, f)?;
         f.out.line(&value_line(&self.keywords, &values, self.float_format.as_deref()));
+        if self.flush {
+            f.out.sync();
+        }
         Ok(())
     }
 }
 
-impl ThermoConfig {
-    /// The values of the keywords at the frame's step (collective: every rank calls).
-    pub fn values(&self, f: &Frame) -> Result<Vec<f64>, String> {
-        let ctx = ThermoContext::new(f.sim, f.sys, self.norm, f.sys.step - f.run.first, f.cpu);
-        let resolve = |name: &str| ctx.keyword(name);
-        let mut values = Vec::with_capacity(self.keywords.len());
-        for k in &self.keywords {
-            let v = match ctx.keyword(k) {
-                Some(v) => v,
-                None => gendpde_io::evaluate(k, f.vars, &resolve).map_err(|e| format!("thermo keyword {k}: {e}"))?,
-            };
-            values.push(v);
-        }
-        Ok(values)
+/// The values of thermo `keywords` at the frame's step (collective: every rank calls).
+pub fn values(keywords: &[String], norm: bool, f: &Frame) -> Result<Vec<f64>, String> {
+    let ctx = ThermoContext::new(f.sim, f.sys, norm, f.sys.step - f.run.first, f.cpu);
+    let resolve = |name: &str| ctx.keyword(name);
+    let mut values = Vec::with_capacity(keywords.len());
+    for k in keywords {
+        let v = match ctx.keyword(k) {
+            Some(v) => v,
+            None => gendpde_io::evaluate(k, f.vars, &resolve).map_err(|e| format!("thermo keyword {k}: {e}"))?,
+        };
+        values.push(v);
     }
+    Ok(values)
 }
 
 /// Global sums a thermo line reads.
