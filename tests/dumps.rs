@@ -230,3 +230,22 @@ fn bad_dump_commands_are_refused_with_their_line() {
         assert!(!out.status.success() && err.contains(want), "{cmd}: expected '{want}', got:\n{err}");
     }
 }
+
+#[test]
+fn first_every_append_and_undump_schedule_frames() {
+    let d = dir("schedule");
+    let after = "dump f all custom 5 f.dump id x\ndump_modify f first yes\n\
+                 dump a all xyz 4 a.xyz\ndump_modify a append yes every 10\n\
+                 run 10\nrun 5\nundump a\nrun 10\n";
+    stage_with(&d, "in.dpde-deterministic", "in.dumps", "", after);
+    std::fs::write(d.join("a.xyz"), "kept\n").unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_gendpde")).current_dir(&d).args(["run", "in.dumps", "-log", "none", "-var", "steps", "7"]).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let steps: Vec<u64> = parse_dump(&std::fs::read_to_string(d.join("f.dump")).unwrap()).iter().map(|s| s.timestep).collect();
+    // first yes: the first setup (step 7) only; then the multiples of 5 up to step 32
+    assert_eq!(steps, [7, 10, 15, 20, 25, 30]);
+    let xyz = std::fs::read_to_string(d.join("a.xyz")).unwrap();
+    let frames: Vec<&str> = xyz.lines().filter(|l| l.starts_with(" Atoms. Timestep: ")).collect();
+    assert!(xyz.starts_with("kept\n"), "append yes keeps the file");
+    assert_eq!(frames, [" Atoms. Timestep: 10", " Atoms. Timestep: 20"], "every 10, until undump");
+}

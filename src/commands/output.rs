@@ -6,7 +6,7 @@ use crate::base::args::Args;
 use crate::base::script::Mode;
 use crate::model::sim::Sim;
 use crate::output::console::Output;
-use crate::output::dump::{Dump, TextDump, WriteDump};
+use crate::output::dump::{group_all, Dump, TextDump, WriteDump};
 use crate::output::h5md::H5mdDump;
 use crate::output::thermo::{heading, ThermoConfig};
 use gendpde_io::{ScriptError, Variables};
@@ -76,10 +76,7 @@ pub fn dump(dumps: &mut Vec<Box<dyn Dump>>, a: &mut Args) -> Result<(), ScriptEr
     if dumps.iter().any(|d| d.id() == id) {
         return Err(a.err(format!("dump ID '{id}' is in use (undump it first)")));
     }
-    match a.word("a group")? {
-        "all" => {}
-        g => return Err(a.err(format!("group '{g}': only group all is defined"))),
-    }
+    group_all(a)?;
     let style = a.word("a dump style (custom, atom, xyz or h5md)")?;
     let dump: Box<dyn Dump> = match TextDump::parse(id, style, a)? {
         Some(d) => Box::new(d),

@@ -349,7 +349,8 @@ fn parse_columns(a: &mut Args) -> Result<Vec<Keyword>, ScriptError> {
     Ok(cols)
 }
 
-fn group_all(a: &mut Args) -> Result<(), ScriptError> {
+/// The group word of a dump command (only `all`).
+pub fn group_all(a: &mut Args) -> Result<(), ScriptError> {
     match a.word("a group")? {
         "all" => Ok(()),
         g => Err(a.err(format!("group '{g}': only group all is defined"))),
@@ -403,7 +404,8 @@ impl WriteDump {
 }
 
 /// When a periodic dump writes: every N steps, at the setup of a run when the step is
-/// a multiple of N (`first yes`: at every setup), once per step.
+/// a multiple of N (`first yes`: at the first setup after the dump command whatever the
+/// step, as LAMMPS), once per step.
 #[derive(Clone, Debug)]
 pub struct Every {
     pub every: u64,
@@ -417,7 +419,8 @@ impl Every {
     }
 
     pub fn next_step(&self, step: u64, run: Span) -> Option<u64> {
-        let due = if self.first && step == run.first { step } else { step.next_multiple_of(self.every) };
+        let first = self.first && self.last_step.is_none() && step == run.first;
+        let due = if first { step } else { step.next_multiple_of(self.every) };
         Some(if self.last_step == Some(due) { (due + 1).next_multiple_of(self.every) } else { due })
     }
 
