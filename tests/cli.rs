@@ -145,3 +145,25 @@ fn label_next_jump_loop_like_lammps() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("in.loop:7: jump: no line 'label nowhere' in in.loop"), "{err}");
 }
+
+#[test]
+fn an_endless_jump_loop_stops_with_a_clear_message() {
+    let dir = tempdir("endless");
+    std::fs::write(dir.join("in.loop"), "variable a equal 1\nlabel top\nprint \"$a\" screen no\njump SELF top\n").unwrap();
+    let out = gendpde(&["run", "in.loop", "-log", "none"], &dir);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains("in.loop:4: jump: 1000000 jumps without a run or a next in between"), "{err}");
+    // a loop that advances with next is not endless, however long
+    std::fs::write(dir.join("in.next"), "variable i loop 3\nlabel top\nnext i\njump SELF top\nprint done\n").unwrap();
+    let out = gendpde(&["run", "in.next", "-log", "none"], &dir);
+    assert!(out.status.success() && String::from_utf8_lossy(&out.stdout).contains("done"), "{}", String::from_utf8_lossy(&out.stderr));
+}
+
+#[test]
+fn a_tiny_heat_capacity_is_refused_in_a_short_message() {
+    let (ok, err) = check("units lj\nlattice sc 0.5\nregion b block 0 5 0 5 0 5\ncreate_box 1 b\nfix e all eos/cv 1e-300\n");
+    assert!(!ok);
+    assert!(err.contains("C_V = 1e-300 must exceed k_B = 1.0"), "{err}");
+    assert!(err.len() < 300, "{err}");
+}

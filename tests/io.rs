@@ -121,15 +121,20 @@ fn a_run_killed_during_output_leaves_frames_and_checkpoints_that_load() {
     assert!(out.status.success(), "the last checkpoint ck.{newest}.h5 does not load: {}", String::from_utf8_lossy(&out.stderr));
 }
 
-#[test]
-fn damaged_restart_and_data_files_give_clear_errors() {
-    let dir = tempdir("damaged");
-    straight_script(&dir);
+/// The bytes of the checkpoint a reduced vdW run writes at step 50 in `dir`.
+fn checkpoint_at_50(dir: &Path) -> Vec<u8> {
+    straight_script(dir);
     let mut args = vec!["run", "in.straight", "-log", "none"];
     args.extend(VARS);
     args.push("50");
-    assert!(gendpde(&args, &dir).status.success());
-    let good = std::fs::read(dir.join("ck.50.h5")).unwrap();
+    assert!(gendpde(&args, dir).status.success());
+    std::fs::read(dir.join("ck.50.h5")).unwrap()
+}
+
+#[test]
+fn damaged_restart_and_data_files_give_clear_errors() {
+    let dir = tempdir("damaged");
+    let good = checkpoint_at_50(&dir);
     for (k, cut) in [0, 100, good.len() / 3, good.len() - 100].iter().enumerate() {
         std::fs::write(dir.join(format!("bad{k}.h5")), &good[..*cut]).unwrap();
         std::fs::write(dir.join("in.bad"), format!("read_restart bad{k}.h5\nrun 1\n")).unwrap();
@@ -176,12 +181,7 @@ fn a_full_disk_during_output_stops_cleanly_with_earlier_frames_intact() {
 fn flipped_bits_in_a_restart_are_refused_or_harmless() {
     use proptest::prelude::*;
     let dir = tempdir("flips");
-    straight_script(&dir);
-    let mut args = vec!["run", "in.straight", "-log", "none"];
-    args.extend(VARS);
-    args.push("50");
-    assert!(gendpde(&args, &dir).status.success());
-    let good = std::fs::read(dir.join("ck.50.h5")).unwrap();
+    let good = checkpoint_at_50(&dir);
     std::fs::write(dir.join("in.flip"), "read_restart flip.h5\nthermo_modify format float %.17g\nrun 2\n").unwrap();
     std::fs::write(dir.join("flip.h5"), &good).unwrap();
     let reference = gendpde(&["run", "in.flip", "-log", "none"], &dir);

@@ -14,19 +14,19 @@ Environment: GENDPDE (binary), LMP (reference LAMMPS launcher), REPS (default 3)
 """
 import json
 import os
-import re
 import statistics
 import subprocess
 import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "python"))  # the gendpde package
+import gendpde  # noqa: E402
 BENCH = ROOT / "scripts" / "bench"
 GENDPDE = os.environ.get("GENDPDE", str(ROOT / "target" / "release" / "gendpde"))
 LMP = os.environ.get("LMP", "/work/shared/lammps/lmp")
 REPS = int(os.environ.get("REPS", "3"))
 CACHE = ROOT / "docs" / "bench.json"
-LOOP = re.compile(r"Loop time of ([0-9.eE+-]+) on (\d+) procs for (\d+) steps with (\d+) atoms")
 
 VDW = "vdw 60.0 2.4682 1.4142 excess"
 CLASSIC_RC1 = {"rho": 3.0, "rc": 1.0, "skin": 0.3, "n": 20, "steps": 300}
@@ -79,11 +79,10 @@ def run(code, c):
     # OpenMPI refuses root without these (containers, CI)
     env = dict(os.environ, OMP_NUM_THREADS="1", OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
     out = subprocess.run(cmd, cwd=BENCH, capture_output=True, text=True, env=env)
-    loops = LOOP.findall(out.stdout)
-    if out.returncode != 0 or not loops:
+    runs = [r for r in gendpde.parse_log(out.stdout) if "atom_steps_per_s" in r.attrs]
+    if out.returncode != 0 or not runs:
         sys.exit(f"{code} failed on '{c['name']}':\n{' '.join(cmd)}\n{out.stdout[-2000:]}\n{out.stderr[-2000:]}")
-    t, _, steps, atoms = loops[-1]
-    return int(atoms) * int(steps) / float(t)
+    return runs[-1].attrs["atom_steps_per_s"]
 
 
 def fmt(x):

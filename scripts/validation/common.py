@@ -1,5 +1,6 @@
-"""Shared helpers of the validation scenes: running gendpde, reading its thermo output
-and H5MD dumps, the analytic EOS through `gendpde eos`, and the results file.
+"""Shared helpers of the validation scenes: running gendpde and reading its thermo output
+and H5MD dumps (with the gendpde package of python/), the analytic EOS through
+`gendpde eos`, and the results file.
 
 Every scene script writes its numbers into docs/validation/results.json (one entry per
 scene, merged) and its figure into docs/validation/<scene>.png; docs/VALIDATION.md quotes
@@ -10,10 +11,11 @@ import os
 import re
 import subprocess
 import sys
-import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "python"))  # the gendpde package, installed or not
+import gendpde  # noqa: E402
 GENDPDE = os.environ.get("GENDPDE", str(ROOT / "target" / "release" / "gendpde"))
 OUT = ROOT / "docs" / "validation"
 LJ_TABLE = "table 0.3 8.0 121 0.0 1.2 129"  # the grid the LJ scans use (see fix_eos.md)
@@ -22,21 +24,13 @@ LJ_TABLE = "table 0.3 8.0 121 0.0 1.2 129"  # the grid the LJ scans use (see fix
 def run(example, variables, workdir, ranks=1):
     """Runs examples/<example>/in.<example> with `-var` pairs in `workdir`; returns
     (thermo blocks, wall seconds)."""
-    workdir = Path(workdir)
-    workdir.mkdir(parents=True, exist_ok=True)
     script = ROOT / "examples" / example / f"in.{example}"
-    cmd = [GENDPDE, "run", str(script), "-log", "log.gendpde"]
-    for k, v in variables.items():
-        cmd += ["-var", k, str(v)]
-    if ranks > 1:
-        cmd = ["mpirun", "--oversubscribe", "-np", str(ranks)] + cmd
-    start = time.time()
-    out = subprocess.run(cmd, cwd=workdir, capture_output=True, text=True)
-    wall = time.time() - start
-    if out.returncode != 0:
-        sys.exit(f"gendpde failed in {workdir}:\n{' '.join(cmd)}\n{out.stdout[-3000:]}\n{out.stderr[-3000:]}")
-    (workdir / "run.json").write_text(json.dumps({"example": example, "variables": variables, "wall_s": wall}))
-    return thermo_blocks(out.stdout), wall
+    try:
+        r = gendpde.run(script, variables, np=ranks, cwd=workdir, binary=GENDPDE)
+    except gendpde.GendpdeError as e:
+        sys.exit(f"gendpde failed in {workdir}:\n{' '.join(e.command)}\n{e.stdout[-3000:]}\n{e.stderr[-3000:]}")
+    (Path(workdir) / "run.json").write_text(json.dumps({"example": example, "variables": variables, "wall_s": r.wall_s}))
+    return r.logs, r.wall_s
 
 
 def run_once(example, variables, workdir):
@@ -47,26 +41,8 @@ def run_once(example, variables, workdir):
     if done.exists():
         record = json.loads(done.read_text())
         if record["example"] == example and record["variables"] == json.loads(json.dumps(variables)):
-            return thermo_blocks((Path(workdir) / "log.gendpde").read_text()), record["wall_s"]
+            return gendpde.read_log(Path(workdir) / "log.gendpde"), record["wall_s"]
     return run(example, variables, workdir)
-
-
-def thermo_blocks(text):
-    """The thermo tables of a LAMMPS-style output, one dict of column lists per run."""
-    blocks, header, rows = [], None, []
-    for line in text.splitlines():
-        words = line.split()
-        if words[:1] == ["Step"]:
-            header, rows = words, []
-        elif header and words[:2] == ["Loop", "time"]:
-            blocks.append({h: [r[k] for r in rows] for k, h in enumerate(header)})
-            header = None
-        elif header and len(words) == len(header):
-            try:
-                rows.append([float(w) for w in words])
-            except ValueError:
-                pass
-    return blocks
 
 
 def mean_sem(values, blocks=10):
@@ -98,9 +74,8 @@ def eos(model, theta, n):
 
 def h5md_frames(path, field):
     """[frames, N, ...] values of /particles/all/<field>/value."""
-    import h5py
-    with h5py.File(path, "r") as f:
-        return f[f"particles/all/{field}/value"][()]
+    with gendpde.read_h5md(path) as f:
+        return f.array(field)
 
 
 def pearson(samples, quantile, bins=30):
@@ -130,6 +105,17 @@ def save(scene, entry):
     data = json.loads(path.read_text()) if path.exists() else {}
     data[scene] = entry
     path.write_text(json.dumps(data, indent=1, sort_keys=True) + "\n")
+
+
+def series(run, **columns):
+    """{name: column of the thermo DataFrame `run`} as lists of 6-digit floats (a driver
+    stores its time series in results.json with it, to redraw its figure)."""
+    return {name: [float(f"{v:.6g}") for v in run[col]] for name, col in columns.items()}
+
+
+def saved(scene):
+    """The results.json entry of `scene` (what a driver's --plot redraws its figure from)."""
+    return json.loads((OUT / "results.json").read_text())[scene]
 
 
 def figure_path(scene):

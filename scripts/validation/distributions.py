@@ -58,15 +58,19 @@ def main():
     import matplotlib.pyplot as plt
     cvs = [float(c) for c in args.cvs.split(",")]
     fig, ax = plt.subplots(2, 3, figsize=(13, 7))
-    for a, (name, x, label) in zip(ax.flat, [("u", u, "u"), ("theta", theta, r"$\theta$"), ("p", p, r"$p_\alpha$")]):
+    quantities = [("u", u, "internal energy u", "ε", "1/ε"), ("theta", theta, r"particle temperature $\theta$", "ε/k_B", "k_B/ε"),
+                  ("p", p, r"momentum component $p_\alpha$", "(mε)$^{1/2}$", "(mε)$^{-1/2}$")]
+    for a, (name, x, label, unit, inverse) in zip(ax.flat, quantities):
         a.hist(x, bins=80, density=True, histtype="step", color="k", label="gendpde")
         g = np.linspace(*np.percentile(x, [0.01, 99.99]), 300)
         a.plot(g, theory[name].pdf(g), "r--", label="eq %s" % {"u": 90, "theta": 91, "p": 89}[name])
-        a.set_xlabel(label)
+        a.set_xlabel(f"{label} [{unit}, reduced units]")
+        a.set_ylabel(f"probability density [{inverse}]")
         a.legend()
     ax[1, 0].hist(n, bins=80, density=True, histtype="step", color="k")
     ax[1, 0].axvline(RHO, color="r", ls="--", label=r"$\rho$")
-    ax[1, 0].set_xlabel("n (local density)")
+    ax[1, 0].set_xlabel("local density n [σ⁻³, reduced units]")
+    ax[1, 0].set_ylabel("probability density [σ³]")
     ax[1, 0].legend()
 
     fig6 = {}
@@ -81,7 +85,8 @@ def main():
         line = ax[1, 1].hist(th.ravel(), bins=80, density=True, histtype="step", label=f"$C_V$ = {c:g}")
         g = np.linspace(0.2 * T, 2.2 * T, 300)
         ax[1, 1].plot(g, d.pdf(g), "--", color=line[2][0].get_edgecolor())
-    ax[1, 1].set_xlabel(r"$\theta$ (Fig 6; dashed: eq 91)")
+    ax[1, 1].set_xlabel(r"particle temperature $\theta$ [ε/k_B, reduced units] (Fig 6; dashed: eq 91)")
+    ax[1, 1].set_ylabel("probability density [k_B/ε]")
     ax[1, 1].set_xlim(0.2 * T, 2.2 * T)
     ax[1, 1].legend(fontsize=8)
     ax[1, 2].axis("off")

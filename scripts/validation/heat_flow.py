@@ -9,13 +9,12 @@ distance from the hot slab) from the H5MD dump; lambda = -J / slope of a linear 
 the layers at least rc inside a conduction zone. Error: jackknife over 10 time blocks.
 Predictions: the exact lattice sum (rho/2) sum_R kappa (1 - R/rc)^2 R_x^2 and the continuum
 2 pi rho^2 kappa rc^5 / 315 (2021 eq 67; eq 66 with the 1/315 restored divides by T^2).
-Writes docs/validation/heat_flow.json and docs/validation/heat_flow.png.
+Writes docs/validation/heat_flow.json and docs/validation/heat_flow.png (`--plot`: only the
+figure, from heat_flow.json).
 """
 import argparse
 import json
 import math
-import subprocess
-import time
 
 import numpy as np
 
@@ -42,15 +41,11 @@ def run(heat, t, dt_rel, seed, equil, steps, every, dt):
                       f"reset_timestep 0\ndump traj all h5md {every} traj.h5 x theta\nthermo {steps // BLOCKS}\nrun {steps}\n")
     (wd / "traj.h5").unlink(missing_ok=True)
     v = {"heat": heat, "T": t, "dT": dt_rel, "seed": seed, "steps": equil, "dt": dt}
-    cmd = [common.GENDPDE, "run", str(script), "-log", "log.gendpde"]
-    for k, val in v.items():
-        cmd += ["-var", k, str(val)]
-    start = time.time()
-    out = subprocess.run(cmd, cwd=wd, capture_output=True, text=True)
-    wall = time.time() - start
-    if out.returncode != 0:
-        raise SystemExit(out.stdout[-2000:] + out.stderr[-2000:])
-    prod = common.thermo_blocks(out.stdout)[-1]
+    try:
+        r = common.gendpde.run(script, v, cwd=wd, binary=common.GENDPDE)
+    except common.gendpde.GendpdeError as e:
+        raise SystemExit(e.stdout[-2000:] + e.stderr[-2000:])
+    prod, wall = r.logs[-1], r.wall_s
     x = common.h5md_frames(wd / "traj.h5", "position")[0, :, 0]
     theta = common.h5md_frames(wd / "traj.h5", "temperature")[1:]  # frames after the start
     lx = 2 * (L + W)
@@ -78,7 +73,10 @@ def main():
     ap.add_argument("--equil", type=int, default=4000)
     ap.add_argument("--steps", type=int, default=10000)
     ap.add_argument("--dt", type=float, default=2.0)
+    ap.add_argument("--plot", action="store_true", help="only redraw the figure from heat_flow.json")
     args = ap.parse_args()
+    if args.plot:
+        return plot(json.loads((common.OUT / "heat_flow.json").read_text()))
     lat, cont = lattice_sum(RC), 2 * math.pi * RC**5 / 315
     runs = []
     for heat, t, dt_rel, seed in [("fourier", 1.0, 0.5, 2021), ("fourier", 2.0, 0.5, 77), ("original", 1.0, 0.1, 2021), ("original", 2.0, 0.1, 77)]:
@@ -88,19 +86,25 @@ def main():
         print(f"{heat} T = {t}: lambda = {r['lambda'][0]:.4f} +- {r['lambda'][1]:.4f}, lattice {r['predicted_lattice']:.4f}, "
               f"continuum {r['predicted_continuum']:.4f}, {r['wall']:.0f} s")
         runs.append(r)
-    (common.OUT / "heat_flow.json").write_text(json.dumps({"rc": RC, "rho": 1.0, "kappa": 1.0, "cv": 100.0, "L": L, "w": W, "ny": NY,
-                                                         "runs": runs}, indent=1) + "\n")
+    data = {"rc": RC, "rho": 1.0, "kappa": 1.0, "cv": 100.0, "L": L, "w": W, "ny": NY, "runs": runs}
+    (common.OUT / "heat_flow.json").write_text(json.dumps(data, indent=1) + "\n")
+    plot(data)
+
+
+def plot(data):
+    """The theta profiles of heat_flow.json."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    runs = data["runs"]
     fig, ax = plt.subplots(figsize=(6.5, 4.2))
     for r in runs:
         p = np.array(r["profile"])
         ax.plot(np.arange(p.size), (p / r["T"] - 1) / r["dT"], "o-", ms=3, label=f"{r['heat']}, T = {r['T']:g}, dT = {r['dT']:g}")
     fit = runs[0]["fit_layers"]
     ax.axvspan(fit[0], fit[-1], color="0.9", label="fitted layers")
-    ax.set_xlabel("distance from the hot slab centre (lattice layers)")
-    ax.set_ylabel("(<theta>/T - 1) / dT")
+    ax.set_xlabel("distance from the hot slab centre [σ, reduced units; layers 1 σ apart]")
+    ax.set_ylabel(r"($\langle\theta\rangle$/T - 1) / dT [dimensionless]")
     ax.set_title("heat-gradient: theta profiles (reservoirs at T(1 +- dT))")
     ax.legend(fontsize=8)
     fig.tight_layout()

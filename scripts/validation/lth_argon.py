@@ -94,12 +94,11 @@ def simulate_in(wd, name, group, v, n, args):
 
 def rdf(path, rmax, bins=400):
     """g(r) on (0, rmax] from the h5md snapshots (all frames after the first fifth)."""
-    import h5py
     import numpy as np
     from scipy.spatial import cKDTree
-    with h5py.File(path, "r") as f:
-        x = f["particles/all/position/value"][()]
-        box = f["particles/all/box/edges/value"][0]  # the box is fixed
+    with common.gendpde.read_h5md(path) as f:
+        x = f.array("position")
+        box = f[0].box
     edges = np.linspace(0.0, rmax, bins + 1)
     hist = np.zeros(bins)
     frames = x[len(x) // 5:]

@@ -5,6 +5,7 @@ Kolafa-Nezbeda EOS pressure over isotherms, and its dependence on the density cu
     python3 scripts/validation/pressure.py [--states 1.5:0.2,0.5,0.8 ...] [--rc 3,4,5,6,7] [--rc-steps 7:1500]
         [--eos "lj 60.0 TABLE"] [--equil 500] [--steps 3000] [--n N] [--gamma 0.45]
         [--check-n 30] [--check-equil 500] [--check-steps 3000] [--check-discard 0.5]
+    python3 scripts/validation/pressure.py --plot   # only the figure, from results.json
 
 Each state runs examples/lj-fluid (NVE GenDPDE, C_V = 60, kappa = 1, dt = 0.01) in the
 smallest sc box that holds the cell grid (or n^3 particles with --n); the EOS pressure is
@@ -65,7 +66,7 @@ def relaxation(T, rho, rc, args, points=60):
     """(time, P, <n_i>) from the lattice start, block means of the whole run's thermo."""
     import numpy as np
     _, wd = run_dir(T, rho, rc, args)
-    blocks = common.thermo_blocks((wd / "log.gendpde").read_text())
+    blocks = common.gendpde.read_log(wd / "log.gendpde")
     t = np.concatenate([np.array(b["Step"]) + (0 if i == 0 else args.equil) for i, b in enumerate(blocks)]) * 0.01
     cols = [t] + [np.concatenate([b[c] for b in blocks]) for c in ("Press", "Nmean")]
     k = max(1, len(t) // points)
@@ -87,7 +88,10 @@ def main():
     ap.add_argument("--check-equil", type=int, default=500)
     ap.add_argument("--check-steps", type=int, default=3000)
     ap.add_argument("--check-discard", type=float, default=0.5, help="part of its production past the overshoot")
+    ap.add_argument("--plot", action="store_true", help="only redraw the figure from results.json")
     args = ap.parse_args()
+    if args.plot:
+        return plot(common.saved("pressure"))
     args.discard = 0.0
 
     def parse(groups):
@@ -108,10 +112,37 @@ def main():
     if check and (1.5, 0.5, 4.0) in done:
         done[(1.5, 0.5, 4.0)]["relaxation"] = relaxation(1.5, 0.5, 4.0, args)
 
+    fits = {f"{T:g}:{rho:g}": cutoff_fit([r for r in cut if r["T"] == T and r["rho"] == rho])
+            for T, rho in parse(args.rc_states)}
+    entry = {"isotherms": iso, "cutoff": cut, "cutoff_fit": fits, "paper_gamma": check, "eos": args.eos}
+    plot(entry)
+    common.save("pressure", entry)
+
+
+def deviations(rows):
+    """1/rc^3, the relative deviations of the virial pressure from the EOS (%) and their errors."""
+    import numpy as np
+    return (np.array([r["rc"] ** -3.0 for r in rows]), np.array([100 * r["rel_dev"] for r in rows]),
+            np.array([100 * r["P_err"] / r["P_eos"] for r in rows]))
+
+
+def cutoff_fit(rows):
+    """Weighted fit of y = slope / rc^3 to the relative deviations (%) of one state."""
+    x, y, e = deviations(rows)
+    slope = float((x * y / e ** 2).sum() / (x * x / e ** 2).sum())
+    return {"slope": slope, "rc_2pct": (slope / 2.0) ** (1 / 3), "chi2": float((((y - slope * x) / e) ** 2).sum()),
+            "points": len(rows)}
+
+
+def plot(entry):
+    """Figs 4, 5 and the relaxation panel from the results entry (the EOS curves from
+    `gendpde eos`)."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     import numpy as np
+    iso, cut, check = entry["isotherms"], entry["cutoff"], entry["paper_gamma"]
+    p_unit = "[ε/σ³, reduced units]"
     fig, (a, b, c) = plt.subplots(1, 3, figsize=(16, 4.5))
     for T, mark in [(1.0, "o"), (1.5, "s"), (3.0, "^")]:
         rows = [r for r in iso if r["T"] == T]
@@ -123,42 +154,38 @@ def main():
                    fmt=mark, color=line[0].get_color(), mfc="none", label=f"gendpde, T = {T:g}")
     for r in check:
         a.errorbar(r["rho"], r["P_virial"], r["P_err"], fmt="k*", label=f"gamma = 4.5, N = {r['N']}")
-    a.set_xlabel(r"$\rho$")
-    a.set_ylabel("P")
-    a.set_title("Fig 4: virial vs EOS pressure (rc = 4)")
+    a.set_xlabel(r"density $\rho$ [σ$^{-3}$, reduced units]")
+    a.set_ylabel(f"pressure P {p_unit}")
+    a.set_title("Fig 4: virial vs EOS pressure (rc = 4; T in ε/k_B)")
     a.legend(fontsize=8)
-    fits = {}
-    for T, rho in parse(args.rc_states):
+    for state, fit in entry["cutoff_fit"].items():
+        T, rho = (float(v) for v in state.split(":"))
         rows = [r for r in cut if r["T"] == T and r["rho"] == rho]
-        x = np.array([r["rc"] ** -3.0 for r in rows])
-        y = np.array([100 * r["rel_dev"] for r in rows])
-        e = np.array([100 * r["P_err"] / r["P_eos"] for r in rows])
-        slope = float((x * y / e ** 2).sum() / (x * x / e ** 2).sum())  # y = slope / rc^3, weighted
-        fits[f"{T:g}:{rho:g}"] = {"slope": slope, "rc_2pct": (slope / 2.0) ** (1 / 3),
-                                  "chi2": float((((y - slope * x) / e) ** 2).sum()), "points": len(rows)}
+        x, y, e = deviations(rows)
         line = b.errorbar(x, y, e, fmt="o", label=f"T = {T:g}, rho = {rho:g}")
         g = np.linspace(0.0, x.max() * 1.05, 50)
-        b.plot(g, slope * g, "--", color=line[0].get_color(), label=f"{slope:.0f} % / rc$^3$")
+        b.plot(g, fit["slope"] * g, "--", color=line[0].get_color(), label=f"{fit['slope']:.0f} % / rc$^3$")
         for r, xi, yi in zip(rows, x, y):
             b.annotate(f"rc {r['rc']:g}", (xi, yi), textcoords="offset points", xytext=(4, -10), fontsize=7)
     b.axhspan(-2, 2, color="0.9", label="2 %")
-    b.set_xlabel(r"$1/r_c^3$")
-    b.set_ylabel("(P virial - P EOS) / P EOS  [%]")
+    b.set_xlabel(r"$1/r_c^3$ [σ$^{-3}$, reduced units]")
+    b.set_ylabel("(P virial - P EOS) / P EOS [%]")
     b.set_title("Fig 5: cutoff dependence")
     b.legend(fontsize=8)
-    for r in check + [done[(1.5, 0.5, 4.0)]] if check and (1.5, 0.5, 4.0) in done else []:
+    relaxed = check + [r for r in iso if "relaxation" in r]
+    for r in relaxed:
         t, pv, _ = r["relaxation"]
         c.plot(t, pv, label=f"gamma = {r['gamma']:g}, N = {r['N']}")
         c.axvline(r["equil"] * 0.01, color=c.lines[-1].get_color(), ls=":")
     if check:
         c.axhline(check[0]["P_eos"], color="k", ls="--", label="KN EOS")
-        c.set_xlabel("time from the lattice (dotted: end of equilibration)")
-        c.set_ylabel("P (block means)")
+    if relaxed:
+        c.set_xlabel("time from the lattice [τ, reduced units] (dotted: end of equilibration)")
+        c.set_ylabel(f"pressure P, block means {p_unit}")
         c.set_title("T = 1.5, rho = 0.5, rc = 4: relaxation")
         c.legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(common.figure_path("pressure"), dpi=80)
-    common.save("pressure", {"isotherms": iso, "cutoff": cut, "cutoff_fit": fits, "paper_gamma": check, "eos": args.eos})
 
 
 if __name__ == "__main__":

@@ -17,7 +17,6 @@ var(n_i) = rho * integral of w^2 = rho * 225 / (105 pi rc^3) for the quadratic w
 The friction is 0.45 (the pressure is the same as at 4.5; see pressure.py).
 """
 import argparse
-import subprocess
 
 import numpy as np
 
@@ -39,11 +38,7 @@ def main():
     (wd / "in.script").write_text(head + "dump         d all h5md 50 lj.h5 n\nrun          ${steps}" + tail)
     variables = {"n": args.n, "T": T, "rho": rho, "gamma": args.gamma, "eos": f"lj 60.0 {common.LJ_TABLE}", "equil": args.equil,
                  "steps": args.steps, "every": 10}
-    cmd = [common.GENDPDE, "run", "in.script", "-log", "none"]
-    for k, v in variables.items():
-        cmd += ["-var", k, str(v)]
-    out = subprocess.run(cmd, cwd=wd, capture_output=True, text=True, check=True)
-    prod = common.thermo_blocks(out.stdout)[-1]
+    prod = common.gendpde.run(wd / "in.script", variables, log=None, cwd=wd, binary=common.GENDPDE).logs[-1]
     p, p_err = common.mean_sem(prod["Press"])
     ti, _ = common.mean_sem(prod["Tint"])
     n = common.h5md_frames(wd / "lj.h5", "density")[2:].ravel()

@@ -16,7 +16,8 @@ paper quotes), and a reduced variant in the test suite (`tests/vdw_equilibrium.r
 `tests/scenes.rs`, `tests/energy_conservation.rs`, `tests/integrators_alt.rs`,
 `tests/lth.rs`, `tests/heat_only.rs`, `tests/heat_flow.rs`). The drivers store their numbers in
 `docs/validation/results.json` and their figures in `docs/validation/*.png`;
-`python3 scripts/validation/report.py` writes this page from them.
+`python3 scripts/validation/report.py` writes this page from them, and a driver's `--plot`
+redraws its figure from them without running (drift, pressure, heat_flow, flash, vapour_liquid).
 
 2019 paper parameters unless stated: C_V = 60, gamma = 4.5, kappa = 1, rc = 4 (quadratic
 density weight, linear friction and heat kernels), dt = 0.01, simple cubic start, NVE

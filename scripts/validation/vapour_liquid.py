@@ -3,6 +3,7 @@
 fluid at T = 1, rho = 0.2 in the 68.4 x 38.5 x 51.3 box, from a simple cubic lattice.
 
     python3 scripts/validation/vapour_liquid.py [--ly 38.5 --lz 51.3] [--steps 20000] [--gamma 0.45]
+    python3 scripts/validation/vapour_liquid.py --plot   # only the figure, from results.json
 
 The friction is gamma = 0.45 rather than the paper's 4.5 unless --gamma says otherwise: the
 pressure of the homogeneous fluid is the same at both (pressure.py), and the separation, limited by the
@@ -61,7 +62,10 @@ def main():
     ap.add_argument("--dump", type=int, default=1000)
     ap.add_argument("--gamma", type=float, default=0.45)
     ap.add_argument("--eos", default=f"lj 60.0 {common.LJ_TABLE}")
+    ap.add_argument("--plot", action="store_true", help="only redraw the figure from results.json")
     args = ap.parse_args()
+    if args.plot:
+        return plot(common.saved("vapour_liquid"))
     wd = common.workdir("vapour_liquid", f"{args.ly}x{args.lz}_g{args.gamma}")
     v = {"ly": args.ly, "lz": args.lz, "steps": args.steps, "dump": args.dump, "eos": args.eos, "every": 100,
          "gamma": args.gamma}
@@ -100,32 +104,51 @@ def main():
              "surface_tension": sigma, "interfaces": interfaces, "slab_peak": slab_peak, "last_profile": [float(r) for r in last],
              "eos_coexistence": {"rho_vapour": mv, "rho_liquid": ml, "P_sat": ps},
              "paper": {"P_sat_reference": 0.029, "surface_tension": 0.18}, "eos": args.eos}
-    print(entry)
+    centres = (np.arange(nbins) + 0.5) * width
+    entry["profiles"] = {"x": [float(c) for c in centres],
+                         **{f"{k * args.dump * 0.01:g}": [float(r) for r in profile(x[k])]
+                            for k in sorted({0, frames // 4, frames // 2, frames - 1})}}
+    entry["series"] = common.series(run, t="Time", T_kin="Temp", T_int="Tint", P="Press")
+    print({k: v for k, v in entry.items() if k not in ("series", "profiles", "last_profile")})
+    plot(entry)
+    common.save("vapour_liquid", entry)
 
+
+def plot(entry):
+    """Figs 8 and 9 from the results entry: density profiles, temperatures, pressure."""
+    import sys
+    if "series" not in entry:
+        sys.exit("results.json holds no vapour_liquid series (written from this version on): rerun the scene")
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, (a, b) = plt.subplots(1, 2, figsize=(12, 4.5))
-    centres = (np.arange(nbins) + 0.5) * width
-    for k in sorted({0, frames // 4, frames // 2, frames - 1}):
-        a.plot(centres, profile(x[k]), label=f"t = {k * args.dump * 0.01:g}")
-    a.axhline(mv, color="k", ls=":", label="KN EOS coexistence")
-    a.axhline(ml, color="k", ls="--")
-    a.set_xlabel("x (slab centred)")
-    a.set_ylabel("number density")
+    coex, s = entry["eos_coexistence"], entry["series"]
+    fig, (a, b, c) = plt.subplots(1, 3, figsize=(16, 4.5))
+    profiles = dict(entry["profiles"])
+    centres = profiles.pop("x")
+    for t, prof in profiles.items():
+        a.plot(centres, prof, label=f"t = {t} τ")
+    a.axhline(coex["rho_vapour"], color="k", ls=":", label="KN EOS coexistence")
+    a.axhline(coex["rho_liquid"], color="k", ls=":")
+    a.set_xlabel("x, slab centred [σ, reduced units]")
+    a.set_ylabel("number density [σ⁻³, reduced units]")
     a.set_title("Fig 8: density profiles")
     a.legend(fontsize=8)
-    b.plot(run["Time"], run["Temp"], "k", lw=0.7, label=r"$T_{kin}$")
-    b.plot(run["Time"], run["Tint"], "r", lw=0.7, label=r"$T_{int}$")
-    b.plot(run["Time"], run["Press"], "b", lw=0.7, label="P")
-    b.axhline(0.029, color="orange", label="P_sat (paper's reference)")
-    b.axhline(ps, color="orange", ls=":", label="P_sat (KN EOS)")
-    b.set_xlabel("t")
-    b.set_title("Fig 9")
+    b.plot(s["t"], s["T_kin"], "k", lw=0.7, label=r"$T_{kin}$")
+    b.plot(s["t"], s["T_int"], "r", lw=0.7, label=r"$T_{int}$")
+    b.set_xlabel("time t [τ, reduced units]")
+    b.set_ylabel("temperature [ε/k_B, reduced units]")
+    b.set_title("Fig 9: temperatures")
     b.legend(fontsize=8)
+    c.plot(s["t"], s["P"], "b", lw=0.7, label="P")
+    c.axhline(entry["paper"]["P_sat_reference"], color="orange", label="P_sat (paper's reference)")
+    c.axhline(coex["P_sat"], color="orange", ls=":", label="P_sat (KN EOS)")
+    c.set_xlabel("time t [τ, reduced units]")
+    c.set_ylabel("pressure P [ε/σ³, reduced units]")
+    c.set_title("Fig 9: pressure")
+    c.legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(common.figure_path("vapour_liquid"), dpi=80)
-    common.save("vapour_liquid", entry)
 
 
 if __name__ == "__main__":

@@ -48,13 +48,13 @@ impl<'a> Args<'a> {
     /// A number that must be > 0.
     pub fn positive(&mut self, what: &str) -> Result<f64, ScriptError> {
         let x = self.f64(what)?;
-        if x > 0.0 { Ok(x) } else { Err(self.err(format!("{what} must be positive, got {x}"))) }
+        if x > 0.0 { Ok(x) } else { Err(self.err(format!("{what} must be positive, got {x:?}"))) }
     }
 
     /// A number that must be >= 0.
     pub fn non_negative(&mut self, what: &str) -> Result<f64, ScriptError> {
         let x = self.f64(what)?;
-        if x >= 0.0 { Ok(x) } else { Err(self.err(format!("{what} must not be negative, got {x}"))) }
+        if x >= 0.0 { Ok(x) } else { Err(self.err(format!("{what} must not be negative, got {x:?}"))) }
     }
 
     pub fn u64(&mut self, what: &str) -> Result<u64, ScriptError> {

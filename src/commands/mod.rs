@@ -29,7 +29,13 @@ pub struct Interpreter {
     pub mode: Mode,
     /// A `next` exhausted its variables: the next `jump` falls through.
     skip_jump: bool,
+    /// Jumps since the last `run` or `next` (see [`MAX_IDLE_JUMPS`]).
+    idle_jumps: u64,
 }
+
+/// Jumps a loop may make without a `run` or a `next` in between before it is taken for
+/// an endless loop (LAMMPS would spin silently).
+pub const MAX_IDLE_JUMPS: u64 = 1_000_000;
 
 impl Interpreter {
     /// A single-rank interpreter.
@@ -39,7 +45,7 @@ impl Interpreter {
 
     /// An interpreter whose box is split over the ranks of `transport`.
     pub fn with_transport(mode: Mode, out: Output, transport: Box<dyn Transport>) -> Self {
-        Self { sim: Sim::new(transport), outputs: Outputs::default(), vars: Variables::new(), out, mode, skip_jump: false }
+        Self { sim: Sim::new(transport), outputs: Outputs::default(), vars: Variables::new(), out, mode, skip_jump: false, idle_jumps: 0 }
     }
 
     /// Executes a script file to its end.
@@ -84,13 +90,24 @@ impl Interpreter {
                         e.loc = Some(cmd.loc.clone());
                         e
                     })?;
+                    self.idle_jumps = 0;
                 }
                 "jump" => {
                     if !std::mem::take(&mut self.skip_jump) {
+                        self.idle_jumps += 1;
+                        if self.idle_jumps > MAX_IDLE_JUMPS {
+                            let what = format!("{MAX_IDLE_JUMPS} jumps without a run or a next in between: the loop never ends");
+                            return Err(ScriptError::at(&cmd, what).into());
+                        }
                         reader.jump(&cmd)?;
                     }
                 }
-                _ => self.execute(&cmd)?,
+                _ => {
+                    if cmd.name == "run" {
+                        self.idle_jumps = 0;
+                    }
+                    self.execute(&cmd)?
+                }
             }
         }
     }

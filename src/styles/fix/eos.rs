@@ -126,7 +126,7 @@ pub fn parse_eos(style: &str, a: &mut Args, kb: f64) -> Result<EosModel, ScriptE
 fn parse_model(style: &str, a: &mut Args, kb: f64) -> Result<EosModel, ScriptError> {
     let cv = a.positive("the heat capacity C_V")?;
     if cv <= kb {
-        return Err(a.err(format!("C_V = {cv} must exceed k_B = {kb} (the dressed temperature of eq 23 diverges at C_V = k_B)")));
+        return Err(a.err(format!("C_V = {cv:?} must exceed k_B = {kb:?} (the dressed temperature of eq 23 diverges at C_V = k_B)")));
     }
     let mut eos = match style {
         "eos/vdw" => {
@@ -140,7 +140,7 @@ fn parse_model(style: &str, a: &mut Args, kb: f64) -> Result<EosModel, ScriptErr
                     "cap" => {
                         let f = a.positive("the cap fraction of 1/b")?;
                         if f >= 1.0 {
-                            return Err(a.err(format!("cap {f} must lie below 1 (a fraction of 1/b)")));
+                            return Err(a.err(format!("cap {f:?} must lie below 1 (a fraction of 1/b)")));
                         }
                         e.cap = f;
                     }
@@ -165,7 +165,7 @@ fn parse_model(style: &str, a: &mut Args, kb: f64) -> Result<EosModel, ScriptErr
             while a.remaining() > 0 && a.peek() != Some("table") {
                 let cv = a.positive("the heat capacity C_V of the next type")?;
                 if cv <= kb {
-                    return Err(a.err(format!("C_V = {cv} must exceed k_B = {kb}")));
+                    return Err(a.err(format!("C_V = {cv:?} must exceed k_B = {kb:?}")));
                 }
                 per_type.push(LinearTheta { kb, ..LinearTheta::cv_only(cv) });
             }
