@@ -166,6 +166,7 @@ impl Interpreter {
             "thermo_style" => output::thermo_style(&mut outputs.thermo, &self.vars, a)?,
             "thermo_modify" => output::thermo_modify(&mut outputs.thermo, &sim.computes, a)?,
             "dump" => output::dump(&mut outputs.dumps, a)?,
+            "dump_modify" => output::dump_modify(&mut outputs.dumps, a)?,
             "undump" => output::undump(&mut outputs.dumps, a)?,
             "write_dump" => output::write_dump(sim, a)?,
             "checkpoint" => outputs.checkpoint = Checkpoint::parse(a)?,

@@ -1,4 +1,5 @@
-//! Screen and log-file output, as LAMMPS writes them.
+//! Screen and log-file output, as LAMMPS writes them; each log line is flushed as it is
+//! printed.
 
 use std::fs::File;
 use std::io::{self, BufWriter, Write};
@@ -36,12 +37,23 @@ impl Output {
         self.log_line(text);
     }
 
-    /// A line in the log only (the echo of script commands).
+    /// A line in the log only (the echo of script commands). Every line reaches the
+    /// file (the operating system) as it is written, so a killed run keeps its log.
     pub fn log_line(&mut self, text: &str) {
         if let Some(log) = &mut self.log {
-            if writeln!(log, "{text}").is_err() {
+            if writeln!(log, "{text}").and_then(|()| log.flush()).is_err() {
                 eprintln!("WARNING: writing the log file failed; closing it");
                 self.log = None;
+            }
+        }
+    }
+
+    /// Puts the log on disk (`thermo_modify flush yes`: it then survives a crash of the
+    /// machine, not only of gendpde).
+    pub fn sync(&mut self) {
+        if let Some(log) = &mut self.log {
+            if log.get_ref().sync_data().is_err() {
+                eprintln!("WARNING: syncing the log file failed");
             }
         }
     }
