@@ -8,6 +8,10 @@ use std::sync::{Arc, OnceLock};
 
 use signal_hook::consts::{SIGINT, SIGTERM, SIGUSR1};
 
+/// The number of SIGPIPE, recorded when the screen's reader went away (gendpde ignores
+/// the signal itself, as Rust programs do, and sees the broken pipe as a write error).
+pub const SIGPIPE: usize = signal_hook::consts::SIGPIPE as usize;
+
 /// The number of the signal received (0: none).
 pub fn received() -> Arc<AtomicUsize> {
     static RECEIVED: OnceLock<Arc<AtomicUsize>> = OnceLock::new();
@@ -32,6 +36,7 @@ pub fn name(sig: usize) -> String {
         SIGTERM => "SIGTERM".into(),
         SIGINT => "SIGINT".into(),
         SIGUSR1 => "SIGUSR1".into(),
+        signal_hook::consts::SIGPIPE => "SIGPIPE (the screen's reader went away)".into(),
         n => format!("signal {n}"),
     }
 }

@@ -84,6 +84,9 @@ impl Interpreter {
             } else {
                 self.out.log_line(&echo(&cmd));
             }
+            if let Some(e) = self.out.take_error() {
+                return Err(ScriptError::at(&cmd, e).into());
+            }
             match cmd.name.as_str() {
                 // LAMMPS loops: `label L`, `next V ...`, `jump SELF L`; a `next` that
                 // exhausts its variables makes the following `jump` fall through

@@ -213,7 +213,7 @@ fn write_due(sim: &Sim, outputs: &mut Outputs, out: &mut Output, vars: &Variable
     for o in outputs.all().filter(|o| due(&**o)) {
         progress.suspend(|| o.write(&mut frame))?;
     }
-    Ok(())
+    frame.out.take_error().map_or(Ok(()), Err)
 }
 
 /// A progress bar with rate and ETA on stderr, shown only when stderr is a terminal.
