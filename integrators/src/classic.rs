@@ -78,9 +78,17 @@ impl ClassicDpd {
         self.force.cutoff().max(self.shardlow.as_ref().map_or(0.0, |s| s.rc)) + self.settings.skin
     }
 
+    /// Lists and ghosts for the current positions. 1/theta is derived state that
+    /// migration does not carry: it is re-derived from theta (owned and ghosts) here.
     fn rebuild(&self, sys: &mut System, at_step: u64) {
         let r = self.radius();
         sys.rebuild(Some(r), self.shardlow.as_ref().map(|_| r), at_step);
+        let s = &mut sys.store;
+        if !s.inv_tau.is_empty() {
+            for (inv, theta) in s.inv_tau.iter_mut().zip(&s.theta) {
+                *inv = 1.0 / theta;
+            }
+        }
     }
 
     /// theta = u / C_V for owned particles (fix eos/cv), and 1/theta, which the sweep
