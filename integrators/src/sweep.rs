@@ -20,7 +20,7 @@ use crate::rng::{normal_pair, stream, Normals};
 use crate::settings::{Dissipation, Reservoir};
 use crate::species::Species;
 use crate::system::System;
-use gendpde_engine::{dot, sub, Fields, Particles};
+use gendpde_engine::{dot, exact_sums, sub, Fields, Particles};
 use gendpde_potentials::Eos;
 
 /// Fields the sweep writes, exchanged between colours.
@@ -79,14 +79,15 @@ pub fn sweep<E: Eos, H: HeatFlow>(eos: &Species<E>, d: &Dissipation, sys: &mut S
 
 /// Heat exchange of the owned particles of the reservoir's group with the bath (2019
 /// eq 72; the Fourier form after 2021 eq 62), then a forward exchange of the new values.
-/// The energy put in is added to the reservoir's tally.
+/// The energy put in, summed exactly over all particles (the same on every rank count),
+/// is added to the reservoir's tally.
 pub fn reservoir<E: Eos, H: HeatFlow>(eos: &Species<E>, res: &Reservoir, sys: &mut System, dt: f64) -> Result<(), StepError> {
     let kb = eos.kb();
     let sqrt_dt = dt.sqrt();
     let step = sys.step;
     let s = &mut sys.store;
     let mut outcome = Ok(());
-    let mut added = 0.0;
+    let mut added = Vec::new();
     for i in 0..s.nlocal {
         if !s.in_group(i, res.mask) {
             continue;
@@ -95,12 +96,13 @@ pub fn reservoir<E: Eos, H: HeatFlow>(eos: &Species<E>, res: &Reservoir, sys: &m
         let xi = normal_pair(res.seed, step, s.tag[i], 0, stream::RESERVOIR).0;
         let du = dt * q + sqrt_dt * alpha * xi;
         s.u[i] += du;
-        added += du;
+        added.push([du]);
         if let Err(e) = refresh::<E, H>(eos, s, i, step) {
             outcome = outcome.and(Err(e));
         }
     }
-    *sys.reservoir_tally(&res.id) += added;
+    let [total] = exact_sums(sys.comm.transport(), added.iter().copied());
+    *sys.reservoir_tally(&res.id) += total;
     sys.comm.forward(&mut sys.store, SWEPT);
     outcome
 }

@@ -46,8 +46,8 @@ pub struct System {
     pub substeps: u64,
     /// Pair updates left out because no split could keep theta positive (`reject yes`).
     pub rejected: u64,
-    /// Energy each `fix heat/reservoir` (by fix ID) has put into the owned particles of
-    /// this rank since the fix was defined (sum over ranks for the total).
+    /// Energy each `fix heat/reservoir` (by fix ID) has put into the particles since the
+    /// fix was defined (all ranks, the same on each).
     pub reservoir_heat: Vec<(String, f64)>,
     /// The particles, cells and build positions were read from a restart: the next
     /// build keeps them as stored, so the lists come out as when it was written.
@@ -91,7 +91,7 @@ impl System {
         }
     }
 
-    /// This rank's energy tally of reservoir `id` (created at 0).
+    /// The energy tally of reservoir `id` (created at 0).
     pub fn reservoir_tally(&mut self, id: &str) -> &mut f64 {
         let k = match self.reservoir_heat.iter().position(|(name, _)| name == id) {
             Some(k) => k,
