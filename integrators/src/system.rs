@@ -2,7 +2,7 @@
 
 use crate::error::StepError;
 use gendpde_engine::cells::CellBins;
-use gendpde_engine::{dot, sub, CellGrid, Comm, Domain, build_lists, ListRequest, NeighborList, Particles, SweepPairs, Vec3};
+use gendpde_engine::{build_lists, dot, exact_sums, sub, CellGrid, Comm, Domain, ListRequest, NeighborList, Particles, SweepPairs, Vec3};
 
 /// State that the step mutates.
 pub struct System {
@@ -104,10 +104,12 @@ impl System {
     }
 
     /// Lays the cell grid for interactions up to `cut` (cutoff plus skin) or `min_cell`,
-    /// whichever is larger; every rank must own at least one cell along each dimension.
+    /// whichever is larger, with no more cells than needed ([`CellGrid::at_most`]);
+    /// every rank must own at least one cell along each dimension.
     pub fn lay_grid(&mut self, cut: f64) -> Result<(), String> {
         let cut = cut.max(self.min_cell);
-        let grid = CellGrid::new(&self.domain, cut).map_err(|e| e.to_string())?;
+        let [particles] = exact_sums(self.comm.transport(), std::iter::once([self.store.nlocal as f64]));
+        let grid = CellGrid::new(&self.domain, cut).map_err(|e| e.to_string())?.at_most(particles as usize);
         let procs = self.comm.grid.dims;
         for d in 0..3 {
             if grid.count[d] < procs[d] {
