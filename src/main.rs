@@ -1,7 +1,7 @@
 //! gendpde: Generalised energy-conserving Dissipative Particle Dynamics.
 
 use clap::{Parser, Subcommand};
-use gendpde::{AppError, Interpreter, Mode, Output};
+use gendpde::{Interpreter, Mode, Output};
 use gendpde_engine::Transport;
 use std::io::{IsTerminal, Read};
 use std::path::PathBuf;
@@ -346,14 +346,9 @@ fn run(session: Session) -> ExitCode {
             ExitCode::SUCCESS
         }
         Err(e) => {
-            // Script errors are the same on every rank; a failed step is told by the rank
-            // that saw it (and by rank 0 that the run stopped).
-            let local = match &e {
-                AppError::Step { err, .. } => !err.elsewhere,
-                AppError::Script(_) => rank == 0,
-            };
+            // every rank holds the same error (a failed step's is agreed over the ranks)
             let msg = format!("ERROR: {e}");
-            if local || rank == 0 {
+            if rank == 0 {
                 it.out.log_line(&msg);
                 eprintln!("{msg}");
             }

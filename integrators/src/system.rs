@@ -138,13 +138,16 @@ impl System {
         Ok(())
     }
 
-    /// Agrees over all ranks whether the step failed: Err on every rank if any failed.
+    /// Agrees over all ranks whether the step failed: if any did, every rank returns the
+    /// same error, that of the failing particle of lowest tag.
     pub fn settle(&self, outcome: Result<(), StepError>) -> Result<(), StepError> {
-        if self.comm.any(outcome.is_err()) {
-            Err(outcome.err().unwrap_or_else(|| StepError::elsewhere(self.step)))
-        } else {
-            Ok(())
+        // tags are exact in f64 below 2^53
+        let key = |e: &StepError| -(e.tag as f64);
+        let lowest = self.comm.max(outcome.as_ref().err().map_or(f64::NEG_INFINITY, key));
+        if lowest == f64::NEG_INFINITY {
+            return Ok(());
         }
+        Err(StepError::agree(self.comm.transport(), outcome.err().filter(|e| key(e) == lowest)))
     }
 
     /// Migrates particles, rebuilds ghosts and bins, and the lists of the given radii;
