@@ -32,13 +32,12 @@ fn run_scene(dir: &Path, scene: &str, steps: u64, np: usize, grid: Option<&str>)
     (rows, std::fs::read_to_string(dir.join("final.dump")).unwrap())
 }
 
-/// Asserts that `scene` gives the thermo rows and final particles of 1 rank on every
-/// layout of [`LAYOUTS`], naming the first row that differs.
-fn assert_rank_independent(name: &str, scene: &str, steps: u64) {
-    let dir = tempdir(name);
+/// Asserts that `scene` gives the thermo rows and final particles of the first layout
+/// (1 rank) on every other, naming the first row that differs.
+fn assert_rank_independent(dir: &Path, name: &str, scene: &str, steps: u64, layouts: &[(usize, Option<&str>)]) {
     let mut reference: Option<(Vec<String>, String)> = None;
-    for (np, grid) in LAYOUTS {
-        let (rows, dump) = run_scene(&dir, scene, steps, np, grid);
+    for &(np, grid) in layouts {
+        let (rows, dump) = run_scene(dir, scene, steps, np, grid);
         let Some((r, d)) = &reference else {
             reference = Some((rows, dump));
             continue;
@@ -47,6 +46,14 @@ fn assert_rank_independent(name: &str, scene: &str, steps: u64) {
             panic!("{name}: thermo row {k} on {np} ranks (grid {grid:?}) differs from 1 rank:\n  {}\n  {}", r[k], rows[k]);
         }
         assert!(dump == *d, "{name}: final particles on {np} ranks (grid {grid:?}) differ from 1 rank");
+    }
+}
+
+/// Asserts that `observe(np)` is the same on 2, 3 and 4 ranks as on 1.
+fn assert_same_on_1_2_3_4_ranks<T: PartialEq + std::fmt::Debug>(what: &str, observe: impl Fn(usize) -> T) {
+    let reference = observe(1);
+    for np in [2, 3, 4] {
+        assert_eq!(observe(np), reference, "{what} on {np} ranks");
     }
 }
 
@@ -152,7 +159,7 @@ fn every_style_is_bit_identical_on_1_2_3_4_ranks_and_an_uneven_grid() {
     ];
     for (name, scene, steps) in &scenes {
         let start = std::time::Instant::now();
-        assert_rank_independent(name, scene, *steps);
+        assert_rank_independent(&tempdir(name), name, scene, *steps, &LAYOUTS);
         eprintln!("{name}: identical on 1, 2, 3, 4 ranks and processors 1 3 1 ({:.1} s)", start.elapsed().as_secs_f64());
     }
 }
@@ -160,19 +167,14 @@ fn every_style_is_bit_identical_on_1_2_3_4_ranks_and_an_uneven_grid() {
 /// Finding 1: `pair dpd/fdt/energy` changed with the rank count from the first list
 /// rebuild (1/theta, which migration does not carry, was read stale).
 #[test]
-fn dpd_fdt_energy_of_the_issue_is_bit_identical_on_1_2_3_ranks() {
+fn dpd_fdt_energy_of_the_issue_is_bit_identical_on_1_2_3_4_ranks() {
     let dir = tempdir("fdt-energy");
     std::fs::copy(common::lammps::scripts_dir().join("data.dpde-3000"), dir.join("data.dpde-3000")).unwrap();
     let scene = "units lj\nboundary p p p\natom_style dpd\ncomm_modify vel yes\nread_data data.dpde-3000\nmass 1 1.0\n\
                  pair_style dpd/fdt/energy 1.0 245455\npair_coeff 1 1 25.0 3.0 1.0 1.0\nneighbor 0.3 bin\n\
                  neigh_modify every 1 delay 0 check yes\ntimestep 0.01\ncompute dpdU all dpd\nfix 1 all shardlow\n\
                  fix 2 all nve\nfix 3 all eos/cv 10.0\nthermo_style custom step temp press pe ke c_dpdU[1] c_dpdU[2]\n";
-    let reference = run_scene(&dir, scene, 10, 1, None);
-    for np in [2, 3] {
-        let (rows, dump) = run_scene(&dir, scene, 10, np, None);
-        assert_eq!(rows, reference.0, "thermo on {np} ranks");
-        assert!(dump == reference.1, "final particles on {np} ranks differ from 1 rank");
-    }
+    assert_rank_independent(&dir, "dpd/fdt/energy", scene, 10, &LAYOUTS[..4]);
 }
 
 /// Finding 6: the energy the reservoirs put in (f_hot, f_cold) was a per-rank running
@@ -185,17 +187,13 @@ fn reservoir_tallies_are_bit_identical_on_1_2_3_4_ranks() {
         .replace("thermo       1000", "thermo 1")
         .replace("thermo_modify norm no", "thermo_modify norm no format float %.17g");
     std::fs::write(dir.join("in.test"), script).unwrap();
-    let mut reference = None;
-    for np in [1, 2, 3, 4] {
+    assert_same_on_1_2_3_4_ranks("the thermo rows with f_hot and f_cold", |np| {
         let out = mpirun(np, &dir, &["run", "in.test", "-log", "none", "-var", "L", "6", "-var", "w", "2", "-var", "ny", "9", "-var", "steps", "20"]);
         assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
         let rows = thermo_rows(&out.stdout);
         assert_eq!(rows.len(), 21);
-        match &reference {
-            None => reference = Some(rows),
-            Some(r) => assert_eq!(&rows, r, "f_hot and f_cold on {np} ranks"),
-        }
-    }
+        rows
+    });
 }
 
 /// Finding 7: a blow-up was told by every rank that saw a failing particle (two ERROR
@@ -205,8 +203,7 @@ fn a_blow_up_is_one_message_the_same_on_1_2_3_4_ranks() {
     let dir = tempdir("blowup");
     let script = std::fs::read_to_string(common::example("vdw-equilibrium")).unwrap().replace("timestep     0.01", "timestep 0.45");
     std::fs::write(dir.join("in.test"), script).unwrap();
-    let mut reference: Option<String> = None;
-    for np in [1, 2, 3, 4] {
+    assert_same_on_1_2_3_4_ranks("the message", |np| {
         let out = mpirun(np, &dir, &["run", "in.test", "-log", "none", "-var", "n", "11", "-var", "rc", "3.0", "-var", "steps", "40"]);
         assert!(!out.status.success(), "the run should stop");
         let stderr = String::from_utf8_lossy(&out.stderr);
@@ -214,11 +211,8 @@ fn a_blow_up_is_one_message_the_same_on_1_2_3_4_ranks() {
         assert_eq!(errors.len(), 1, "one message on {np} ranks:\n{stderr}");
         let e = errors[0].to_string();
         assert!(e.contains("run stopped: particle 737 during step 18: ") && e.contains("the last good state (step 17) is in failed.restart.h5"), "{e}");
-        match &reference {
-            None => reference = Some(e),
-            Some(r) => assert_eq!(&e, r, "the message on {np} ranks"),
-        }
-    }
+        e
+    });
 }
 
 /// Finding 4: a dilute box laid a cell grid of 1024^3 cells whose bins needed 4.3 GB;
