@@ -2,7 +2,7 @@
 
 use crate::error::StepError;
 use gendpde_engine::cells::CellBins;
-use gendpde_engine::{build_lists, dot, exact_sums, sub, CellGrid, Comm, Domain, ListRequest, NeighborList, Particles, SweepPairs, Vec3};
+use gendpde_engine::{build_lists, dot, sub, CellGrid, Comm, Domain, ListRequest, NeighborList, Particles, SweepPairs, Vec3};
 
 /// State that the step mutates.
 pub struct System {
@@ -108,8 +108,8 @@ impl System {
     /// every rank must own at least one cell along each dimension.
     pub fn lay_grid(&mut self, cut: f64) -> Result<(), String> {
         let cut = cut.max(self.min_cell);
-        let [particles] = exact_sums(self.comm.transport(), std::iter::once([self.store.nlocal as f64]));
-        let grid = CellGrid::new(&self.domain, cut).map_err(|e| e.to_string())?.at_most(particles as usize);
+        let particles = self.comm.count(self.store.nlocal) as usize;
+        let grid = CellGrid::new(&self.domain, cut).map_err(|e| e.to_string())?.at_most(particles);
         let procs = self.comm.grid.dims;
         for d in 0..3 {
             if grid.count[d] < procs[d] {
