@@ -360,17 +360,12 @@ fn run(session: Session) -> ExitCode {
             }
         }
         Err(e) => {
-            // Script errors are the same on every rank; a failed step is told by the rank
-            // that saw it (and by rank 0 that the run stopped).
-            let local = match &e {
-                AppError::Step { err, .. } => !err.elsewhere,
-                AppError::Script(_) | AppError::Interrupted { .. } => rank == 0,
-            };
+            // every rank holds the same error (a failed step's is agreed over the ranks)
             let (msg, code) = match &e {
                 AppError::Interrupted { signal, .. } => (e.to_string(), ExitCode::from((128 + signal) as u8)),
                 _ => (format!("ERROR: {e}"), ExitCode::FAILURE),
             };
-            if local || rank == 0 {
+            if rank == 0 {
                 it.out.log_line(&msg);
                 eprintln!("{msg}");
             }

@@ -108,7 +108,7 @@ fn a_non_positive_temperature_stops_the_run_naming_the_particle() {
     let out = gendpde(&["run", "in.test", "-log", "none"], &dir);
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(!out.status.success());
-    assert!(err.contains("in.test:12: run stopped: particle 7 after step 0"), "{err}");
+    assert!(err.contains("in.test:12: run: particle 7 at step 0: particle temperature is not positive"), "{err}");
     assert!(err.contains("u = -2.000000000e2") && err.contains("theta = -"), "{err}");
 }
 
@@ -122,7 +122,7 @@ fn a_blow_up_during_the_run_names_step_and_particle() {
     let out = gendpde(&["run", "in.test", "-log", "none"], &dir);
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(!out.status.success(), "the run should stop");
-    assert!(err.contains("run stopped: particle ") && err.contains(" after step "), "{err}");
+    assert!(err.contains("run stopped: particle ") && err.contains(" during step "), "{err}");
     assert!(!err.contains("internal error"), "{err}");
     // the last good state was written and loads
     assert!(err.contains("the last good state (step ") && err.contains("failed.restart.h5"), "{err}");

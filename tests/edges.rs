@@ -151,7 +151,7 @@ fn non_finite_input_and_non_finite_states_stop_with_the_particle_named() {
     let out = run(&(vdw(12, 0.5, "fix ssa all shardlow") + "set atom 5 u 1e308\nrun 10\n"));
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(!out.status.success());
-    assert!(err.contains("run stopped: particle ") && err.contains(" after step 0: particle "), "{err}");
+    assert!(err.contains("run stopped: particle ") && err.contains(" during step 1: particle "), "{err}");
     assert!(err.contains("the last good state (step 0) is in failed.restart.h5"), "{err}");
     assert!(!err.contains("internal error"), "{err}");
 }

@@ -5,30 +5,7 @@
 
 mod common;
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
-
-fn mpirun(np: usize, dir: &Path, args: &[&str]) -> std::process::Output {
-    Command::new("mpirun")
-        .args(["--oversubscribe", "-np", &np.to_string(), env!("CARGO_BIN_EXE_gendpde")])
-        .args(args)
-        .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
-        .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
-        .current_dir(dir)
-        .output()
-        .expect("mpirun runs (scripts/test.sh installs OpenMPI)")
-}
-
-fn tempdir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("gendpde-mpi-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-/// Thermo lines of a run (its numeric rows).
-fn thermo_rows(stdout: &[u8]) -> Vec<String> {
-    String::from_utf8_lossy(stdout).lines().filter(|l| l.trim_start().starts_with(|c: char| c.is_ascii_digit())).map(String::from).collect()
-}
+use common::ranks::{mpirun, tempdir, thermo_rows};
 
 /// Runs `example` with `vars` on each rank count and compares the dumps and thermo.
 fn compare_rank_counts(example: &str, vars: &[(&str, &str)]) {

@@ -11,6 +11,9 @@ use std::fmt;
 /// Smallest number of cells per dimension the colouring accepts.
 pub const MIN_CELLS: usize = 4;
 
+/// Cells a grid may have however few particles it holds (16^3).
+pub const FEW_CELLS: usize = 4096;
+
 #[derive(Clone, Debug, PartialEq)]
 pub struct CellGrid {
     /// Cells per dimension (even, >= 4).
@@ -18,6 +21,7 @@ pub struct CellGrid {
     /// Cell side per dimension.
     pub side: Vec3,
     lo: Vec3,
+    len: Vec3,
 }
 
 /// The box cannot hold the colour grid.
@@ -59,7 +63,24 @@ impl CellGrid {
             count[d] = n;
             side[d] = len[d] / n as f64;
         }
-        Ok(Self { count, side, lo: domain.lo })
+        Ok(Self { count, side, lo: domain.lo, len })
+    }
+
+    /// The grid with at most max(`particles`, [`FEW_CELLS`]) cells, coarsened two cells
+    /// at a time along the finest dimension: a dilute box needs no more cells than
+    /// particles (LAMMPS caps its bins too), and the bins of a finer grid could outgrow
+    /// memory. Dense boxes keep their grid.
+    pub fn at_most(mut self, particles: usize) -> Self {
+        let limit = particles.max(FEW_CELLS);
+        while self.len() > limit {
+            let d = (0..3).rev().max_by_key(|&d| self.count[d]).unwrap_or(0);
+            if self.count[d] <= MIN_CELLS {
+                break;
+            }
+            self.count[d] -= 2;
+            self.side[d] = self.len[d] / self.count[d] as f64;
+        }
+        self
     }
 
     /// Cell coordinates of a position inside the box.
@@ -108,6 +129,20 @@ mod tests {
         let e = CellGrid::new(&d, 4.4).unwrap_err();
         assert_eq!(e.dim, 0);
         assert!(e.to_string().contains("17.6"), "{e}");
+    }
+
+    #[test]
+    fn a_dilute_box_gets_no_more_cells_than_particles() {
+        let d = Domain::new([0.0; 3], [1e9, 1e9, 2e9]);
+        let g = CellGrid::new(&d, 4.4).unwrap();
+        assert_eq!(g.count, [1024; 3]);
+        let g = g.at_most(100_000);
+        assert!(g.len() <= 100_000 && g.len() > 90_000, "{:?}", g.count);
+        assert!(g.count.iter().all(|&n| n % 2 == 0) && g.side.iter().all(|&s| s >= 4.4));
+        assert_eq!(CellGrid::new(&d, 4.4).unwrap().at_most(10).count, [16; 3]);
+        // a dense box keeps its grid
+        let dense = Domain::new([0.0; 3], [18.9, 20.0, 40.0]);
+        assert_eq!(CellGrid::new(&dense, 4.4).unwrap().at_most(1000).count, [4, 4, 8]);
     }
 
     #[test]

@@ -13,7 +13,7 @@
 //! 1/theta_i and 1/theta_j; heat kappa w^2 (1/theta_i - 1/theta_j) dt + sqrt(2 k_B kappa)
 //! w xibar sqrt(dt) into i (uCond); -dK/2 into each u (uMech).
 
-use crate::error::StepError;
+use crate::error::{lowest, StepError};
 use crate::heat::{Original, Temps};
 use crate::pair_update::{pair_update, PairDrive, PairState};
 use crate::physics::{Physics, SetupError};
@@ -21,6 +21,7 @@ use crate::rng::{normal_pair, stream, Normals};
 use crate::settings::Settings;
 use crate::sweep::SWEPT;
 use crate::system::System;
+use crate::verlet;
 use gendpde_engine::{dot, sub, Fields, Particles, Vec3};
 use gendpde_potentials::{Lucy, Weight};
 
@@ -78,11 +79,6 @@ impl ClassicDpd {
         self.force.cutoff().max(self.shardlow.as_ref().map_or(0.0, |s| s.rc)) + self.settings.skin
     }
 
-    fn rebuild(&self, sys: &mut System, at_step: u64) {
-        let r = self.radius();
-        sys.rebuild(Some(r), self.shardlow.as_ref().map(|_| r), at_step);
-    }
-
     /// theta = u / C_V for owned particles (fix eos/cv), and 1/theta, which the sweep
     /// reads for theta_ij and the heat flow, in `inv_tau` where kept.
     fn eos(&self, sys: &mut System) -> Result<(), StepError> {
@@ -91,9 +87,9 @@ impl ClassicDpd {
         for i in 0..s.nlocal {
             if let Some(cv) = self.cv {
                 let theta = s.u[i] / cv;
-                if !(theta > 0.0 && theta.is_finite()) && outcome.is_ok() {
+                if !(theta > 0.0 && theta.is_finite()) {
                     let e = gendpde_potentials::EosError::NonPositiveTheta { u: s.u[i], n: 0.0, theta };
-                    outcome = Err(StepError::eos(s, i, sys.step, e));
+                    outcome = lowest(outcome, Err(StepError::eos(s, i, sys.step, e)));
                 }
                 s.theta[i] = theta;
             }
@@ -207,25 +203,16 @@ impl ClassicDpd {
     }
 
     /// Positions, cells, ghosts, densities and forces after the particles moved; a
-    /// non-finite position stops the step on every rank.
-    fn after_drift(&self, sys: &mut System) -> Result<(), StepError> {
-        let s = &sys.store;
-        let bad = (0..s.nlocal).find(|&i| !s.r[i].iter().all(|x| x.is_finite()));
-        sys.settle(bad.map_or(Ok(()), |i| Err(StepError::state(s, i, sys.step, "position or momentum is not finite"))))?;
-        let next = sys.step + 1;
-        let p = &self.settings.rebuild;
-        let due = next - sys.last_build >= p.delay.max(1) && next % p.every.max(1) == 0;
-        if due && (!p.check || 2.0 * sys.comm.max(sys.displacement_since_build()) > self.settings.skin) {
-            self.rebuild(sys, next);
-        } else {
-            sys.comm.forward(&mut sys.store, Fields::POSITION);
-        }
+    /// non-finite position (`drifted`) stops the step on every rank.
+    fn after_drift(&self, sys: &mut System, drifted: Result<(), StepError>) -> Result<(), StepError> {
+        sys.settle(drifted)?;
+        self.relist(sys);
         sys.comm.forward(&mut sys.store, Fields::MOMENTUM);
         if let PairForce::Mdpd { h, .. } = self.force {
             self.rho(sys, h);
             sys.comm.forward(&mut sys.store, Fields::RHO);
         }
-        self.forces(sys, next);
+        self.forces(sys, sys.step + 1);
         Ok(())
     }
 }
@@ -233,6 +220,19 @@ impl ClassicDpd {
 impl Physics for ClassicDpd {
     fn settings(&self) -> &Settings {
         &self.settings
+    }
+
+    /// Lists and ghosts for the current positions. 1/theta is derived state that
+    /// migration does not carry: it is re-derived from theta (owned and ghosts) here.
+    fn rebuild(&self, sys: &mut System, at_step: u64) {
+        let r = self.radius();
+        sys.rebuild(Some(r), self.shardlow.as_ref().map(|_| r), at_step);
+        let s = &mut sys.store;
+        if !s.inv_tau.is_empty() {
+            for (inv, theta) in s.inv_tau.iter_mut().zip(&s.theta) {
+                *inv = 1.0 / theta;
+            }
+        }
     }
 
     fn list_radius(&self) -> f64 {
@@ -281,28 +281,18 @@ impl Physics for ClassicDpd {
             sys.comm.forward(&mut sys.store, SWEPT);
             sys.settle(outcome)?;
         }
-        let s = &mut sys.store;
         match self.integration {
             Integration::Nve => {
-                for i in 0..s.nlocal {
-                    let k = dt / s.mass[i];
-                    for c in 0..3 {
-                        s.p[i][c] += 0.5 * dt * s.f[i][c];
-                        s.r[i][c] += k * s.p[i][c];
-                    }
-                }
-                self.after_drift(sys)?;
-                let s = &mut sys.store;
-                for i in 0..s.nlocal {
-                    for c in 0..3 {
-                        s.p[i][c] += 0.5 * dt * s.f[i][c];
-                    }
-                }
+                verlet::kick(sys, 0.5 * dt);
+                let drifted = verlet::drift(sys, dt);
+                self.after_drift(sys, drifted)?;
+                verlet::kick(sys, 0.5 * dt);
             }
             Integration::Mvv { lambda } => {
                 // vest = v + dt/2 f/m; r += dt vest; v += lambda dt f/m (the estimate the
                 // dissipative force reads); after the forces: v = vest + dt/2 f/m
                 // (vest travels with a particle that changes rank)
+                let s = &mut sys.store;
                 for i in 0..s.nlocal {
                     for c in 0..3 {
                         s.vest[i][c] = s.p[i][c] + 0.5 * dt * s.f[i][c];
@@ -310,7 +300,7 @@ impl Physics for ClassicDpd {
                         s.p[i][c] += lambda * dt * s.f[i][c];
                     }
                 }
-                self.after_drift(sys)?;
+                self.after_drift(sys, verlet::finite_positions(sys))?;
                 let s = &mut sys.store;
                 for i in 0..s.nlocal {
                     for c in 0..3 {

@@ -9,7 +9,7 @@
 //! drift and the density pass. The theta field carries it there ([`hold`]): theta is a
 //! function of (u, n) that [`release`] sets again, before anything reads it.
 
-use crate::error::StepError;
+use crate::error::{lowest, StepError};
 use crate::many_body::density_of;
 use crate::species::Species;
 use crate::system::System;
@@ -93,11 +93,10 @@ pub fn hold<E: Eos>(eos: &Species<E>, sys: &mut System) -> Result<(), StepError>
         let n = density_of(s, i).max(ISOLATED_DENSITY);
         match eos.of(s.kind[i]).entropy(s.u[i], n) {
             Some(entropy) => s.theta[i] = entropy,
-            None if first.is_ok() => {
+            None => {
                 let e = EosError::NonPositiveTheta { u: s.u[i], n, theta: s.theta[i] };
-                first = Err(StepError::eos(s, i, step, e));
+                first = lowest(first, Err(StepError::eos(s, i, step, e)));
             }
-            None => {}
         }
     }
     first
@@ -112,10 +111,10 @@ pub fn release<E: FixedEntropy>(eos: &Species<E>, sys: &mut System) -> Result<()
         let n = density_of(s, i).max(ISOLATED_DENSITY);
         match eos.of(s.kind[i]).at_entropy(s.theta[i], n, s.u[i]) {
             Some((u, theta)) => (s.u[i], s.theta[i]) = (u, theta),
-            None if first.is_ok() => {
-                first = Err(StepError::state(s, i, step, "no internal energy has the particle's entropy at its new density"));
+            None => {
+                let e = StepError::state(s, i, step, "no internal energy has the particle's entropy at its new density");
+                first = lowest(first, Err(e));
             }
-            None => {}
         }
     }
     first

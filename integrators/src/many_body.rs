@@ -11,7 +11,7 @@
 //! sweep has changed the particle temperatures, `refresh_forces` rebuilds F_ij
 //! from g_ij and the new pi/n^2 without evaluating the weight again.
 
-use crate::error::StepError;
+use crate::error::{lowest, StepError};
 use crate::species::Species;
 use crate::system::System;
 use gendpde_engine::{dot, sub, Particles, Vec3};
@@ -74,7 +74,7 @@ pub fn resolve_theta<E: Eos>(eos: &Species<E>, sys: &mut System) {
 
 /// theta, the force factor pi/n^2 (times zeta_i with the corrected volume, eq 27; where
 /// kept) and 1/tau (where kept) of owned particles from (u, n). On a failure it carries on
-/// and reports the first failing particle.
+/// and reports the failing particle of lowest tag.
 pub fn refresh_state<E: Eos>(eos: &Species<E>, sys: &mut System) -> Result<(), StepError> {
     let step = sys.step;
     let (s, zeta) = (&mut sys.store, &sys.zeta);
@@ -92,11 +92,7 @@ pub fn refresh_state<E: Eos>(eos: &Species<E>, sys: &mut System) -> Result<(), S
                     s.inv_tau[i] = eos.inv_tau(st.theta, st.cv);
                 }
             }
-            Err(e) => {
-                if first.is_ok() {
-                    first = Err(StepError::eos(s, i, step, e));
-                }
-            }
+            Err(e) => first = lowest(first, Err(StepError::eos(s, i, step, e))),
         }
     }
     first

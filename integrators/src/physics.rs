@@ -2,7 +2,7 @@
 //! papers' pairwise work split (eq 84) or at fixed entropy, then the Shardlow sweep and
 //! the reservoir; or the argon paper's velocity Verlet + Euler step, then the reservoir.
 
-use crate::error::StepError;
+use crate::error::{lowest, StepError};
 use crate::heat::{Fourier, HeatFlow, HeatModel, NoHeat, Original};
 use crate::isentropic::{self, FixedEntropy};
 use crate::settings::{Motion, Settings, Work};
@@ -22,6 +22,22 @@ pub trait Physics {
     fn step(&self, sys: &mut System) -> Result<(), StepError>;
     /// Largest list radius (cutoff plus skin), for memory estimates.
     fn list_radius(&self) -> f64;
+    /// Migrates particles and builds ghosts and lists for the positions of step `at_step`.
+    fn rebuild(&self, sys: &mut System, at_step: u64);
+
+    /// Lists for the positions of the next step, by LAMMPS's rule: at most every `every`
+    /// steps, not within `delay` steps of the last build, and (with `check`) only once
+    /// some particle moved more than skin/2; else the positions are forwarded.
+    fn relist(&self, sys: &mut System) {
+        let (settings, next) = (self.settings(), sys.step + 1);
+        let p = &settings.rebuild;
+        let due = next - sys.last_build >= p.delay.max(1) && next % p.every.max(1) == 0;
+        if due && (!p.check || 2.0 * sys.comm.max(sys.displacement_since_build()) > settings.skin) {
+            self.rebuild(sys, next);
+        } else {
+            sys.comm.forward(&mut sys.store, Fields::POSITION);
+        }
+    }
 }
 
 /// Why a run cannot start.
@@ -38,7 +54,7 @@ impl std::fmt::Display for SetupError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             Self::Grid(e) | Self::Types(e) => e.fmt(f),
-            Self::State(e) => e.fmt(f),
+            Self::State(e) => e.describe(f, format_args!("at step {}", e.step)),
         }
     }
 }
@@ -78,11 +94,6 @@ impl<E: FixedEntropy, W: Weight> GenDpde<E, W> {
         (density.map(|r| r + skin), dissipation.map(|r| r + skin))
     }
 
-    fn rebuild(&self, sys: &mut System, at_step: u64) {
-        let (density, sweep) = self.radii();
-        sys.rebuild(density, sweep, at_step);
-    }
-
     /// Density, particle state and forces at the current positions and energies; with
     /// `entropy_held`, u at the entropies [`isentropic::hold`] kept first.
     fn conservative(&self, sys: &mut System, entropy_held: bool) -> Result<(), StepError> {
@@ -95,27 +106,7 @@ impl<E: FixedEntropy, W: Weight> GenDpde<E, W> {
         if self.many_body() {
             many_body::forces(sys);
         }
-        released.and(state)
-    }
-
-    /// LAMMPS's rule: at most every `every` steps, not within `delay` steps of the last
-    /// build, and (with `check`) only once some particle moved more than skin/2.
-    fn needs_rebuild(&self, sys: &System, step: u64) -> bool {
-        let p = &self.settings.rebuild;
-        if step - sys.last_build < p.delay.max(1) || step % p.every.max(1) != 0 {
-            return false;
-        }
-        !p.check || 2.0 * sys.comm.max(sys.displacement_since_build()) > self.settings.skin
-    }
-
-    /// Lists for the positions of the next step: rebuilt when due, else positions forwarded.
-    fn relist(&self, sys: &mut System) {
-        let next = sys.step + 1;
-        if self.needs_rebuild(sys, next) {
-            self.rebuild(sys, next);
-        } else {
-            sys.comm.forward(&mut sys.store, Fields::POSITION);
-        }
+        lowest(released, state)
     }
 
     /// Velocity-Verlet part (eq 84). The sweep of the previous step changed theta and
@@ -134,7 +125,7 @@ impl<E: FixedEntropy, W: Weight> GenDpde<E, W> {
         }
         verlet::kick(sys, 0.5 * dt);
         let drifted = verlet::drift(sys, dt);
-        sys.settle(before.and(drifted))?;
+        sys.settle(lowest(before, drifted))?;
         if isentropic {
             let held = isentropic::hold(&self.eos, sys);
             sys.settle(held)?;
@@ -151,7 +142,7 @@ impl<E: FixedEntropy, W: Weight> GenDpde<E, W> {
         }
         let refreshed = many_body::refresh_state(&self.eos, sys);
         sys.comm.forward(&mut sys.store, sweep::SWEPT);
-        state.and(refreshed)
+        lowest(state, refreshed)
     }
 
     /// `fix vv/euler` (see [`vv_euler`]).
@@ -181,7 +172,7 @@ impl<E: FixedEntropy, W: Weight> GenDpde<E, W> {
             outcome = sweep::sweep::<E, H>(&self.eos, d, sys, dt);
         }
         for r in &self.settings.reservoirs {
-            outcome = outcome.and(sweep::reservoir::<E, H>(&self.eos, r, sys, dt));
+            outcome = lowest(outcome, sweep::reservoir::<E, H>(&self.eos, r, sys, dt));
         }
         outcome
     }
@@ -209,6 +200,11 @@ impl<E: FixedEntropy, W: Weight> Physics for GenDpde<E, W> {
     fn list_radius(&self) -> f64 {
         let (density, sweep) = self.radii();
         density.unwrap_or(0.0).max(sweep.unwrap_or(0.0))
+    }
+
+    fn rebuild(&self, sys: &mut System, at_step: u64) {
+        let (density, sweep) = self.radii();
+        sys.rebuild(density, sweep, at_step);
     }
 
     fn setup(&self, sys: &mut System) -> Result<(), SetupError> {

@@ -13,21 +13,22 @@
 //! Metropolis rejection of a move outside the domain, it keeps p and K + u exact but
 //! biases the dynamics at the rare states it touches).
 
-use crate::error::StepError;
+use crate::error::{lowest, StepError};
 use crate::heat::{HeatFlow, Temps};
 use crate::pair_update::{pair_update, PairDrive, PairState};
 use crate::rng::{normal_pair, stream, Normals};
 use crate::settings::{Dissipation, Reservoir};
 use crate::species::Species;
 use crate::system::System;
-use gendpde_engine::{dot, sub, Fields, Particles};
+use gendpde_engine::{dot, exact_sums, sub, Fields, Particles};
 use gendpde_potentials::Eos;
 
 /// Fields the sweep writes, exchanged between colours.
 pub const SWEPT: Fields = Fields::MOMENTUM.union(Fields::ENERGY).union(Fields::THETA).union(Fields::INV_TAU);
 
-/// One full sweep over all pairs of all colours. After a failure this rank stops
-/// updating pairs but keeps taking part in the exchanges, and reports the failure.
+/// One full sweep over all pairs of all colours. A pair update that fails is undone:
+/// left out under `reject`, else reported after the sweep (the failure of lowest tag:
+/// the pairs after it see the same states on any rank count).
 pub fn sweep<E: Eos, H: HeatFlow>(eos: &Species<E>, d: &Dissipation, sys: &mut System, dt: f64) -> Result<(), StepError> {
     let kb = eos.kb();
     let rc = d.cutoff();
@@ -38,7 +39,7 @@ pub fn sweep<E: Eos, H: HeatFlow>(eos: &Species<E>, d: &Dissipation, sys: &mut S
     inv_m.extend(sys.store.mass.iter().map(|m| 1.0 / m));
     let mut outcome = Ok(());
     for colour in 0..8 {
-        let pairs = if outcome.is_ok() { sys.sweep.within(colour, &sys.store, rc) } else { &[] };
+        let pairs = sys.sweep.within(colour, &sys.store, rc);
         let s = &mut sys.store;
         for &[i, j] in pairs {
             let (i, j) = (i as usize, j as usize);
@@ -60,14 +61,12 @@ pub fn sweep<E: Eos, H: HeatFlow>(eos: &Species<E>, d: &Dissipation, sys: &mut S
                 kb,
             };
             let saved = (s.p[i], s.p[j], s.u[i], s.u[j], s.theta[i], s.theta[j]);
-            outcome = pair_step::<E, H>(eos, s, &pair, xi, xibar, dt, 0, d.substeps, &mut sys.substeps);
-            if outcome.is_err() && d.reject {
+            let done = pair_step::<E, H>(eos, s, &pair, xi, xibar, dt, 0, d.substeps, &mut sys.substeps);
+            if done.is_err() {
                 (s.p[i], s.p[j], s.u[i], s.u[j], s.theta[i], s.theta[j]) = saved;
-                outcome = refresh::<E, H>(eos, s, i, step).and_then(|_| refresh::<E, H>(eos, s, j, step));
-                sys.rejected += 1;
-            }
-            if outcome.is_err() {
-                break;
+                let undone = refresh::<E, H>(eos, s, i, step).and_then(|_| refresh::<E, H>(eos, s, j, step));
+                sys.rejected += d.reject as u64;
+                outcome = lowest(outcome, if d.reject { undone } else { lowest(done, undone) });
             }
         }
         let ghosts = &sys.sweep.ghost_writes[colour];
@@ -79,14 +78,15 @@ pub fn sweep<E: Eos, H: HeatFlow>(eos: &Species<E>, d: &Dissipation, sys: &mut S
 
 /// Heat exchange of the owned particles of the reservoir's group with the bath (2019
 /// eq 72; the Fourier form after 2021 eq 62), then a forward exchange of the new values.
-/// The energy put in is added to the reservoir's tally.
+/// The energy put in, summed exactly over all particles (the same on every rank count),
+/// is added to the reservoir's tally.
 pub fn reservoir<E: Eos, H: HeatFlow>(eos: &Species<E>, res: &Reservoir, sys: &mut System, dt: f64) -> Result<(), StepError> {
     let kb = eos.kb();
     let sqrt_dt = dt.sqrt();
     let step = sys.step;
     let s = &mut sys.store;
     let mut outcome = Ok(());
-    let mut added = 0.0;
+    let mut added = Vec::new();
     for i in 0..s.nlocal {
         if !s.in_group(i, res.mask) {
             continue;
@@ -95,12 +95,11 @@ pub fn reservoir<E: Eos, H: HeatFlow>(eos: &Species<E>, res: &Reservoir, sys: &m
         let xi = normal_pair(res.seed, step, s.tag[i], 0, stream::RESERVOIR).0;
         let du = dt * q + sqrt_dt * alpha * xi;
         s.u[i] += du;
-        added += du;
-        if let Err(e) = refresh::<E, H>(eos, s, i, step) {
-            outcome = outcome.and(Err(e));
-        }
+        added.push([du]);
+        outcome = lowest(outcome, refresh::<E, H>(eos, s, i, step));
     }
-    *sys.reservoir_tally(&res.id) += added;
+    let [total] = exact_sums(sys.comm.transport(), added.iter().copied());
+    *sys.reservoir_tally(&res.id) += total;
     sys.comm.forward(&mut sys.store, SWEPT);
     outcome
 }

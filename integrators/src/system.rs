@@ -5,7 +5,7 @@ use std::cell::Cell;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Arc;
 use gendpde_engine::cells::CellBins;
-use gendpde_engine::{dot, sub, CellGrid, Comm, Domain, build_lists, ListRequest, NeighborList, Particles, SweepPairs, Vec3};
+use gendpde_engine::{build_lists, dot, sub, CellGrid, Comm, Domain, ListRequest, NeighborList, Particles, SweepPairs, Vec3};
 
 /// State that the step mutates.
 pub struct System {
@@ -49,8 +49,8 @@ pub struct System {
     pub substeps: u64,
     /// Pair updates left out because no split could keep theta positive (`reject yes`).
     pub rejected: u64,
-    /// Energy each `fix heat/reservoir` (by fix ID) has put into the owned particles of
-    /// this rank since the fix was defined (sum over ranks for the total).
+    /// Energy each `fix heat/reservoir` (by fix ID) has put into the particles since the
+    /// fix was defined (all ranks, the same on each).
     pub reservoir_heat: Vec<(String, f64)>,
     /// The particles, cells and build positions were read from a restart: the next
     /// build keeps them as stored, so the lists come out as when it was written.
@@ -101,7 +101,7 @@ impl System {
         }
     }
 
-    /// This rank's energy tally of reservoir `id` (created at 0).
+    /// The energy tally of reservoir `id` (created at 0).
     pub fn reservoir_tally(&mut self, id: &str) -> &mut f64 {
         let k = match self.reservoir_heat.iter().position(|(name, _)| name == id) {
             Some(k) => k,
@@ -114,10 +114,12 @@ impl System {
     }
 
     /// Lays the cell grid for interactions up to `cut` (cutoff plus skin) or `min_cell`,
-    /// whichever is larger; every rank must own at least one cell along each dimension.
+    /// whichever is larger, with no more cells than needed ([`CellGrid::at_most`]);
+    /// every rank must own at least one cell along each dimension.
     pub fn lay_grid(&mut self, cut: f64) -> Result<(), String> {
         let cut = cut.max(self.min_cell);
-        let grid = CellGrid::new(&self.domain, cut).map_err(|e| e.to_string())?;
+        let particles = self.comm.count(self.store.nlocal) as usize;
+        let grid = CellGrid::new(&self.domain, cut).map_err(|e| e.to_string())?.at_most(particles);
         let procs = self.comm.grid.dims;
         for d in 0..3 {
             if grid.count[d] < procs[d] {
@@ -146,16 +148,19 @@ impl System {
         Ok(())
     }
 
-    /// Agrees over all ranks whether the step failed: Err on every rank if any failed.
-    /// The same reduction agrees on `interrupted`.
+    /// Agrees over all ranks whether the step failed: if any did, every rank returns the
+    /// same error, that of the failing particle of lowest tag. The same reduction agrees
+    /// on `interrupted` (the largest signal number any rank received).
     pub fn settle(&self, outcome: Result<(), StepError>) -> Result<(), StepError> {
-        let local = if outcome.is_err() { f64::INFINITY } else { self.interrupt.load(Ordering::Relaxed) as f64 };
-        let agreed = self.comm.max(local);
-        if agreed == f64::INFINITY {
-            return Err(outcome.err().unwrap_or_else(|| StepError::elsewhere(self.step)));
+        // tags are exact in f64 below 2^53
+        let key = |e: &StepError| -(e.tag as f64);
+        let mut agreed = [outcome.as_ref().err().map_or(f64::NEG_INFINITY, key), self.interrupt.load(Ordering::Relaxed) as f64];
+        self.comm.max_each(&mut agreed);
+        if agreed[0] == f64::NEG_INFINITY {
+            self.interrupted.set(agreed[1] as usize);
+            return Ok(());
         }
-        self.interrupted.set(agreed as usize);
-        Ok(())
+        Err(StepError::agree(self.comm.transport(), outcome.err().filter(|e| key(e) == agreed[0])))
     }
 
     /// Migrates particles, rebuilds ghosts and bins, and the lists of the given radii;

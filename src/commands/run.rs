@@ -14,7 +14,7 @@ use crate::output::schedule::{Frame, RunOutput, Span};
 use crate::output::thermo::{header_line, Observables};
 use crate::output::Outputs;
 use crate::styles::physics::build_physics;
-use gendpde_integrators::{Physics, SetupError, Snapshot};
+use gendpde_integrators::{Physics, Snapshot};
 use gendpde_io::{Command, ScriptError, Variables};
 use indicatif::ProgressBar;
 use std::time::Instant;
@@ -47,10 +47,7 @@ pub fn prepare(sim: &mut Sim, averages: &[AveTime], cmd: &Command) -> Result<Box
     // a continuation keeps the forces of the step its restart was written at: they
     // depend on that step's velocities and noise, which the set-up cannot redo
     let resume = sys.restored.then(|| sys.store.save_by_tag(gendpde_engine::stage::RESUME));
-    physics.setup(sys).map_err(|e| match e {
-        SetupError::Grid(g) | SetupError::Types(g) => err(g),
-        SetupError::State(s) => AppError::Step { cmd: cmd.clone(), err: s },
-    })?;
+    physics.setup(sys).map_err(|e| err(e.to_string()))?;
     if let Some(saved) = resume.filter(|_| sys.restored_grid == sys.grid.as_ref().map(|g| g.count)) {
         let exchanged = sys.store.restore_by_tag(&saved);
         sys.comm.forward(&mut sys.store, exchanged);

@@ -93,25 +93,18 @@ impl Sim {
     }
 
     /// The accumulated state of fixes, for a restart file: each reservoir's energy
-    /// tally (summed over ranks) as `heat/reservoir/ID`.
+    /// tally (the same on every rank) as `heat/reservoir/ID`.
     pub fn fix_state(&self) -> Vec<(String, Vec<f64>)> {
         let Some(sys) = &self.system else { return Vec::new() };
-        sys.reservoir_heat
-            .iter()
-            .map(|(id, local)| {
-                let [total] = gendpde_engine::exact_sums(sys.comm.transport(), std::iter::once([*local]));
-                (format!("{RESERVOIR_STATE}{id}"), vec![total])
-            })
-            .collect()
+        sys.reservoir_heat.iter().map(|(id, total)| (format!("{RESERVOIR_STATE}{id}"), vec![*total])).collect()
     }
 
-    /// Puts the reservoir tallies of a restart back (on rank 0: the totals).
+    /// Puts the reservoir tallies of a restart back.
     pub fn restore_fix_state(&mut self) {
         let Some(sys) = &mut self.system else { return };
-        let rank0 = sys.comm.rank() == 0;
         for (name, v) in &self.restored_state {
             if let (Some(id), [total]) = (name.strip_prefix(RESERVOIR_STATE), v.as_slice()) {
-                *sys.reservoir_tally(id) = if rank0 { *total } else { 0.0 };
+                *sys.reservoir_tally(id) = *total;
             }
         }
     }

@@ -249,12 +249,10 @@ impl<'a> ThermoContext<'a> {
         compute::value(&self.sim.computes, self.sys, &totals, name)
     }
 
-    /// Energy reservoir `id` has put into the particles since it was defined, summed over
-    /// the ranks (extensive: per particle with `thermo_modify norm yes`, as LAMMPS's fix
-    /// energies).
+    /// Energy reservoir `id` has put into the particles since it was defined (extensive:
+    /// per particle with `thermo_modify norm yes`, as LAMMPS's fix energies).
     fn reservoir_heat(&self, id: &str) -> Option<f64> {
-        let local = self.sys.reservoir_heat.iter().find(|(name, _)| name == id)?.1;
-        let [total] = exact_sums(self.sys.comm.transport(), std::iter::once([local]));
+        let total = self.sys.reservoir_heat.iter().find(|(name, _)| name == id)?.1;
         Some(if self.norm && self.obs.atoms > 0.0 { total / self.obs.atoms } else { total })
     }
 }

@@ -3,6 +3,7 @@
 #![allow(dead_code)]
 
 pub mod lammps;
+pub mod ranks;
 pub mod stats;
 
 use gendpde::{Interpreter, Mode, Output};

@@ -125,8 +125,13 @@ impl Comm {
     /// Largest value over ranks.
     pub fn max(&self, x: f64) -> f64 {
         let mut v = [x];
-        self.timed(|| self.t.max(&mut v));
+        self.max_each(&mut v);
         v[0]
+    }
+
+    /// Element-wise largest values over ranks, in place.
+    pub fn max_each(&self, v: &mut [f64]) {
+        self.timed(|| self.t.max(v));
     }
 
     /// Sum of an integer count over ranks.
