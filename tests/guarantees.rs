@@ -21,7 +21,7 @@ fn run_scene(dir: &Path, scene: &str, steps: u64, np: usize, grid: Option<&str>)
     }
     script += &format!(
         "thermo 1\nthermo_modify format float %.17g\nrun {steps}\n\
-         write_dump all custom final.dump id type x y z ix iy iz px py pz u theta n\n"
+         write_dump all custom final.dump id type x y z ix iy iz px py pz u theta\n"
     );
     std::fs::write(dir.join("in.scene"), script).unwrap();
     let _ = std::fs::remove_file(dir.join("final.dump"));

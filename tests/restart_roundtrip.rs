@@ -2,13 +2,12 @@
 //! parity script, 2k steps in one run equal k steps, `write_restart`, a new process with
 //! `read_restart` and k more steps, bit for bit: every thermo row at full precision (the
 //! continuation's set-up row included) and the final per-particle state, written and
-//! read on 1 and on 2 ranks.
+//! read on 1 and on 2 ranks, and written on 2 and read on 1 or 3.
 #![cfg(feature = "mpi")]
 
 mod common;
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 /// A script reduced to a fast scene: its `-var`s, the thermo interval and k.
 struct Case {
@@ -67,17 +66,11 @@ fn split(script: &str) -> (String, String) {
 }
 
 fn gendpde(np: usize, dir: &Path, script: &str, vars: &[(&str, &str)]) -> String {
-    let mut cmd = Command::new("mpirun");
-    cmd.args(["--oversubscribe", "-np", &np.to_string(), env!("CARGO_BIN_EXE_gendpde"), "run", script, "-log", "none"]);
+    let mut args = vec!["run", script, "-log", "none"];
     for (k, v) in vars {
-        cmd.args(["-var", k, v]);
+        args.extend(["-var", k, v]);
     }
-    let out = cmd
-        .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
-        .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
-        .current_dir(dir)
-        .output()
-        .expect("mpirun runs (scripts/test.sh installs OpenMPI)");
+    let out = common::ranks::mpirun(np, dir, &args);
     let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
     assert!(out.status.success(), "{script} on {np} ranks in {}: {}\n{stdout}", dir.display(), String::from_utf8_lossy(&out.stderr));
     stdout
@@ -145,4 +138,9 @@ fn restarts_continue_bit_identically_on_two_ranks() {
 #[test]
 fn restarts_written_on_two_ranks_continue_on_one() {
     all(2, 1);
+}
+
+#[test]
+fn restarts_written_on_two_ranks_continue_on_three() {
+    all(2, 3);
 }
