@@ -85,12 +85,12 @@ fn continue_from(dir: &Path, state: &str) -> String {
     std::fs::read_to_string(dir.join("continued.dump")).unwrap()
 }
 
-/// Stops a run of in.sig by `signal` (TERM, INT, USR1) and checks what it left; returns
-/// the step it stopped after and the file of its state.
-fn interrupt(cmd: Command, dir: &Path, signal: &str, exit: impl Fn(Option<i32>) -> bool, checkpoint: bool) -> (u64, String) {
+/// Stops a run of in.sig by `signal` (TERM, INT, USR1), which gendpde sees as `seen`,
+/// and checks what it left; returns the step it stopped after and the file of its state.
+fn interrupt(cmd: Command, dir: &Path, signal: &str, seen: &str, exit: impl Fn(Option<i32>) -> bool, checkpoint: bool) -> (u64, String) {
     let (code, stderr) = stop(cmd, dir, 3, signal);
     assert!(exit(code), "exit status {code:?}; stderr:\n{stderr}");
-    let name = format!("SIG{signal}");
+    let name = format!("SIG{seen}");
     let step = stopped_at(&stderr, &name);
     let state = if checkpoint { format!("ck.{step}.h5") } else { "interrupted.restart.h5".to_string() };
     check_left(dir, step, &name, &state);
@@ -101,7 +101,7 @@ fn interrupt(cmd: Command, dir: &Path, signal: &str, exit: impl Fn(Option<i32>) 
 fn sigterm_on_one_rank_saves_the_checkpoint_and_closes_the_outputs() {
     let d = dir("term");
     scene(&d, "checkpoint 1000000 ck.*.h5\n");
-    let (step, state) = interrupt(gendpde(&d), &d, "TERM", |c| c == Some(143), true);
+    let (step, state) = interrupt(gendpde(&d), &d, "TERM", "TERM", |c| c == Some(143), true);
     // the checkpoint continues as the uninterrupted run does, to the bit
     let continued = continue_from(&d, &state);
     let straight = dir("term-straight");
@@ -115,19 +115,20 @@ fn sigterm_on_one_rank_saves_the_checkpoint_and_closes_the_outputs() {
 fn sigint_without_a_checkpoint_writes_interrupted_restart() {
     let d = dir("int");
     scene(&d, "");
-    let (_, state) = interrupt(gendpde(&d), &d, "INT", |c| c == Some(130), false);
+    let (_, state) = interrupt(gendpde(&d), &d, "INT", "INT", |c| c == Some(130), false);
     continue_from(&d, &state);
 }
 
 #[test]
-fn sigterm_and_sigusr1_through_mpirun_stop_both_ranks_at_one_step() {
-    // mpirun forwards both; killed by SIGTERM itself, it exits with 1
+fn sigterm_sigusr1_and_sigint_through_mpirun_stop_both_ranks_at_one_step() {
+    // mpirun forwards them; stopped by SIGTERM or SIGINT itself, it exits non-zero
     let term = |c: Option<i32>| c.is_some_and(|c| c != 0);
     let usr1 = |c: Option<i32>| c == Some(138);
-    for (signal, exit) in [("TERM", &term as &dyn Fn(Option<i32>) -> bool), ("USR1", &usr1)] {
+    // Ctrl-C (SIGINT) to mpirun reaches the ranks as SIGTERM
+    for (signal, seen, exit) in [("TERM", "TERM", &term as &dyn Fn(Option<i32>) -> bool), ("USR1", "USR1", &usr1), ("INT", "TERM", &term)] {
         let d = dir(&format!("mpi-{signal}"));
         scene(&d, "checkpoint 1000000 ck.*.h5\n");
-        let (step, state) = interrupt(mpirun(2, &d), &d, signal, exit, true);
+        let (step, state) = interrupt(mpirun(2, &d), &d, signal, seen, exit, true);
         let continued = continue_from(&d, &state);
         assert!(continued.contains(&format!("ITEM: TIMESTEP\n{}\n", step + 30)));
     }
