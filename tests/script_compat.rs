@@ -5,20 +5,10 @@
 
 mod common;
 
+use common::{gendpde, tempdir};
 use common::lammps::{expect_success, parse_dump, parse_thermo_blocks, run_lammps, scripts_dir, DumpSnapshot, ThermoBlock};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
-
-fn tempdir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("gendpde-script-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn gendpde(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_gendpde")).args(args).current_dir(dir).output().expect("gendpde runs")
-}
 
 /// A fresh directory holding `script` as `in.x` and the data files of scripts/lammps/.
 fn stage(name: &str, script: &str) -> PathBuf {

@@ -1,9 +1,11 @@
 //! Compute styles: `compute ID all dpd`, `compute ID GROUP tint` and `compute ID GROUP
-//! temp`, global values read in thermo output as `c_ID` or `c_ID[k]`, and `compute ID all rdf` ([`rdf`], read by
-//! fix ave/time).
+//! temp`, global values read in thermo output as `c_ID` or `c_ID[k]`, `compute ID all rdf` ([`rdf`], read by
+//! fix ave/time) and `compute ID GROUP chunk/atom` ([`chunk`], read by fix ave/chunk).
 
+pub mod chunk;
 pub mod rdf;
 
+use self::chunk::ChunkAtom;
 use self::rdf::Rdf;
 use crate::base::args::Args;
 use crate::styles::COMPUTE_STYLES;
@@ -63,6 +65,7 @@ impl Kinetic {
 pub enum Definition {
     Value(Compute),
     Rdf(Rdf),
+    Chunk(ChunkAtom),
 }
 
 impl Definition {
@@ -70,12 +73,14 @@ impl Definition {
         match self {
             Self::Value(c) => &c.id,
             Self::Rdf(r) => &r.id,
+            Self::Chunk(c) => &c.id,
         }
     }
 }
 
-/// The words of `compute ID GROUP STYLE args...`; `groups` are the group names by bit.
-pub fn parse(a: &mut Args, groups: &[String]) -> Result<Definition, ScriptError> {
+/// The words of `compute ID GROUP STYLE args...`; `groups` are the group names by bit,
+/// `spacing` the lattice spacings (LAMMPS's default lattice has spacing 1).
+pub fn parse(a: &mut Args, groups: &[String], spacing: gendpde_engine::Vec3) -> Result<Definition, ScriptError> {
     let id = a.word("a compute ID")?.to_string();
     let group = a.word("a group")?;
     let style = match a.word("a compute style")? {
@@ -85,6 +90,7 @@ pub fn parse(a: &mut Args, groups: &[String]) -> Result<Definition, ScriptError>
         "temp" => ComputeStyle::Temp { mask: crate::base::groups::mask(groups, group, a)?, extra_dof: 3.0 },
         "rdf" if group == "all" => return Ok(Definition::Rdf(Rdf::parse(id, a)?)),
         "rdf" => return Err(a.err(format!("compute rdf on group {group}: only group all is supported"))),
+        "chunk/atom" => return Ok(Definition::Chunk(ChunkAtom::parse(id, crate::base::groups::mask(groups, group, a)?, a, spacing)?)),
         other => return Err(a.err(format!("unknown compute style '{other}'; known: {COMPUTE_STYLES}"))),
     };
     a.done()?;
