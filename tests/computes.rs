@@ -1,13 +1,14 @@
-//! LAMMPS scripts run unchanged (issue 17, part 2): compute chunk/atom and fix ave/chunk,
-//! beside the reference LAMMPS (../shared/lammps) on scripts/lammps/in.dpde-profile, with
-//! their error messages and their independence of the rank count.
+//! LAMMPS scripts run unchanged (issue 17, part 2): compute chunk/atom and fix ave/chunk
+//! (scripts/lammps/in.dpde-profile) and compute msd (in.dpde-msd) beside the reference
+//! LAMMPS (../shared/lammps), with their error messages and their independence of the rank
+//! count.
 
 mod common;
 
-use common::lammps::{expect_success, run_lammps, stage_inputs};
+use common::lammps::{expect_success, parse_thermo, run_lammps, stage_inputs};
 use common::{gendpde, tempdir};
 use std::path::Path;
-use std::process::{Command, Output};
+use std::process::Output;
 
 fn stderr(out: &Output) -> String {
     String::from_utf8_lossy(&out.stderr).into_owned()
@@ -65,28 +66,29 @@ fn ave_chunk_profiles_match_lammps() {
     }
 }
 
+/// Runs `input` for 40 steps on 1, 2 and 3 ranks and asserts that `result` (of the
+/// directory and the output) is the same for each.
+#[cfg(feature = "mpi")]
+fn same_on_1_2_3_ranks(name: &str, input: &str, result: impl Fn(&Path, &Output) -> String) {
+    let dir = tempdir(name);
+    stage_inputs(&dir, input);
+    let mut first: Option<String> = None;
+    for np in [1, 2, 3] {
+        let out = common::mpirun(np, &dir, &["run", input, "-log", "none", "-var", "steps", "40"]);
+        assert!(out.status.success(), "{np} ranks: {}", stderr(&out));
+        let r = result(&dir, &out);
+        match &first {
+            None => first = Some(r),
+            Some(f) => assert!(*f == r, "{input}: {np} ranks differ from 1 rank"),
+        }
+    }
+}
+
 /// The profile files do not depend on the number of ranks.
 #[cfg(feature = "mpi")]
 #[test]
 fn ave_chunk_profiles_are_rank_independent() {
-    let dir = tempdir("chunk-profile-ranks");
-    stage_inputs(&dir, PROFILE);
-    let mut first: Option<Vec<String>> = None;
-    for np in [1, 2, 3] {
-        let out = Command::new("mpirun")
-            .args(["--oversubscribe", "-np", &np.to_string(), env!("CARGO_BIN_EXE_gendpde"), "run", PROFILE, "-log", "none", "-var", "steps", "40"])
-            .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
-            .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
-            .current_dir(&dir)
-            .output()
-            .expect("mpirun runs");
-        assert!(out.status.success(), "{np} ranks: {}", stderr(&out));
-        let files: Vec<String> = PROFILE_FILES.iter().map(|f| std::fs::read_to_string(dir.join(f)).unwrap()).collect();
-        match &first {
-            None => first = Some(files),
-            Some(f) => assert!(*f == files, "{np} ranks differ from 1 rank"),
-        }
-    }
+    same_on_1_2_3_ranks("chunk-ranks", PROFILE, |dir, _| PROFILE_FILES.iter().map(|f| std::fs::read_to_string(dir.join(f)).unwrap()).collect());
 }
 
 /// Runs `script` (after the deterministic scene's box) and expects an error containing
@@ -155,4 +157,57 @@ fn unfix_stops_ave_chunk() {
     assert!(text.starts_with("# Chunk-averaged data for fix a and group all\n# Timestep Number-of-chunks Total-count\n# Chunk Coord1 Coord2 Coord3 Ncount density/number\n"), "{text}");
     let steps: Vec<&str> = text.lines().filter(|l| !l.starts_with(' ') && !l.starts_with('#')).collect();
     assert_eq!(steps, ["0 64 2197", "5 64 2197", "10 64 2197"]);
+}
+
+const MSD: &str = "in.dpde-msd";
+
+/// compute msd with and without `com yes`, of all particles and of a group, over 100 steps
+/// of the deterministic scene in which particles cross the boundaries: the same values as
+/// LAMMPS's to 1e-9 relative (the trajectories' own agreement).
+#[test]
+fn msd_matches_lammps() {
+    let (dl, dg) = (tempdir("msd-lammps"), tempdir("msd-gendpde"));
+    stage_inputs(&dl, MSD);
+    stage_inputs(&dg, MSD);
+    let l = parse_thermo(&expect_success("LAMMPS", &run_lammps(&dl, MSD, &[])), "Step");
+    let out = gendpde(&dg, &["run", MSD, "-log", "none"]);
+    assert!(out.status.success(), "gendpde failed:\n{}", stderr(&out));
+    let g = parse_thermo(&String::from_utf8_lossy(&out.stdout), "Step");
+    assert_eq!(g.len(), 11);
+    assert_eq!(g.len(), l.len());
+    assert!(g[10][4] > 0.5, "the particles hardly moved: <dr^2> = {}", g[10][4]);
+    let mut worst: f64 = 0.0;
+    for (a, b) in g.iter().zip(&l) {
+        for (x, y) in a.iter().zip(b) {
+            // step 0 with com yes: LAMMPS's round-off leaves 4e-29, gendpde's exact sums 0
+            assert!((x - y).abs() <= 1e-9 * x.abs().max(y.abs()) + 1e-20, "step {}: {x} vs LAMMPS {y}", a[0]);
+            if x.abs().max(y.abs()) > 1e-20 {
+                worst = worst.max((x - y).abs() / x.abs().max(y.abs()));
+            }
+        }
+    }
+    eprintln!("msd: worst relative difference from LAMMPS {worst:.1e}");
+}
+
+/// The msd values do not depend on the number of ranks.
+#[cfg(feature = "mpi")]
+#[test]
+fn msd_is_rank_independent() {
+    same_on_1_2_3_ranks("msd-ranks", MSD, |_, out| parse_thermo(&String::from_utf8_lossy(&out.stdout), "Step").iter().map(|r| format!("{r:?}\n")).collect());
+}
+
+#[test]
+fn msd_errors_name_the_line() {
+    for (line, expected) in [
+        ("compute m all msd com maybe", "in.x:4: compute: expected yes or no for com, got 'maybe'"),
+        ("compute m all msd average yes", "in.x:4: compute: keyword average: only the default, average no, is supported"),
+        ("compute m all msd start 0", "in.x:4: compute: unknown keyword 'start'; known: com"),
+        ("compute m none msd", "in.x:4: compute: no group 'none'"),
+    ] {
+        expect_error(line, expected);
+    }
+    let dir = tempdir("msd-nobox");
+    std::fs::write(dir.join("in.x"), "units lj\ncompute m all msd\n").unwrap();
+    let out = gendpde(&dir, &["run", "in.x", "-log", "none"]);
+    assert!(stderr(&out).contains("in.x:2: compute: compute msd before the box exists"), "{}", stderr(&out));
 }

@@ -5,19 +5,8 @@
 
 mod common;
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
-
-fn mpirun(np: usize, dir: &Path, args: &[&str]) -> std::process::Output {
-    Command::new("mpirun")
-        .args(["--oversubscribe", "-np", &np.to_string(), env!("CARGO_BIN_EXE_gendpde")])
-        .args(args)
-        .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
-        .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
-        .current_dir(dir)
-        .output()
-        .expect("mpirun runs (scripts/test.sh installs OpenMPI)")
-}
+use common::mpirun;
+use std::path::PathBuf;
 
 fn tempdir(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("gendpde-mpi-{name}-{}", std::process::id()));

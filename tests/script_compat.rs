@@ -138,13 +138,7 @@ fn create_atoms_random_is_rank_independent() {
     std::fs::write(dir.join("in.x"), RANDOM).unwrap();
     let mut first: Option<String> = None;
     for np in [1, 2, 3] {
-        let out = Command::new("mpirun")
-            .args(["--oversubscribe", "-np", &np.to_string(), env!("CARGO_BIN_EXE_gendpde"), "run", "in.x", "-log", "none"])
-            .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
-            .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
-            .current_dir(&dir)
-            .output()
-            .expect("mpirun runs");
+        let out = common::mpirun(np, &dir, &["run", "in.x", "-log", "none"]);
         assert!(out.status.success(), "{np} ranks: {}", stderr(&out));
         let text = std::fs::read_to_string(dir.join("rand.dump")).unwrap();
         assert_eq!(parse_dump(&text)[0].atoms.len(), 800);

@@ -5,6 +5,7 @@ use crate::base::lattice::Lattice;
 use crate::base::region::Region;
 use crate::base::units::Units;
 use crate::styles::compute::chunk::ChunkAtom;
+use crate::styles::compute::msd::Msd;
 use crate::styles::compute::rdf::Rdf;
 use crate::styles::compute::Compute;
 use crate::styles::fix::{Fix, FixStyle};
@@ -50,6 +51,8 @@ pub struct Sim {
     pub rdfs: Vec<Rdf>,
     /// `compute ID GROUP chunk/atom` definitions.
     pub chunks: Vec<ChunkAtom>,
+    /// `compute ID GROUP msd` definitions (thermo `c_ID[k]`).
+    pub msds: Vec<Msd>,
     /// Group names by bit (an empty name is a free slot).
     pub groups: Vec<String>,
     /// State of fixes read from a restart, taken by the fixes as they are defined.
@@ -81,6 +84,7 @@ impl Sim {
             computes: Vec::new(),
             rdfs: Vec::new(),
             chunks: Vec::new(),
+            msds: Vec::new(),
             groups: Vec::new(),
             restored_state: Vec::new(),
         }

@@ -263,7 +263,7 @@ impl<'a> ThermoContext<'a> {
         }
         let o = &self.obs;
         let totals = Totals { kb: self.sim.units.kb, atoms: o.atoms, u: o.u, u_cond: o.u_cond, inv_theta: o.inv_theta };
-        compute::value(&self.sim.computes, self.sys, &totals, name)
+        compute::value(&self.sim.computes, self.sys, &totals, name).or_else(|| compute::msd_value(&self.sim.msds, self.sys, name))
     }
 
     /// Energy reservoir `id` has put into the particles since it was defined, summed over

@@ -17,6 +17,18 @@ pub fn tempdir(name: &str) -> PathBuf {
     d
 }
 
+/// Runs the gendpde program with `args` in `dir` on `np` MPI ranks.
+pub fn mpirun(np: usize, dir: &Path, args: &[&str]) -> std::process::Output {
+    Command::new("mpirun")
+        .args(["--oversubscribe", "-np", &np.to_string(), env!("CARGO_BIN_EXE_gendpde")])
+        .args(args)
+        .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
+        .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
+        .current_dir(dir)
+        .output()
+        .expect("mpirun runs (scripts/test.sh installs OpenMPI)")
+}
+
 /// Runs the gendpde program with `args` in `dir`.
 pub fn gendpde(dir: &Path, args: &[&str]) -> std::process::Output {
     Command::new(env!("CARGO_BIN_EXE_gendpde")).args(args).current_dir(dir).output().expect("gendpde runs")

@@ -3,9 +3,11 @@
 //! fix ave/time) and `compute ID GROUP chunk/atom` ([`chunk`], read by fix ave/chunk).
 
 pub mod chunk;
+pub mod msd;
 pub mod rdf;
 
 use self::chunk::ChunkAtom;
+use self::msd::Msd;
 use self::rdf::Rdf;
 use crate::base::args::Args;
 use crate::styles::COMPUTE_STYLES;
@@ -66,6 +68,7 @@ pub enum Definition {
     Value(Compute),
     Rdf(Rdf),
     Chunk(ChunkAtom),
+    Msd(Msd),
 }
 
 impl Definition {
@@ -74,13 +77,15 @@ impl Definition {
             Self::Value(c) => &c.id,
             Self::Rdf(r) => &r.id,
             Self::Chunk(c) => &c.id,
+            Self::Msd(m) => &m.id,
         }
     }
 }
 
 /// The words of `compute ID GROUP STYLE args...`; `groups` are the group names by bit,
-/// `spacing` the lattice spacings (LAMMPS's default lattice has spacing 1).
-pub fn parse(a: &mut Args, groups: &[String], spacing: gendpde_engine::Vec3) -> Result<Definition, ScriptError> {
+/// `spacing` the lattice spacings (LAMMPS's default lattice has spacing 1), `system` and
+/// `max_tag` the particles so far (compute msd records their positions).
+pub fn parse(a: &mut Args, groups: &[String], spacing: gendpde_engine::Vec3, system: Option<&System>, max_tag: u64) -> Result<Definition, ScriptError> {
     let id = a.word("a compute ID")?.to_string();
     let group = a.word("a group")?;
     let style = match a.word("a compute style")? {
@@ -90,6 +95,10 @@ pub fn parse(a: &mut Args, groups: &[String], spacing: gendpde_engine::Vec3) -> 
         "temp" => ComputeStyle::Temp { mask: crate::base::groups::mask(groups, group, a)?, extra_dof: 3.0 },
         "rdf" if group == "all" => return Ok(Definition::Rdf(Rdf::parse(id, a)?)),
         "rdf" => return Err(a.err(format!("compute rdf on group {group}: only group all is supported"))),
+        "msd" => {
+            let sys = system.ok_or_else(|| a.err("compute msd before the box exists (create_box, read_data or read_restart)"))?;
+            return Ok(Definition::Msd(Msd::parse(id, crate::base::groups::mask(groups, group, a)?, a, sys, max_tag)?));
+        }
         "chunk/atom" => return Ok(Definition::Chunk(ChunkAtom::parse(id, crate::base::groups::mask(groups, group, a)?, a, spacing)?)),
         other => return Err(a.err(format!("unknown compute style '{other}'; known: {COMPUTE_STYLES}"))),
     };
@@ -138,6 +147,14 @@ pub fn value(computes: &[Compute], sys: &System, totals: &Totals, name: &str) ->
         // the scalar only (LAMMPS's vector, the kinetic energy tensor, is not provided)
         ComputeStyle::Temp { mask, extra_dof } => (rest == id).then(|| Kinetic::measure(sys, mask).temperature(totals.kb, extra_dof)),
     }
+}
+
+/// `c_ID[k]` (k = 1..4) of a compute msd; None if `name` is no such reference.
+/// Collective.
+pub fn msd_value(msds: &[Msd], sys: &System, name: &str) -> Option<f64> {
+    let (id, k) = name.strip_prefix("c_")?.strip_suffix(']')?.split_once('[')?;
+    let k = k.parse::<usize>().ok().filter(|k| (1..=4).contains(k))?;
+    Some(msds.iter().find(|m| m.id == id)?.vector(sys)[k - 1])
 }
 
 /// `compute_modify ID extra/dof N` (or `extra N`) of a compute temp.
