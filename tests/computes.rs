@@ -1,5 +1,6 @@
 //! LAMMPS scripts run unchanged (issue 17, part 2): compute chunk/atom and fix ave/chunk
-//! (scripts/lammps/in.dpde-profile) and compute msd (in.dpde-msd) beside the reference
+//! (scripts/lammps/in.dpde-profile), compute msd (in.dpde-msd), compute ke/atom, pe/atom
+//! and reduce (in.dpde-reduce) beside the reference
 //! LAMMPS (../shared/lammps), with their error messages and their independence of the rank
 //! count.
 
@@ -161,39 +162,97 @@ fn unfix_stops_ave_chunk() {
 
 const MSD: &str = "in.dpde-msd";
 
-/// compute msd with and without `com yes`, of all particles and of a group, over 100 steps
-/// of the deterministic scene in which particles cross the boundaries: the same values as
-/// LAMMPS's to 1e-9 relative (the trajectories' own agreement).
-#[test]
-fn msd_matches_lammps() {
-    let (dl, dg) = (tempdir("msd-lammps"), tempdir("msd-gendpde"));
-    stage_inputs(&dl, MSD);
-    stage_inputs(&dg, MSD);
-    let l = parse_thermo(&expect_success("LAMMPS", &run_lammps(&dl, MSD, &[])), "Step");
-    let out = gendpde(&dg, &["run", MSD, "-log", "none"]);
+/// Runs `input` in LAMMPS and gendpde; asserts the same thermo rows (`rows` of them, the
+/// step `moved` column positive at the end) to 1e-9 relative, the trajectories' own
+/// agreement, and returns the worst relative difference.
+fn same_thermo_as_lammps(name: &str, input: &str, rows: usize) -> f64 {
+    let (dl, dg) = (tempdir(&format!("{name}-lammps")), tempdir(&format!("{name}-gendpde")));
+    stage_inputs(&dl, input);
+    stage_inputs(&dg, input);
+    let l = parse_thermo(&expect_success("LAMMPS", &run_lammps(&dl, input, &[])), "Step");
+    let out = gendpde(&dg, &["run", input, "-log", "none"]);
     assert!(out.status.success(), "gendpde failed:\n{}", stderr(&out));
     let g = parse_thermo(&String::from_utf8_lossy(&out.stdout), "Step");
-    assert_eq!(g.len(), 11);
+    assert_eq!(g.len(), rows);
     assert_eq!(g.len(), l.len());
-    assert!(g[10][4] > 0.5, "the particles hardly moved: <dr^2> = {}", g[10][4]);
     let mut worst: f64 = 0.0;
     for (a, b) in g.iter().zip(&l) {
+        assert_eq!(a.len(), b.len());
         for (x, y) in a.iter().zip(b) {
-            // step 0 with com yes: LAMMPS's round-off leaves 4e-29, gendpde's exact sums 0
-            assert!((x - y).abs() <= 1e-9 * x.abs().max(y.abs()) + 1e-20, "step {}: {x} vs LAMMPS {y}", a[0]);
+            // msd at step 0 with com yes: LAMMPS's round-off leaves 4e-29, gendpde's exact sums 0
+            assert!((x - y).abs() <= 1e-9 * x.abs().max(y.abs()) + 1e-20, "{input}: step {}: {x} vs LAMMPS {y}", a[0]);
             if x.abs().max(y.abs()) > 1e-20 {
                 worst = worst.max((x - y).abs() / x.abs().max(y.abs()));
             }
         }
     }
+    worst
+}
+
+/// compute msd with and without `com yes`, of all particles and of a group, over 100 steps
+/// of the deterministic scene in which particles cross the boundaries: the same values as
+/// LAMMPS's.
+#[test]
+fn msd_matches_lammps() {
+    let worst = same_thermo_as_lammps("msd", MSD, 11);
     eprintln!("msd: worst relative difference from LAMMPS {worst:.1e}");
 }
 
-/// The msd values do not depend on the number of ranks.
+const REDUCE: &str = "in.dpde-reduce";
+
+/// compute reduce in every mode over ke/atom, pe/atom (pairwise: half pair energies),
+/// positions, velocities and forces, of all particles and of a group, with thermo_modify
+/// norm yes: the same values as LAMMPS's.
+#[test]
+fn reduce_of_per_atom_computes_matches_lammps() {
+    let worst = same_thermo_as_lammps("reduce", REDUCE, 6);
+    eprintln!("reduce: worst relative difference from LAMMPS {worst:.1e}");
+}
+
+/// For GenDPDE, whose pe is the sum of the internal energies, pe/atom is u: its sum is pe.
+#[test]
+fn pe_atom_of_gendpde_sums_to_pe() {
+    let dir = tempdir("pe-atom-gendpde");
+    let script = "units lj\nlattice sc 0.5\nregion box block 0 14 0 14 0 14\ncreate_box 1 box\ncreate_atoms 1 box\nmass 1 1.0\n\
+                  velocity all create 1.5 4928459 dist gaussian\nset group all theta 1.5\npair_style gendpde 4.0 4928459\npair_coeff * * 4.5 1.0\n\
+                  fix eos all eos/vdw 60.0 2.4682 1.4142 excess\nfix rev all nve/gendpde\nfix ssa all shardlow\ntimestep 0.01\n\
+                  compute pe all pe/atom\ncompute s all reduce sum c_pe\ncompute ke all ke/atom\ncompute k all reduce sum c_ke\n\
+                  thermo 5\nthermo_style custom step pe c_s ke c_k\nthermo_modify norm no format float %.17g\nrun 10\n";
+    std::fs::write(dir.join("in.x"), script).unwrap();
+    let out = gendpde(&dir, &["run", "in.x", "-log", "none"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let rows = parse_thermo(&String::from_utf8_lossy(&out.stdout), "Step");
+    assert_eq!(rows.len(), 3);
+    for r in rows {
+        assert!((r[1] - r[2]).abs() <= 1e-12 * r[1].abs(), "pe {} vs sum of pe/atom {}", r[1], r[2]);
+        assert!((r[3] - r[4]).abs() <= 1e-12 * r[3].abs(), "ke {} vs sum of ke/atom {}", r[3], r[4]);
+    }
+}
+
+/// The msd and reduce values do not depend on the number of ranks.
 #[cfg(feature = "mpi")]
 #[test]
-fn msd_is_rank_independent() {
-    same_on_1_2_3_ranks("msd-ranks", MSD, |_, out| parse_thermo(&String::from_utf8_lossy(&out.stdout), "Step").iter().map(|r| format!("{r:?}\n")).collect());
+fn msd_and_reduce_are_rank_independent() {
+    for input in [MSD, REDUCE] {
+        same_on_1_2_3_ranks("thermo-ranks", input, |_, out| parse_thermo(&String::from_utf8_lossy(&out.stdout), "Step").iter().map(|r| format!("{r:?}\n")).collect());
+    }
+}
+
+#[test]
+fn reduce_errors_name_the_line() {
+    let k = "compute ke all ke/atom\ncompute t all temp\n";
+    for (line, expected) in [
+        ("compute r all reduce total c_ke", "in.x:6: compute: mode 'total': expected sum, sumsq, sumabs, min, max, ave, avesq or aveabs"),
+        ("compute r all reduce sum", "in.x:6: compute: missing argument: expected inputs (x, y, z, vx, vy, vz, fx, fy, fz, c_ID)"),
+        ("compute r all reduce sum c_nope", "in.x:6: compute: input 'c_nope': no per-atom compute with ID 'nope' (ke/atom, pe/atom)"),
+        ("compute r all reduce sum c_t", "in.x:6: compute: input 'c_t': compute t has no per-atom values (ke/atom, pe/atom)"),
+        ("compute r all reduce sum mass", "in.x:6: compute: input 'mass': expected x, y, z, vx, vy, vz, fx, fy, fz or c_ID of a per-atom compute"),
+        ("compute r all reduce max c_ke replace 1 2", "in.x:6: compute: keyword replace is not supported"),
+        ("compute p all pe/atom angle kspace charge", "in.x:6: compute: unknown keyword 'charge'; known: pair, bond, angle, dihedral, improper, kspace, fix"),
+        ("compute p nogroup ke/atom", "in.x:6: compute: no group 'nogroup'"),
+    ] {
+        expect_error(&format!("{k}{line}"), expected);
+    }
 }
 
 #[test]

@@ -89,16 +89,18 @@ pub fn unfix(sim: &mut Sim, outputs: &mut Outputs, a: &mut Args) -> Result<(), S
 
 /// `compute ID GROUP STYLE args...` (redefining an ID replaces it).
 pub fn compute(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
-    let def = compute::parse(a, &sim.groups, sim.lattice_spacing(), sim.system.as_ref(), sim.max_tag)?;
+    let def = compute::parse(a, &sim.groups, &sim.computes, sim.lattice_spacing(), sim.system.as_ref(), sim.max_tag)?;
     sim.computes.retain(|c| c.id != def.id());
     sim.rdfs.retain(|r| r.id != def.id());
     sim.chunks.retain(|r| r.id != def.id());
     sim.msds.retain(|r| r.id != def.id());
+    sim.reduces.retain(|r| r.id != def.id());
     match def {
         Definition::Value(c) => sim.computes.push(c),
         Definition::Rdf(r) => sim.rdfs.push(r),
         Definition::Chunk(c) => sim.chunks.push(c),
         Definition::Msd(m) => sim.msds.push(m),
+        Definition::Reduce(r) => sim.reduces.push(r),
     }
     Ok(())
 }

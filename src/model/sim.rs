@@ -6,6 +6,7 @@ use crate::base::region::Region;
 use crate::base::units::Units;
 use crate::styles::compute::chunk::ChunkAtom;
 use crate::styles::compute::msd::Msd;
+use crate::styles::compute::reduce::Reduce;
 use crate::styles::compute::rdf::Rdf;
 use crate::styles::compute::Compute;
 use crate::styles::fix::{Fix, FixStyle};
@@ -53,6 +54,8 @@ pub struct Sim {
     pub chunks: Vec<ChunkAtom>,
     /// `compute ID GROUP msd` definitions (thermo `c_ID[k]`).
     pub msds: Vec<Msd>,
+    /// `compute ID GROUP reduce` definitions (thermo `c_ID`, `c_ID[k]`).
+    pub reduces: Vec<Reduce>,
     /// Group names by bit (an empty name is a free slot).
     pub groups: Vec<String>,
     /// State of fixes read from a restart, taken by the fixes as they are defined.
@@ -85,6 +88,7 @@ impl Sim {
             rdfs: Vec::new(),
             chunks: Vec::new(),
             msds: Vec::new(),
+            reduces: Vec::new(),
             groups: Vec::new(),
             restored_state: Vec::new(),
         }
