@@ -20,8 +20,9 @@ install_build_deps() {
     $sudo_cmd apt-get update -qq
     $sudo_cmd env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "${missing[@]}" >/dev/null
   fi
-  # h5py and friends for the H5MD reader, the Python package and its tests.
-  if ! python3 -c "import h5py, numpy, matplotlib, pandas, pytest" 2>/dev/null; then
+  # h5py and friends for the H5MD reader, the Python package and its tests; OVITO and
+  # MDAnalysis for the tests that open dumps and H5MD files as users do.
+  if ! python3 -c "import h5py, numpy, matplotlib, pandas, pytest, ovito, MDAnalysis" 2>/dev/null; then
     python3 -m pip install -q -r "$(dirname "${BASH_SOURCE[0]}")/requirements.txt" 2>/dev/null \
       || python3 -m pip install -q --break-system-packages -r "$(dirname "${BASH_SOURCE[0]}")/requirements.txt"
   fi

@@ -13,6 +13,7 @@ mod output;
 pub mod styles;
 
 pub use base::script::{AppError, Mode};
+pub use base::signals;
 pub use commands::Interpreter;
 pub use output::console::Output;
 pub use output::thermo::Observables;

@@ -1,7 +1,7 @@
 //! gendpde: Generalised energy-conserving Dissipative Particle Dynamics.
 
 use clap::{Parser, Subcommand};
-use gendpde::{AppError, Interpreter, Mode, Output};
+use gendpde::{signals, AppError, Interpreter, Mode, Output};
 use gendpde_engine::Transport;
 use std::io::{IsTerminal, Read};
 use std::path::PathBuf;
@@ -305,6 +305,13 @@ fn main() -> ExitCode {
 fn run(session: Session) -> ExitCode {
     let start = std::time::Instant::now();
     let transport = transport();
+    // after MPI's initialisation, which may install handlers of its own
+    if session.mode == Mode::Run {
+        if let Err(e) = signals::install() {
+            eprintln!("ERROR: cannot install the signal handlers: {e}");
+            return ExitCode::FAILURE;
+        }
+    }
     let rank = transport.rank();
     let mut out = Output::new(rank == 0 && session.screen);
     if let Some(log) = session.log.filter(|l| l != "none" && rank == 0) {
@@ -343,22 +350,32 @@ fn run(session: Session) -> ExitCode {
             }
             let s = start.elapsed().as_secs();
             it.out.line(&format!("Total wall time: {}:{:02}:{:02}", s / 3600, s / 60 % 60, s % 60));
-            ExitCode::SUCCESS
+            // a signal outside a run: the script went on to its end
+            match signals::received().load(std::sync::atomic::Ordering::Relaxed) {
+                0 => ExitCode::SUCCESS,
+                sig => {
+                    it.out.line(&format!("{} received outside a run; the script ended", signals::name(sig)));
+                    ExitCode::from((128 + sig) as u8)
+                }
+            }
         }
         Err(e) => {
             // Script errors are the same on every rank; a failed step is told by the rank
             // that saw it (and by rank 0 that the run stopped).
             let local = match &e {
                 AppError::Step { err, .. } => !err.elsewhere,
-                AppError::Script(_) => rank == 0,
+                AppError::Script(_) | AppError::Interrupted { .. } => rank == 0,
             };
-            let msg = format!("ERROR: {e}");
+            let (msg, code) = match &e {
+                AppError::Interrupted { signal, .. } => (e.to_string(), ExitCode::from((128 + signal) as u8)),
+                _ => (format!("ERROR: {e}"), ExitCode::FAILURE),
+            };
             if local || rank == 0 {
                 it.out.log_line(&msg);
                 eprintln!("{msg}");
             }
-            it.out.flush();
-            ExitCode::FAILURE
+            it.out.close_log();
+            code
         }
     }
 }

@@ -167,3 +167,44 @@ fn a_tiny_heat_capacity_is_refused_in_a_short_message() {
     assert!(err.contains("C_V = 1e-300 must exceed k_B = 1.0"), "{err}");
     assert!(err.len() < 300, "{err}");
 }
+
+#[test]
+fn a_full_disk_under_the_log_stops_the_script_naming_the_log() {
+    let dir = tempdir("fulllog");
+    let script = std::fs::read_to_string(common::example("heat-only")).unwrap().replace("thermo       500", "thermo 1");
+    std::fs::write(dir.join("in.test"), script).unwrap();
+    // a file-size limit of 4 KiB stands for the full disk (SIGXFSZ ignored: writes fail)
+    let cmd = format!("trap '' XFSZ; ulimit -f 4; exec {} run in.test -log log.test -var steps 2000", env!("CARGO_BIN_EXE_gendpde"));
+    let out = Command::new("bash").args(["-c", &cmd]).current_dir(&dir).output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains("log file log.test: File too large"), "{err}");
+    assert!(!err.contains("internal error") && !err.contains("panicked"), "{err}");
+    // what was written before stays
+    let log = std::fs::read_to_string(dir.join("log.test")).unwrap();
+    assert!(log.len() >= 3000 && log.contains("pair_style"), "{} bytes", log.len());
+}
+
+#[test]
+fn a_closed_screen_pipe_stops_the_run_like_sigpipe_without_a_panic() {
+    use std::io::{BufRead, BufReader};
+    let dir = tempdir("pipe");
+    let ex = common::example("vdw-equilibrium");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_gendpde"))
+        .args(["run", ex.to_str().unwrap(), "-log", "none", "-var", "n", "11", "-var", "rc", "3.0", "-var", "steps", "100000"])
+        .current_dir(&dir)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut lines = BufReader::new(child.stdout.take().unwrap()).lines();
+    for _ in 0..2 {
+        lines.next().unwrap().unwrap();
+    }
+    drop(lines); // like `| head -2`
+    let out = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(128 + 13), "{err}");
+    assert!(err.contains("run stopped by SIGPIPE"), "{err}");
+    assert!(!err.contains("internal error") && !err.contains("panicked"), "{err}");
+}

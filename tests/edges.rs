@@ -121,7 +121,7 @@ fn heat_capacity_at_k_b_is_refused_and_just_above_runs() {
     let out = Command::new(env!("CARGO_BIN_EXE_gendpde")).args(["check", "in.cv"]).current_dir(&dir).output().unwrap();
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(!out.status.success());
-    assert!(err.contains("in.cv:10: fix: C_V = 1 must exceed k_B = 1"), "{err}");
+    assert!(err.contains("in.cv:10: fix: C_V = 1.0 must exceed k_B = 1.0"), "{err}");
     let mut it = common::run_script(&near_zero("substeps 4 reject yes").replace("eos/cv 1.5", "eos/cv 1.05"));
     let physics = it.dynamics().unwrap();
     let sys = it.system().unwrap();

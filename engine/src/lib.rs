@@ -17,7 +17,7 @@ pub use domain::Domain;
 pub use fields::Fields;
 pub use neighbor::NeighborList;
 pub use pair_search::{build_lists, ListRequest};
-pub use particles::{stage, Column, FieldInfo, Particles, RecordColumn, SavedByTag, FIELDS};
+pub use particles::{stage, Column, FieldInfo, FieldReader, Particles, RecordColumn, SavedByTag, FIELDS};
 pub use sweep_pairs::SweepPairs;
 
 /// Three-component vector of the particle store.

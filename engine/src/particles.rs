@@ -31,6 +31,8 @@ pub trait Column: Copy + Default {
     const INTEGER: bool;
     fn pack(self, buf: &mut Vec<f64>);
     fn unpack(rec: &[f64]) -> Self;
+    /// Value `k` (below `WIDTH`).
+    fn get(self, k: usize) -> f64;
 }
 
 impl Column for f64 {
@@ -41,6 +43,9 @@ impl Column for f64 {
     }
     fn unpack(rec: &[f64]) -> Self {
         rec[0]
+    }
+    fn get(self, _k: usize) -> f64 {
+        self
     }
 }
 
@@ -54,6 +59,9 @@ macro_rules! integer_column {
             }
             fn unpack(rec: &[f64]) -> Self {
                 rec[0] as $t
+            }
+            fn get(self, _k: usize) -> f64 {
+                self as f64
             }
         }
     )*};
@@ -69,6 +77,9 @@ impl Column for bool {
     fn unpack(rec: &[f64]) -> Self {
         rec[0] != 0.0
     }
+    fn get(self, _k: usize) -> f64 {
+        self as u8 as f64
+    }
 }
 
 impl Column for [f64; 3] {
@@ -80,6 +91,9 @@ impl Column for [f64; 3] {
     fn unpack(rec: &[f64]) -> Self {
         [rec[0], rec[1], rec[2]]
     }
+    fn get(self, k: usize) -> f64 {
+        self[k]
+    }
 }
 
 impl Column for [i32; 3] {
@@ -90,6 +104,9 @@ impl Column for [i32; 3] {
     }
     fn unpack(rec: &[f64]) -> Self {
         [rec[0] as i32, rec[1] as i32, rec[2] as i32]
+    }
+    fn get(self, k: usize) -> f64 {
+        self[k] as f64
     }
 }
 
@@ -125,6 +142,9 @@ pub struct RecordColumn {
     pub offset: usize,
 }
 
+/// Value k of a field of particle i (see [`Particles::reader`]).
+pub type FieldReader = fn(&Particles, usize, usize) -> f64;
+
 macro_rules! particle_fields {
     ($( $(#[$doc:meta])* $name:ident : $ty:ty, $key:literal, gate $gate:expr, comm $comm:expr, stages $stages:expr; )*) => {
         /// Per-particle state; see the module documentation for the field table.
@@ -142,6 +162,15 @@ macro_rules! particle_fields {
         ];
 
         impl Particles {
+            /// Reads value k of field `name` of a particle (dumps): None for an unknown or
+            /// unallocated field.
+            pub fn reader(&self, name: &str) -> Option<FieldReader> {
+                $( if name == $key {
+                    return self.allocates($gate).then_some((|p: &Particles, i: usize, k: usize| p.$name[i].get(k)) as FieldReader);
+                } )*
+                None
+            }
+
             /// Sets every allocated field to length `len` (new entries default).
             fn resize(&mut self, len: usize) {
                 $( let n = if self.allocates($gate) { len } else { 0 }; self.$name.resize(n, <$ty>::default()); )*

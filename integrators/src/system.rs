@@ -1,6 +1,9 @@
 //! The simulated system: box, particles, communication and the lists built on them.
 
 use crate::error::StepError;
+use std::cell::Cell;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Arc;
 use gendpde_engine::cells::CellBins;
 use gendpde_engine::{dot, sub, CellGrid, Comm, Domain, build_lists, ListRequest, NeighborList, Particles, SweepPairs, Vec3};
 
@@ -57,6 +60,11 @@ pub struct System {
     /// Smallest cell side the grid must have beyond the styles' own reach (outputs that
     /// search pairs farther out, e.g. `compute rdf ... cutoff`).
     pub min_cell: f64,
+    /// The number of a signal this rank received (set by the program's handler; 0: none).
+    pub interrupt: Arc<AtomicUsize>,
+    /// The largest `interrupt` of all ranks at the last `settle` (0: none): the ranks
+    /// agree on it, so they stop at the same step.
+    pub interrupted: Cell<usize>,
 }
 
 impl System {
@@ -88,6 +96,8 @@ impl System {
             restored: false,
             restored_grid: None,
             min_cell: 0.0,
+            interrupt: Arc::default(),
+            interrupted: Cell::new(0),
         }
     }
 
@@ -137,12 +147,15 @@ impl System {
     }
 
     /// Agrees over all ranks whether the step failed: Err on every rank if any failed.
+    /// The same reduction agrees on `interrupted`.
     pub fn settle(&self, outcome: Result<(), StepError>) -> Result<(), StepError> {
-        if self.comm.any(outcome.is_err()) {
-            Err(outcome.err().unwrap_or_else(|| StepError::elsewhere(self.step)))
-        } else {
-            Ok(())
+        let local = if outcome.is_err() { f64::INFINITY } else { self.interrupt.load(Ordering::Relaxed) as f64 };
+        let agreed = self.comm.max(local);
+        if agreed == f64::INFINITY {
+            return Err(outcome.err().unwrap_or_else(|| StepError::elsewhere(self.step)));
         }
+        self.interrupted.set(agreed as usize);
+        Ok(())
     }
 
     /// Migrates particles, rebuilds ghosts and bins, and the lists of the given radii;

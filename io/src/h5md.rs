@@ -4,20 +4,26 @@
 //!
 //! ```text
 //! /h5md                      attr version = [1, 1] (int32)
-//! /h5md/author               attr name
+//! /h5md/author               attrs name, email (optional)
 //! /h5md/creator              attrs name = "gendpde", version
 //! /particles/all/box         attrs dimension = 3, boundary = ["periodic"; 3]
-//! /particles/all/box/edges   float64 [3] (time independent: the box is fixed)
+//! /particles/all/box/edges/{value [frames, 3], step, time}
 //! /particles/all/<element>/value   [frames, N, 3] or [frames, N]
 //! /particles/all/<element>/step    int64 [frames]
 //! /particles/all/<element>/time    float64 [frames]
+//! /observables/<name>/{value [frames], step, time}
 //! ```
 //!
 //! All time-dependent datasets are chunked with an unlimited frame axis.  The
 //! `step` and `time` datasets are stored once (in the first element) and are
-//! hard links in every other element, as H5MD permits, so a frame becomes
-//! visible to every element with a single extension of `step`.  Strings are
-//! variable-length UTF-8 (read by h5py as `str`).
+//! hard links in every other element, the box edges and the observables, as
+//! H5MD permits, so a frame becomes visible to all of them with a single
+//! extension of `step`.  The edges are time dependent because that is what
+//! MDAnalysis reads; the observables have a value at every frame, as
+//! MDAnalysis reads `observables/<name>/value[frame]`.  In `metal` units
+//! `value` and `time` datasets carry H5MD `unit` attributes (unitless `lj`
+//! files have none).  Strings are variable-length UTF-8 (read by h5py as
+//! `str`).
 //!
 //! Durability: the file is created with the v110 format and switched to
 //! SWMR-write mode once every object exists, so HDF5 orders its metadata
@@ -64,6 +70,44 @@ pub enum H5mdField {
     InternalEnergy,
     Temperature,
     Density,
+}
+
+/// What a file records besides the particles: its author, creator version,
+/// units and the names of its observables.
+#[derive(Clone, Debug, Default)]
+pub struct H5mdMeta {
+    pub author: String,
+    pub email: Option<String>,
+    pub creator_version: String,
+    /// The unit system (`metal` gives unit attributes; None or `lj`: unitless).
+    pub units: Option<String>,
+    /// Observables written at every frame (`/observables/<name>`).
+    pub observables: Vec<String>,
+}
+
+impl H5mdMeta {
+    pub fn new(author: &str, creator_version: &str) -> Self {
+        Self { author: author.into(), creator_version: creator_version.into(), ..Self::default() }
+    }
+}
+
+/// The H5MD unit of an element (or "length", "time") in a unit system; None when unitless.
+fn unit(system: Option<&str>, of: &str) -> Option<&'static str> {
+    if system != Some("metal") {
+        return None;
+    }
+    // gendpde keeps masses in energy time^2 / length^2 and momenta in energy time / length
+    Some(match of {
+        "position" | "length" => "Angstrom",
+        "time" => "ps",
+        "velocity" => "Angstrom ps-1",
+        "momentum" => "eV ps Angstrom-1",
+        "mass" => "eV ps2 Angstrom-2",
+        "internal_energy" => "eV",
+        "temperature" => "K",
+        "density" => "Angstrom-3",
+        _ => return None,
+    })
 }
 
 /// Storage type of an element's `value` dataset.
@@ -194,6 +238,12 @@ pub struct H5mdWriter {
     path: PathBuf,
     // Datasets are declared before the file so they are closed first.
     elements: Vec<Element>,
+    /// `box/edges/value` (None in files of older versions, whose edges are fixed).
+    edges_value: Option<Dataset>,
+    /// The edges written with the next frames.
+    edges: [f64; 3],
+    /// `/observables/<name>/value` by name.
+    observables: Vec<(String, Dataset)>,
     fields: Vec<H5mdField>,
     file: File,
     n: usize,
@@ -301,15 +351,9 @@ mod repair;
 pub use repair::repair_h5md;
 
 impl H5mdWriter {
-    /// Creates (truncating) `path` for `n` particles and the given fields.
-    pub fn create(
-        path: &Path,
-        n: usize,
-        edges: [f64; 3],
-        fields: &[H5mdField],
-        author: &str,
-        creator_version: &str,
-    ) -> Result<Self, H5mdError> {
+    /// Creates (truncating) `path` for `n` particles, the given fields and
+    /// what `meta` says; `edges` is the box of the frames until [`Self::set_edges`].
+    pub fn create(path: &Path, n: usize, edges: [f64; 3], fields: &[H5mdField], meta: &H5mdMeta) -> Result<Self, H5mdError> {
         silence();
         check_fields(path, fields)?;
         // Build the file under a temporary name and rename it into place
@@ -322,7 +366,7 @@ impl H5mdWriter {
         tmp_name.push(name);
         tmp_name.push(format!(".tmp{}", std::process::id()));
         let tmp = path.with_file_name(tmp_name);
-        let result = Self::create_at(path, &tmp, n, edges, fields, author, creator_version)
+        let result = Self::create_at(path, &tmp, n, edges, fields, meta)
             .and_then(|w| {
                 std::fs::rename(&tmp, path).map_err(|e| {
                     error(path, format_args!("cannot rename {}: {e}", tmp.display()))
@@ -335,24 +379,21 @@ impl H5mdWriter {
         result
     }
 
-    #[allow(clippy::too_many_arguments)]
-    fn create_at(
-        path: &Path,
-        tmp: &Path,
-        n: usize,
-        edges: [f64; 3],
-        fields: &[H5mdField],
-        author: &str,
-        creator_version: &str,
-    ) -> Result<Self, H5mdError> {
+    fn create_at(path: &Path, tmp: &Path, n: usize, edges: [f64; 3], fields: &[H5mdField], meta: &H5mdMeta) -> Result<Self, H5mdError> {
         let file = h5(path, "cannot create file", writer_options().create(tmp))?;
-
-        write_metadata(path, &file, edges, author, creator_version)?;
+        let units = meta.units.as_deref();
+        write_metadata(path, &file, meta)?;
         let all = h5(path, "opening /particles/all", file.group("particles/all"))?;
 
         // Time-dependent elements; step/time live in the first one and are
-        // hard-linked from the others.
-        let mut shared: Option<String> = None;
+        // hard-linked from the others, the box edges and the observables.
+        let first = fields.first().ok_or_else(|| error(path, "no fields to write"))?.h5md_name();
+        let link = |g: &Group, what: &str| -> Result<(), H5mdError> {
+            for series in ["step", "time"] {
+                h5(path, &format!("linking {what}/{series}"), g.link_hard(&format!("/particles/all/{first}/{series}"), series))?;
+            }
+            Ok(())
+        };
         for &field in fields {
             let name = field.h5md_name();
             let g = h5(
@@ -360,43 +401,42 @@ impl H5mdWriter {
                 &format!("creating element {name}"),
                 all.create_group(name),
             )?;
-            create_value(path, &g, field, n)?;
-            match &shared {
-                None => {
-                    create_series::<i64>(path, &g, "step")?;
-                    create_series::<f64>(path, &g, "time")?;
-                    shared = Some(format!("/particles/all/{name}"));
-                }
-                Some(first) => {
-                    h5(
-                        path,
-                        &format!("linking {name}/step"),
-                        g.link_hard(&format!("{first}/step"), "step"),
-                    )?;
-                    h5(
-                        path,
-                        &format!("linking {name}/time"),
-                        g.link_hard(&format!("{first}/time"), "time"),
-                    )?;
-                }
+            let value = create_value(path, &g, field, n)?;
+            set_unit(path, &value, unit(units, name))?;
+            if name == first {
+                create_series::<i64>(path, &g, "step")?;
+                let time = create_series::<f64>(path, &g, "time")?;
+                set_unit(path, &time, unit(units, "time"))?;
+            } else {
+                link(&g, name)?;
             }
         }
-        drop(all);
+        let edges_g = h5(path, "creating box edges", all.create_group("box/edges"))?;
+        let value = h5(
+            path,
+            "creating box/edges/value",
+            edges_g.new_dataset::<f64>().chunk([STEP_CHUNK, 3]).shape(SimpleExtents::from_vec(vec![Extent::new(0, None), Extent::fixed(3)])).create("value"),
+        )?;
+        set_unit(path, &value, unit(units, "length"))?;
+        link(&edges_g, "box/edges")?;
+        for name in &meta.observables {
+            if name.is_empty() || name.contains('/') || name == "." {
+                return Err(error(path, format_args!("observable name {name:?} is not an HDF5 name")));
+            }
+            let g = h5(path, &format!("creating observable {name}"), file.create_group(&format!("observables/{name}")))?;
+            h5(path, &format!("creating observables/{name}/value"), g.new_dataset::<f64>().chunk(STEP_CHUNK).shape(0..).create("value"))?;
+            link(&g, &format!("observables/{name}"))?;
+        }
+        drop((all, edges_g, value));
         h5(path, "flushing", file.flush())?;
         h5(path, "starting SWMR write mode", file.start_swmr())?;
-        Self::with_elements(path, file, n, fields, 0)
+        Self::with_elements(path, file, n, fields, 0, edges)
     }
 
     /// Opens the element datasets of `file` (in SWMR-write mode).  HDF5
     /// 1.10 fails to start SWMR mode while objects are open ("ID already in
     /// use"), hence `create` closes and reopens them.
-    fn with_elements(
-        path: &Path,
-        file: File,
-        n: usize,
-        fields: &[H5mdField],
-        frames: usize,
-    ) -> Result<Self, H5mdError> {
+    fn with_elements(path: &Path, file: File, n: usize, fields: &[H5mdField], frames: usize, edges: [f64; 3]) -> Result<Self, H5mdError> {
         let mut elements = Vec::with_capacity(fields.len());
         for &field in fields {
             let name = field.h5md_name();
@@ -414,9 +454,20 @@ impl H5mdWriter {
                 time: open("time")?,
             });
         }
+        let edges_value = file.dataset("particles/all/box/edges/value").ok();
+        let mut observables = Vec::new();
+        if let Ok(g) = file.group("observables") {
+            for name in h5(path, "listing /observables", g.member_names())? {
+                let value = h5(path, &format!("opening observables/{name}/value"), g.dataset(&format!("{name}/value")))?;
+                observables.push((name, value));
+            }
+        }
         Ok(Self {
             path: path.to_path_buf(),
             elements,
+            edges_value,
+            edges,
+            observables,
             fields: fields.to_vec(),
             file,
             n,
@@ -559,12 +610,19 @@ impl H5mdWriter {
             });
         }
         let frames = frames.unwrap_or(0);
+        // the box of the last frame (older files: the fixed edges)
+        let edges = match (all.dataset("box/edges/value"), all.dataset("box/edges")) {
+            (Ok(v), _) if frames > 0 => h5(path, "reading box edges", v.read_slice_1d::<f64, _>((frames - 1, ..)))?.to_vec(),
+            (_, Ok(e)) => h5(path, "reading box edges", e.read_raw::<f64>())?,
+            _ => vec![0.0; 3],
+        };
+        let edges: [f64; 3] = edges.try_into().map_err(|e: Vec<f64>| error(path, format_args!("box edges has {} values, not 3", e.len())))?;
         // A trailing incomplete frame (value/time longer than step) is left
         // in place: begin_frame keeps the length and the frame's data is
         // overwritten.  (Shrinking datasets is avoided in SWMR mode.)
         drop(elements);
         drop(all);
-        Self::with_elements(path, file, n, fields, frames)
+        Self::with_elements(path, file, n, fields, frames, edges)
     }
 
     /// The fields written, in the order given to `create`/`append`.
@@ -587,7 +645,32 @@ impl H5mdWriter {
         self.frames
     }
 
-    /// Starts a frame: grows every value dataset by one frame.
+    /// The box edges of the next frames.
+    pub fn set_edges(&mut self, edges: [f64; 3]) {
+        self.edges = edges;
+    }
+
+    /// Names of the file's observables.
+    pub fn observables(&self) -> impl Iterator<Item = &str> {
+        self.observables.iter().map(|(n, _)| n.as_str())
+    }
+
+    /// Writes observables of the current frame, by name; the file's others
+    /// are NaN in this frame, names the file lacks are left out.
+    pub fn write_observables(&mut self, values: &[(&str, f64)]) -> Result<(), H5mdError> {
+        if self.current.is_none() {
+            return Err(self.err("write_observables outside a frame (call begin_frame first)"));
+        }
+        for (name, ds) in &self.observables {
+            if let Some(&(_, v)) = values.iter().find(|(n, _)| n == name) {
+                h5(&self.path, &format!("writing observable {name}"), ds.write_slice(&[v][..], self.frames..self.frames + 1))?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Starts a frame: grows every value dataset by one frame and writes
+    /// the box edges (observables start as NaN).
     pub fn begin_frame(&mut self, step: u64, time: f64) -> Result<(), H5mdError> {
         if let Some((s, _)) = self.current {
             return Err(self.err(format_args!(
@@ -605,6 +688,14 @@ impl H5mdWriter {
                 &format!("extending {}/value", el.field),
                 el.value.resize(shape),
             )?;
+        }
+        if let Some(v) = &self.edges_value {
+            h5(&self.path, "extending box/edges/value", v.resize([frame + 1, 3]))?;
+            h5(&self.path, "writing box edges", v.write_slice::<_, f64, _, _>(&[self.edges][..], (frame..frame + 1, ..)))?;
+        }
+        for (name, ds) in &self.observables {
+            h5(&self.path, &format!("extending observables/{name}/value"), ds.resize(frame + 1))?;
+            h5(&self.path, &format!("writing observable {name}"), ds.write_slice(&[f64::NAN][..], frame..frame + 1))?;
         }
         self.current = Some((step, time));
         Ok(())
@@ -709,16 +800,10 @@ impl H5mdWriter {
     }
 }
 
-/// Writes `/h5md` and `/particles/all/box`.  A separate function so every
-/// attribute handle is closed before SWMR mode starts (HDF5 refuses to start
-/// it with open attributes).
-fn write_metadata(
-    path: &Path,
-    file: &File,
-    edges: [f64; 3],
-    author: &str,
-    creator_version: &str,
-) -> Result<(), H5mdError> {
+/// Writes `/h5md` and `/particles/all/box` (without its edges).  A separate
+/// function so every attribute handle is closed before SWMR mode starts
+/// (HDF5 refuses to start it with open attributes).
+fn write_metadata(path: &Path, file: &File, meta: &H5mdMeta) -> Result<(), H5mdError> {
     // /h5md
     let h5md = h5(path, "creating /h5md", file.create_group("h5md"))?;
     let version = h5(
@@ -728,10 +813,13 @@ fn write_metadata(
     )?;
     h5(path, "writing /h5md version", version.write_raw(&[1i32, 1]))?;
     let g = h5(path, "creating /h5md/author", h5md.create_group("author"))?;
-    write_str_attr(path, &g, "name", author)?;
+    write_str_attr(path, &g, "name", &meta.author)?;
+    if let Some(email) = &meta.email {
+        write_str_attr(path, &g, "email", email)?;
+    }
     let g = h5(path, "creating /h5md/creator", h5md.create_group("creator"))?;
     write_str_attr(path, &g, "name", "gendpde")?;
-    write_str_attr(path, &g, "version", creator_version)?;
+    write_str_attr(path, &g, "version", &meta.creator_version)?;
 
     // /particles/all/box
     let all = h5(
@@ -757,14 +845,15 @@ fn write_metadata(
         "writing box boundary",
         boundary.write_raw(&[periodic.clone(), periodic.clone(), periodic]),
     )?;
-    let e = h5(
-        path,
-        "creating box edges",
-        bx.new_dataset::<f64>().shape(3).create("edges"),
-    )?;
-    h5(path, "writing box edges", e.write_raw(&edges))?;
-
     Ok(())
+}
+
+/// The H5MD `unit` attribute of a dataset (none when unitless).
+fn set_unit(path: &Path, ds: &Dataset, unit: Option<&str>) -> Result<(), H5mdError> {
+    let Some(unit) = unit else { return Ok(()) };
+    let v = vlen(path, unit)?;
+    let attr = h5(path, "creating a unit attribute", ds.new_attr::<VarLenUnicode>().create("unit"))?;
+    h5(path, "writing a unit attribute", attr.write_scalar(&v))
 }
 
 fn check_fields(path: &Path, fields: &[H5mdField]) -> Result<(), H5mdError> {

@@ -14,7 +14,7 @@ pub mod variables;
 pub use data_file::{parse_data, read_data, write_data, AtomStyle, DataAtom, DataFile};
 pub use expr::evaluate;
 pub use format::{format_g, format_printf};
-pub use h5md::{check_h5md, repair_h5md, H5mdError, H5mdField, H5mdSummary, H5mdWriter};
+pub use h5md::{check_h5md, repair_h5md, H5mdError, H5mdField, H5mdMeta, H5mdSummary, H5mdWriter};
 pub use restart::{row_width, ColumnSpec, RestartError, RestartHeader, RestartReader, RestartWriter};
 pub use command::{Command, Location, ScriptError};
 pub use script::ScriptReader;

@@ -15,13 +15,14 @@ def test_frames_match_h5py(fluid):
         steps = part["position/step"][()]
         times = part["position/time"][()]
         values = {k: part[f"{k}/value"][()] for k in names}
-        edges = part["box/edges"][()]
+        edges = part["box/edges/value"][()]
+        observables = {k: f[f"observables/{k}/value"][()] for k in f["observables"]}
     with gendpde.read_h5md(d / "traj.h5") as frames:
         assert len(frames) == len(steps) == 5  # steps 0, 50, ..., 200
         assert set(frames[0].keys()) == names
         for k, frame in enumerate(frames):
             assert frame.step == steps[k] and frame.time == times[k]
-            np.testing.assert_array_equal(frame.box, edges)
+            np.testing.assert_array_equal(frame.box, edges[k])
             np.testing.assert_array_equal(frame.offset, np.zeros(3))
             for name in names:
                 np.testing.assert_array_equal(frame[name], values[name][k])
@@ -29,7 +30,10 @@ def test_frames_match_h5py(fluid):
         assert last.position.shape == (3375, 3) and last.temperature.shape == (3375,)
         np.testing.assert_array_equal(frames.array("temperature"), values["temperature"])
         assert frames.boundary == ["periodic"] * 3
-        assert frames.observables().empty
+        obs = frames.observables()
+        assert list(obs.index) == list(steps) and set(obs.columns) == set(observables)
+        for k, v in observables.items():
+            np.testing.assert_array_equal(obs[k].to_numpy(), v)
 
 
 def test_frames_match_the_text_dump(fluid):
@@ -55,13 +59,12 @@ def test_frames_match_the_text_dump(fluid):
 
 
 def rewrite(src, dst):
-    """A copy of `src` as other writers lay it out: box edges as a time-dependent element
-    whose box grows by 1 % per frame, mass as a time-independent dataset, an incomplete
-    last frame of temperature (value longer than step), and an observables group."""
+    """A copy of `src` as other writers lay it out: box edges growing by 1 % per frame,
+    mass as a time-independent dataset, and observables of their own."""
     shutil.copy(src, dst)
     with h5py.File(dst, "r+") as f:
         part = f["particles/all"]
-        edges = part["box/edges"][()]
+        edges = part["box/edges/value"][0]
         steps = part["position/step"][()]
         del part["box/edges"]
         g = part["box"].create_group("edges")
@@ -71,6 +74,7 @@ def rewrite(src, dst):
         mass = part["mass/value"][0]
         del part["mass"]
         part["mass"] = mass
+        del f["observables"]
         obs = f.create_group("observables")
         for name, v in [("temperature", np.arange(len(steps), dtype=float)),
                         ("pressure_tensor", np.arange(3 * len(steps), dtype=float).reshape(-1, 3))]:
@@ -105,6 +109,20 @@ def test_incomplete_frame_is_left_out(fluid, tmp_path):
         assert frames.array("position").shape == (4, 3375, 3)
         with pytest.raises(IndexError):
             frames[4]
+
+
+def test_fixed_box_dataset(fluid, tmp_path):
+    """Writers that store the box edges once, as a plain dataset (H5MD allows both)."""
+    d, _ = fluid
+    shutil.copy(d / "traj.h5", tmp_path / "fixed.h5")
+    with h5py.File(tmp_path / "fixed.h5", "r+") as f:
+        box = f["particles/all/box"]
+        edges = box["edges/value"][0]
+        del box["edges"]
+        box["edges"] = edges
+    with gendpde.read_h5md(tmp_path / "fixed.h5") as frames:
+        for frame in frames:
+            np.testing.assert_array_equal(frame.box, edges)
 
 
 def test_not_h5md(tmp_path):

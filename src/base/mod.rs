@@ -1,5 +1,6 @@
 //! Shared types with no upward imports: argument reading, script errors and modes,
-//! units, memory checks, collectives over the particles, lattices, regions and group masks.
+//! units, memory checks, collectives over the particles, lattices, regions, group masks
+//! and the signals that stop a run.
 
 pub mod args;
 pub mod gather;
@@ -8,4 +9,5 @@ pub mod lattice;
 pub mod memory;
 pub mod region;
 pub mod script;
+pub mod signals;
 pub mod units;

@@ -17,6 +17,8 @@ pub enum Mode {
 pub enum AppError {
     Script(ScriptError),
     Step { cmd: Command, err: StepError },
+    /// A signal stopped a run (`base::signals`); `what` says what was saved.
+    Interrupted { cmd: Command, signal: usize, step: u64, what: String },
 }
 
 impl fmt::Display for AppError {
@@ -24,6 +26,9 @@ impl fmt::Display for AppError {
         match self {
             Self::Script(e) => e.fmt(f),
             Self::Step { cmd, err } => write!(f, "{}: run stopped: {err}", cmd.loc),
+            Self::Interrupted { cmd, signal, step, what } => {
+                write!(f, "{}: run stopped by {} after step {step}: {what}", cmd.loc, crate::base::signals::name(*signal))
+            }
         }
     }
 }

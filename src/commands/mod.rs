@@ -84,6 +84,9 @@ impl Interpreter {
             } else {
                 self.out.log_line(&echo(&cmd));
             }
+            if let Some(e) = self.out.take_error() {
+                return Err(ScriptError::at(&cmd, e).into());
+            }
             match cmd.name.as_str() {
                 // LAMMPS loops: `label L`, `next V ...`, `jump SELF L`; a `next` that
                 // exhausts its variables makes the following `jump` fall through
@@ -166,6 +169,7 @@ impl Interpreter {
             "thermo_style" => output::thermo_style(&mut outputs.thermo, &self.vars, a)?,
             "thermo_modify" => output::thermo_modify(&mut outputs.thermo, &sim.computes, a)?,
             "dump" => output::dump(&mut outputs.dumps, a)?,
+            "dump_modify" => output::dump_modify(&mut outputs.dumps, a)?,
             "undump" => output::undump(&mut outputs.dumps, a)?,
             "write_dump" => output::write_dump(sim, a)?,
             "checkpoint" => outputs.checkpoint = Checkpoint::parse(a)?,

@@ -1,4 +1,4 @@
-//! Output commands: thermo, thermo_style, thermo_modify, dump, undump, write_dump (the
+//! Output commands: thermo, thermo_style, thermo_modify, dump, dump_modify, undump, write_dump (the
 //! checkpoint command is `output::checkpoint`), and what the screen and log show: print,
 //! log and echo.
 
@@ -6,7 +6,7 @@ use crate::base::args::Args;
 use crate::base::script::Mode;
 use crate::model::sim::Sim;
 use crate::output::console::Output;
-use crate::output::dump::TextDump;
+use crate::output::dump::{group_all, Dump, TextDump, WriteDump};
 use crate::output::h5md::H5mdDump;
 use crate::output::thermo::{heading, ThermoConfig};
 use crate::styles::compute::{Compute, ComputeStyle};
@@ -66,9 +66,7 @@ pub fn thermo_modify(thermo: &mut ThermoConfig, computes: &[Compute], a: &mut Ar
                     None => return Err(a.err(format!("no compute with ID '{id}'"))),
                 }
             }
-            "flush" => {
-                a.yes_no("flush")?;
-            }
+            "flush" => thermo.flush = a.yes_no("flush")?,
             "format" => match a.word("float or line")? {
                 "float" => {
                     let f = a.word("a printf format such as %15.10f")?;
@@ -83,33 +81,50 @@ pub fn thermo_modify(thermo: &mut ThermoConfig, computes: &[Compute], a: &mut Ar
     Ok(())
 }
 
-/// `dump ID all h5md N FILE fields...`.
-pub fn dump(dumps: &mut Vec<H5mdDump>, a: &mut Args) -> Result<(), ScriptError> {
-    let dump = H5mdDump::parse(a)?;
-    if dumps.iter().any(|d| d.id == dump.id) {
-        return Err(a.err(format!("dump ID '{}' is in use (undump it first)", dump.id)));
+/// `dump ID all custom|atom|xyz|h5md N FILE ...`.
+pub fn dump(dumps: &mut Vec<Box<dyn Dump>>, a: &mut Args) -> Result<(), ScriptError> {
+    let id = a.word("a dump ID")?;
+    if dumps.iter().any(|d| d.id() == id) {
+        return Err(a.err(format!("dump ID '{id}' is in use (undump it first)")));
     }
+    group_all(a)?;
+    let style = a.word("a dump style (custom, atom, xyz or h5md)")?;
+    let dump: Box<dyn Dump> = match TextDump::parse(id, style, a)? {
+        Some(d) => Box::new(d),
+        None if style == "h5md" => Box::new(H5mdDump::parse(id, a)?),
+        None => return Err(a.err(format!("unknown dump style '{style}'; known: custom, atom, xyz, h5md"))),
+    };
     dumps.push(dump);
     Ok(())
 }
 
-/// `undump ID`.
-pub fn undump(dumps: &mut Vec<H5mdDump>, a: &mut Args) -> Result<(), ScriptError> {
+/// `dump_modify ID KEYWORD VALUES ...`.
+pub fn dump_modify(dumps: &mut [Box<dyn Dump>], a: &mut Args) -> Result<(), ScriptError> {
     let id = a.word("a dump ID")?;
-    a.done()?;
-    let before = dumps.len();
-    dumps.retain(|d| d.id != id);
-    if dumps.len() == before {
-        return Err(a.err(format!("no dump with ID '{id}'")));
+    let dump = dumps.iter_mut().find(|d| d.id() == id).ok_or_else(|| a.err(format!("no dump with ID '{id}'")))?;
+    if a.remaining() == 0 {
+        return Err(a.err("missing argument: expected dump_modify keywords"));
+    }
+    while a.remaining() > 0 {
+        let key = a.word("a keyword")?;
+        dump.modify(key, a)?;
     }
     Ok(())
 }
 
-/// `write_dump all custom FILE COLUMNS...`.
+/// `undump ID`: closes the dump's file.
+pub fn undump(dumps: &mut Vec<Box<dyn Dump>>, a: &mut Args) -> Result<(), ScriptError> {
+    let id = a.word("a dump ID")?;
+    a.done()?;
+    let k = dumps.iter().position(|d| d.id() == id).ok_or_else(|| a.err(format!("no dump with ID '{id}'")))?;
+    dumps.remove(k).close().map_err(|e| a.err(e))
+}
+
+/// `write_dump all custom FILE COLUMNS... [modify ...]`.
 pub fn write_dump(sim: &Sim, a: &mut Args) -> Result<(), ScriptError> {
-    let dump = TextDump::parse(a)?;
+    let dump = WriteDump::parse(a)?;
     let sys = sim.system.as_ref().ok_or_else(|| a.err("write_dump before create_box"))?;
-    dump.write(sys, sim.max_tag).map_err(|e| a.err(e))
+    dump.write(sim, sys).map_err(|e| a.err(e))
 }
 
 /// `print TEXT [screen yes|no]`.

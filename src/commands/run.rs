@@ -3,13 +3,14 @@
 
 use crate::base::args::Args;
 use crate::base::memory;
+use crate::base::signals;
 use crate::base::script::{AppError, Mode};
 use crate::base::units::Units;
 use crate::model::sim::Sim;
 use crate::output::ave_time::AveTime;
 use crate::output::console::Output;
 use crate::output::restart;
-use crate::output::schedule::{Frame, Span};
+use crate::output::schedule::{Frame, RunOutput, Span};
 use crate::output::thermo::{header_line, Observables};
 use crate::output::Outputs;
 use crate::styles::physics::build_physics;
@@ -79,6 +80,7 @@ pub fn run(sim: &mut Sim, outputs: &mut Outputs, out: &mut Output, vars: &Variab
         return Ok(());
     }
     let sys = sim.system.as_mut().expect("prepared system");
+    sys.interrupt = signals::received();
     sim.energy0.get_or_insert_with(|| Observables::measure(sys).energy());
     let run = Span { first: sys.step, last: sys.step + nsteps };
     let comm_before = sys.comm.time().as_secs_f64();
@@ -101,7 +103,7 @@ pub fn run(sim: &mut Sim, outputs: &mut Outputs, out: &mut Output, vars: &Variab
         if let Err(mut e) = physics.step(sys) {
             progress.finish_and_clear();
             sys.restore(&last_good);
-            let file = outputs.checkpoint.as_ref().map_or_else(|| "failed.restart.h5".to_string(), |c| c.file_at(e.step));
+            let file = state_file(outputs, e.step, "failed");
             e.what = match restart::write(sim, &file) {
                 Ok(()) => format!("{}; the last good state (step {}) is in {file}", e.what, e.step),
                 Err(w) => format!("{}; writing the last good state to {file} failed: {w}", e.what),
@@ -110,6 +112,11 @@ pub fn run(sim: &mut Sim, outputs: &mut Outputs, out: &mut Output, vars: &Variab
             return Err(AppError::Step { cmd: cmd.clone(), err: e });
         }
         write_due(sim, outputs, out, vars, run, clock, &progress).map_err(err)?;
+        let signal = sys_of(sim).interrupted.get();
+        if signal != 0 {
+            progress.finish_and_clear();
+            return Err(interrupted(sim, outputs, signal, cmd));
+        }
     }
     progress.finish_and_clear();
     let secs = clock.elapsed().as_secs_f64();
@@ -165,17 +172,48 @@ fn memory_per_rank(sys: &gendpde_integrators::System) -> [f64; 3] {
     [min, all.iter().sum::<u64>() as f64 / all.len().max(1) as f64, max]
 }
 
+fn sys_of(sim: &Sim) -> &gendpde_integrators::System {
+    sim.system.as_ref().expect("system exists during a run")
+}
+
+/// Where a run that cannot go on saves its state: the checkpoint's file of the step when
+/// one is configured, else `<why>.restart.h5`.
+fn state_file(outputs: &Outputs, step: u64, why: &str) -> String {
+    outputs.checkpoint.as_ref().map_or_else(|| format!("{why}.restart.h5"), |c| c.file_at(step))
+}
+
+/// Stops a run at a signal all ranks agreed on, after a completed step: saves the state
+/// (as a failed step does) and closes every dump.
+fn interrupted(sim: &Sim, outputs: &mut Outputs, signal: usize, cmd: &Command) -> AppError {
+    let step = sys_of(sim).step;
+    let file = state_file(outputs, step, "interrupted");
+    let mut what = match restart::write(sim, &file) {
+        Ok(()) => format!("the state is in {file} (read_restart {file} to continue)"),
+        Err(e) => format!("writing the state to {file} failed: {e}"),
+    };
+    let closed: Vec<String> = outputs.dumps.iter_mut().map(|d| d.close().map_or_else(|e| e, |()| d.id().to_string())).collect();
+    if !closed.is_empty() {
+        what += &format!("; dumps closed: {}", closed.join(", "));
+    }
+    // no rank exits (and has mpirun end the others) before rank 0 has closed its files
+    sys_of(sim).comm.max(0.0);
+    AppError::Interrupted { cmd: cmd.clone(), signal, step, what }
+}
+
 /// Writes the outputs due at the current step, in the order of [`Outputs::all`], with
 /// the progress bar hidden.
 fn write_due(sim: &Sim, outputs: &mut Outputs, out: &mut Output, vars: &Variables, run: Span, clock: Instant, progress: &ProgressBar) -> Result<(), String> {
-    let sys = sim.system.as_ref().expect("system exists during a run");
-    let mut frame = Frame { sim, sys, vars, out, run, cpu: clock.elapsed().as_secs_f64() };
-    for o in outputs.all() {
-        if o.next_step(sys.step, run).is_some_and(|next| next <= sys.step) {
-            progress.suspend(|| o.write(&mut frame))?;
-        }
+    let sys = sys_of(sim);
+    let due = |o: &dyn RunOutput| o.next_step(sys.step, run).is_some_and(|next| next <= sys.step);
+    if !outputs.all().any(|o| due(o)) {
+        return Ok(());
     }
-    Ok(())
+    let thermo = outputs.thermo.clone();
+    let mut frame = Frame { sim, sys, vars, thermo: &thermo, out, run, cpu: clock.elapsed().as_secs_f64() };
+    for o in outputs.all().filter(|o| due(&**o)) {
+        progress.suspend(|| o.write(&mut frame))?;
+    }
+    frame.out.take_error().map_or(Ok(()), Err)
 }
 
 /// A progress bar with rate and ETA on stderr, shown only when stderr is a terminal.

@@ -1,38 +1,50 @@
 //! `dump ID all h5md N FILE field... [append yes]`: H5MD snapshots every N steps,
-//! written by rank 0 from particles gathered in tag order (`gather`).
+//! written by rank 0 from particles gathered in tag order (`gather`); the values of
+//! each element are those of the dump keywords (`dump::KEYWORDS`).
 
 use crate::base::args::Args;
 use crate::base::gather::sorted_rows;
+use crate::output::dump::{readers, Dump, Every, Keyword};
 use crate::output::schedule::{Frame, RunOutput, Span};
-use gendpde_io::{H5mdField, H5mdWriter, ScriptError};
+use crate::output::thermo;
+use gendpde_io::{H5mdField, H5mdMeta, H5mdWriter, ScriptError};
 use std::path::Path;
 
 pub struct H5mdDump {
-    pub id: String,
-    pub every: u64,
-    pub file: String,
-    pub fields: Vec<H5mdField>,
+    id: String,
+    every: Every,
+    file: String,
+    fields: Vec<H5mdField>,
     /// Continue an existing file (a run restarted from a checkpoint) instead of
     /// truncating it.
-    pub append: bool,
+    append: bool,
+    /// `dump_modify author NAME email ADDRESS` (default name: $USER).
+    author: String,
+    email: Option<String>,
     writer: Option<H5mdWriter>,
-    last_step: Option<u64>,
 }
 
 const FIELDS: &str = "x|position, image, v|velocity, p|momentum, mass, id, type|species, u|internal_energy, theta|temperature, n|density";
 
+/// The dump keywords of an element's values.
+fn keywords(f: H5mdField) -> &'static [&'static str] {
+    match f {
+        H5mdField::Position => &["x", "y", "z"],
+        H5mdField::Image => &["ix", "iy", "iz"],
+        H5mdField::Velocity => &["vx", "vy", "vz"],
+        H5mdField::Momentum => &["px", "py", "pz"],
+        H5mdField::Mass => &["mass"],
+        H5mdField::Id => &["id"],
+        H5mdField::Species => &["type"],
+        H5mdField::InternalEnergy => &["u"],
+        H5mdField::Temperature => &["theta"],
+        H5mdField::Density => &["n"],
+    }
+}
+
 impl H5mdDump {
-    /// The words after `dump`.
-    pub fn parse(a: &mut Args) -> Result<Self, ScriptError> {
-        let id = a.word("a dump ID")?.to_string();
-        let group = a.word("a group")?;
-        if group != "all" {
-            return Err(a.err(format!("group '{group}': only group all is defined")));
-        }
-        match a.word("a dump style (h5md)")? {
-            "h5md" => {}
-            s => return Err(a.err(format!("unknown dump style '{s}'; known: h5md (write_dump writes text snapshots)"))),
-        }
+    /// The words after `dump ID GROUP h5md`: `N FILE field... [append yes|no]`.
+    pub fn parse(id: &str, a: &mut Args) -> Result<Self, ScriptError> {
         let every = a.u64("the output interval N")?;
         if every == 0 {
             return Err(a.err("the output interval must be positive"));
@@ -53,16 +65,14 @@ impl H5mdDump {
         if fields.is_empty() {
             return Err(a.err(format!("missing argument: expected fields ({FIELDS})")));
         }
-        Ok(Self { id, every, file, fields, append, writer: None, last_step: None })
+        let author = std::env::var("USER").unwrap_or_else(|_| "unknown".into());
+        Ok(Self { id: id.to_string(), every: Every::new(every), file, fields, append, author, email: None, writer: None })
     }
-
 }
 
 impl RunOutput for H5mdDump {
-    /// Every N steps, once per step (a run's setup repeats the last step of the one before).
-    fn next_step(&self, step: u64, _run: Span) -> Option<u64> {
-        let next = step.next_multiple_of(self.every);
-        Some(if self.last_step == Some(next) { next + self.every } else { next })
+    fn next_step(&self, step: u64, run: Span) -> Option<u64> {
+        self.every.next_step(step, run)
     }
 
     fn write(&mut self, f: &mut Frame) -> Result<(), String> {
@@ -70,51 +80,75 @@ impl RunOutput for H5mdDump {
     }
 }
 
+impl Dump for H5mdDump {
+    fn id(&self) -> &str {
+        &self.id
+    }
+
+    fn modify(&mut self, key: &str, a: &mut Args) -> Result<(), ScriptError> {
+        if self.every.modify(key, a)? {
+            return Ok(());
+        }
+        match key {
+            "append" => self.append = a.yes_no("append")?,
+            "author" => self.author = a.word("an author name (quoted if it has spaces)")?.to_string(),
+            "email" => self.email = Some(a.word("an email address")?.to_string()),
+            _ => return Err(a.err(format!("dump {}: unknown dump_modify keyword '{key}' for h5md; known: every, first, append, author, email", self.id))),
+        }
+        Ok(())
+    }
+
+    fn close(&mut self) -> Result<(), String> {
+        self.writer = None;
+        self.append = true;
+        Ok(())
+    }
+}
+
 impl H5mdDump {
     /// Writes a frame of the current step.
     fn write_frame(&mut self, frame: &Frame) -> Result<(), String> {
         let (sys, natoms) = (frame.sys, frame.sys.comm.count(frame.sys.store.nlocal) as usize);
-        self.last_step = Some(sys.step);
+        self.every.wrote(sys.step);
+        // the thermo keywords at this step, the observables (every rank: collective)
+        let values = thermo::values(frame.thermo, frame)?;
+        let observables: Vec<(&str, f64)> = frame.thermo.keywords.iter().map(String::as_str).zip(values).filter(|(k, _)| *k != "step").collect();
         if sys.comm.rank() == 0 && self.writer.is_none() {
             let path = Path::new(&self.file);
             let w = if self.append && path.exists() {
                 H5mdWriter::append(path, natoms, &self.fields)
             } else {
-                H5mdWriter::create(path, natoms, sys.domain.len(), &self.fields, "gendpde user", env!("CARGO_PKG_VERSION"))
+                let meta = H5mdMeta {
+                    author: self.author.clone(),
+                    email: self.email.clone(),
+                    creator_version: env!("CARGO_PKG_VERSION").into(),
+                    units: Some(frame.sim.units.name.into()),
+                    observables: observables.iter().map(|(n, _)| n.to_string()).collect(),
+                };
+                H5mdWriter::create(path, natoms, sys.domain.len(), &self.fields, &meta)
             };
             self.writer = Some(w.map_err(|e| e.0)?);
         }
-        let width = 1 + self.fields.iter().map(|f| f.width()).sum::<usize>();
-        let fields = self.fields.clone();
-        let s = &sys.store;
+        let columns: Vec<Keyword> = self.fields.iter().flat_map(|&f| keywords(f)).filter_map(|k| Keyword::find(k)).collect();
+        let readers = readers(&columns, sys)?;
+        let width = 1 + columns.len();
         let row = |i: usize, b: &mut Vec<f64>| {
-            b.push(s.tag[i] as f64);
-            for f in &fields {
-                match f {
-                    H5mdField::Position => b.extend_from_slice(&s.r[i]),
-                    H5mdField::Image => b.extend(s.image[i].iter().map(|&x| x as f64)),
-                    H5mdField::Velocity => b.extend(s.p[i].iter().map(|p| p / s.mass[i])),
-                    H5mdField::Momentum => b.extend_from_slice(&s.p[i]),
-                    H5mdField::Mass => b.push(s.mass[i]),
-                    H5mdField::Id => b.push(s.tag[i] as f64),
-                    H5mdField::Species => b.push(s.kind[i] as f64),
-                    H5mdField::InternalEnergy => b.push(s.u[i]),
-                    H5mdField::Temperature => b.push(s.theta[i]),
-                    H5mdField::Density => b.push(s.n.get(i).copied().unwrap_or(0.0)),
-                }
-            }
+            b.push(sys.store.tag[i] as f64);
+            b.extend(readers.iter().map(|r| r.get(sys, i)));
         };
         if let Some(w) = self.writer.as_mut() {
+            w.set_edges(sys.domain.len());
             w.begin_frame(sys.step, sys.time).map_err(|e| e.0)?;
+            w.write_observables(&observables).map_err(|e| e.0)?;
         }
         let mut first_row = 0;
         let mut column = Vec::new();
-        let writer = &mut self.writer;
+        let (writer, fields) = (&mut self.writer, &self.fields);
         let mut emit = |rows: &[f64]| -> Result<(), String> {
             let Some(w) = writer.as_mut() else { return Ok(()) };
             let n = rows.len() / width;
             let mut offset = 1;
-            for f in &fields {
+            for f in fields {
                 column.clear();
                 for r in rows.chunks_exact(width) {
                     column.extend_from_slice(&r[offset..offset + f.width()]);

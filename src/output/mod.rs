@@ -10,11 +10,12 @@ pub mod h5md;
 pub mod restart;
 pub mod schedule;
 pub mod thermo;
+pub mod thermo_settings;
 
 use self::ave_chunk::AveChunk;
 use self::ave_time::AveTime;
 use self::checkpoint::Checkpoint;
-use self::h5md::H5mdDump;
+use self::dump::Dump;
 use self::schedule::RunOutput;
 use self::thermo::ThermoConfig;
 
@@ -23,8 +24,8 @@ use self::thermo::ThermoConfig;
 pub struct Outputs {
     /// `thermo`, `thermo_style`, `thermo_modify`.
     pub thermo: ThermoConfig,
-    /// `dump ... h5md`.
-    pub dumps: Vec<H5mdDump>,
+    /// `dump ID GROUP custom|atom|xyz|h5md ...`.
+    pub dumps: Vec<Box<dyn Dump>>,
     /// `fix ID all ave/time`.
     pub averages: Vec<AveTime>,
     /// `fix ID GROUP ave/chunk`.
@@ -43,7 +44,7 @@ impl Outputs {
 
     pub fn all(&mut self) -> impl Iterator<Item = &mut dyn RunOutput> {
         std::iter::once(&mut self.thermo as &mut dyn RunOutput)
-            .chain(self.dumps.iter_mut().map(|d| d as &mut dyn RunOutput))
+            .chain(self.dumps.iter_mut().map(|d| d.as_mut() as &mut dyn RunOutput))
             .chain(self.averages.iter_mut().map(|f| f as &mut dyn RunOutput))
             .chain(self.chunk_averages.iter_mut().map(|f| f as &mut dyn RunOutput))
             .chain(self.checkpoint.iter_mut().map(|c| c as &mut dyn RunOutput))

@@ -4,6 +4,7 @@
 use crate::base::args::Args;
 use crate::model::sim::Sim;
 use crate::output::console::Output;
+use crate::output::thermo_settings::ThermoConfig;
 use gendpde_integrators::System;
 use gendpde_io::{ScriptError, Variables};
 
@@ -15,11 +16,14 @@ pub struct Span {
 }
 
 /// What an output reads when it writes: the model and its system, the variables (thermo
-/// `v_NAME`), the screen and log, the run and its CPU time so far.
+/// `v_NAME`), the thermo keywords of the run and their `norm` (H5MD observables), the
+/// screen and log, the run and its CPU time so far.
 pub struct Frame<'a> {
     pub sim: &'a Sim,
     pub sys: &'a System,
     pub vars: &'a Variables,
+    /// The thermo settings (observables of dumps use its keywords).
+    pub thermo: &'a ThermoConfig,
     pub out: &'a mut Output,
     pub run: Span,
     pub cpu: f64,

@@ -17,38 +17,12 @@
 
 use crate::model::sim::Sim;
 use crate::output::schedule::{Frame, RunOutput, Span};
+pub use crate::output::thermo_settings::ThermoConfig;
+use crate::output::thermo_settings::Mark;
 use crate::styles::compute::{self, ComputeStyle, Kinetic, Totals};
 use gendpde_engine::exact_sums;
 use gendpde_integrators::System;
 use gendpde_io::format_printf;
-
-/// `thermo`, `thermo_style custom` and `thermo_modify`.
-#[derive(Clone, Debug)]
-pub struct ThermoConfig {
-    pub every: u64,
-    pub keywords: Vec<String>,
-    pub norm: bool,
-    pub float_format: Option<String>,
-    /// `thermo_modify temp ID`: the compute temp of temp, ke, etotal and press.
-    pub temp: Option<String>,
-    /// The previous thermo line of the current run, for tpcpu and spcpu.
-    last: Option<Mark>,
-}
-
-/// When a thermo line was written: step, simulated time and CPU seconds into the run.
-#[derive(Clone, Copy, Debug)]
-struct Mark {
-    step: u64,
-    time: f64,
-    cpu: f64,
-}
-
-impl Default for ThermoConfig {
-    fn default() -> Self {
-        let keywords = ["step", "temp", "tint", "pe", "ke", "etotal", "press"].map(String::from).to_vec();
-        Self { every: 0, keywords, norm: true, float_format: None, temp: None, last: None }
-    }
-}
 
 impl RunOutput for ThermoConfig {
     /// At the setup, every `every` steps and at the last step of the run.
@@ -62,20 +36,29 @@ impl RunOutput for ThermoConfig {
 
     /// One value line on the screen and in the log.
     fn write(&mut self, f: &mut Frame) -> Result<(), String> {
-        let ctx = ThermoContext::new(f.sim, f.sys, self, f.sys.step - f.run.first, f.cpu);
-        let resolve = |name: &str| ctx.keyword(name);
-        let mut values = Vec::with_capacity(self.keywords.len());
-        for k in &self.keywords {
-            let v = match ctx.keyword(k) {
-                Some(v) => v,
-                None => gendpde_io::evaluate(k, f.vars, &resolve).map_err(|e| format!("thermo keyword {k}: {e}"))?,
-            };
-            values.push(v);
-        }
+        let values = values(self, f)?;
         f.out.line(&value_line(&self.keywords, &values, self.float_format.as_deref()));
         self.last = Some(Mark { step: f.sys.step, time: f.sys.time, cpu: f.cpu });
+        if self.flush {
+            f.out.sync();
+        }
         Ok(())
     }
+}
+
+/// The values of thermo `keywords` at the frame's step (collective: every rank calls).
+pub fn values(config: &ThermoConfig, f: &Frame) -> Result<Vec<f64>, String> {
+    let ctx = ThermoContext::new(f.sim, f.sys, config, f.sys.step - f.run.first, f.cpu);
+    let resolve = |name: &str| ctx.keyword(name);
+    let mut values = Vec::with_capacity(config.keywords.len());
+    for k in &config.keywords {
+        let v = match ctx.keyword(k) {
+            Some(v) => v,
+            None => gendpde_io::evaluate(k, f.vars, &resolve).map_err(|e| format!("thermo keyword {k}: {e}"))?,
+        };
+        values.push(v);
+    }
+    Ok(values)
 }
 
 /// Global sums a thermo line reads.

@@ -117,6 +117,19 @@ pub fn stage_inputs(dir: &Path, input: &str) {
     }
 }
 
+/// Stages `input` (as [`stage_inputs`]) and writes it as `name` with `before` in front
+/// of its `run` line, `after` behind it and its `write_dump` lines left out.
+pub fn stage_with(dir: &Path, input: &str, name: &str, before: &str, after: &str) {
+    stage_inputs(dir, input);
+    let text = std::fs::read_to_string(dir.join(input)).unwrap_or_else(|e| panic!("{input}: {e}"));
+    let text: String = text
+        .lines()
+        .filter(|l| !l.starts_with("write_dump"))
+        .map(|l| if l.starts_with("run ") { format!("{before}{l}\n{after}") } else { format!("{l}\n") })
+        .collect();
+    std::fs::write(dir.join(name), text).unwrap_or_else(|e| panic!("cannot write {name}: {e}"));
+}
+
 /// One thermo block: the headings and the numeric rows under them.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ThermoBlock {

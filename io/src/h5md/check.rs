@@ -15,8 +15,10 @@ pub struct H5mdSummary {
     pub steps: Vec<i64>,
     /// `time` of every completed frame.
     pub times: Vec<f64>,
-    /// `/particles/all/box/edges`.
+    /// `/particles/all/box/edges` (of the first frame when time dependent).
     pub edges: Vec<f64>,
+    /// Names under `/observables`.
+    pub observables: Vec<String>,
     /// `/h5md/creator` name and version.
     pub creator: (String, String),
     /// `/h5md/author` name.
@@ -170,24 +172,28 @@ pub fn check_h5md(path: &Path) -> Result<H5mdSummary, H5mdError> {
             format_args!("box boundary {b:?} is neither \"periodic\" nor \"none\""),
         ));
     }
-    let edges = match bx.dataset("edges") {
-        Ok(e) => {
-            let shape = e.shape();
-            let d = dim as usize;
-            if shape != [d] && shape != [d, d] {
-                return Err(error(path, format_args!("box edges has shape {shape:?}")));
-            }
-            h5(path, "reading box edges", e.read_raw::<f64>())?
+    // edges: a time-dependent element [frames, 3] (gendpde) or a fixed dataset
+    let d = dim as usize;
+    let (edges, edge_frames) = if let Ok(v) = bx.dataset("edges/value") {
+        let shape = v.shape();
+        if shape.len() != 2 || shape[1] != d {
+            return Err(error(path, format_args!("box/edges/value has shape {shape:?}, expected [frames, {d}]")));
         }
-        Err(_) if bx.link_exists("edges") => {
-            return Err(error(path, "box edges is not a (time-independent) dataset"));
+        let rows = h5(path, "reading box edges", v.read_raw::<f64>())?;
+        (rows.get(..d).map_or_else(Vec::new, <[f64]>::to_vec), Some(shape[0]))
+    } else if let Ok(e) = bx.dataset("edges") {
+        let shape = e.shape();
+        if shape != [d] && shape != [d, d] {
+            return Err(error(path, format_args!("box edges has shape {shape:?}")));
         }
-        Err(_) => {
-            if boundary.iter().any(|b| b == "periodic") {
-                return Err(error(path, "periodic box without edges"));
-            }
-            Vec::new()
+        (h5(path, "reading box edges", e.read_raw::<f64>())?, None)
+    } else if bx.link_exists("edges") {
+        return Err(error(path, "box edges is neither a dataset nor an element with a value"));
+    } else {
+        if boundary.iter().any(|b| b == "periodic") {
+            return Err(error(path, "periodic box without edges"));
         }
+        (Vec::new(), None)
     };
 
     let mut elements = Vec::new();
@@ -299,6 +305,19 @@ pub fn check_h5md(path: &Path) -> Result<H5mdSummary, H5mdError> {
     }
     elements.sort();
     let steps = steps.map(|s| s.0).unwrap_or_default();
+    if edge_frames.is_some_and(|f| f < steps.len()) {
+        return Err(error(path, format_args!("box/edges/value has fewer frames than step ({})", steps.len())));
+    }
+    let mut observables = Vec::new();
+    if let Ok(g) = file.group("observables") {
+        for name in h5(path, "listing /observables", g.member_names())? {
+            let v = g.dataset(&format!("{name}/value")).map_err(|_| error(path, format_args!("/observables/{name} has no value dataset")))?;
+            if v.ndim() != 1 || v.size() < steps.len() {
+                return Err(error(path, format_args!("/observables/{name}/value has shape {:?} for {} frames", v.shape(), steps.len())));
+            }
+            observables.push(name);
+        }
+    }
     Ok(H5mdSummary {
         particles: particles.map_or(0, |p| p.0),
         frames: steps.len(),
@@ -306,6 +325,7 @@ pub fn check_h5md(path: &Path) -> Result<H5mdSummary, H5mdError> {
         times: times.unwrap_or_default(),
         steps,
         edges,
+        observables,
         creator: (cname, cversion),
         author,
         clean,

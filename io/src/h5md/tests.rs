@@ -66,7 +66,7 @@ fn create_write_read_back() {
     let n = 7;
     let fields = H5mdField::ALL;
     let mut w =
-        H5mdWriter::create(&path, n, [10.0, 11.0, 12.5], &fields, "Tester", "0.1.0").unwrap();
+        H5mdWriter::create(&path, n, [10.0, 11.0, 12.5], &fields, &H5mdMeta::new("Tester", "0.1.0")).unwrap();
     assert_eq!(w.fields(), &fields);
     write_frames(&mut w, 0, 3, n);
     assert_eq!(w.frames(), 3);
@@ -119,10 +119,17 @@ fn create_write_read_back() {
         b.iter().map(|s| s.as_str()).collect::<Vec<_>>(),
         ["periodic"; 3]
     );
-    assert_eq!(
-        bx.dataset("edges").unwrap().read_raw::<f64>().unwrap(),
-        vec![10.0, 11.0, 12.5]
-    );
+    let edges = bx.dataset("edges/value").unwrap();
+    assert_eq!(edges.shape(), vec![3, 3]);
+    assert_eq!(edges.read_raw::<f64>().unwrap(), [10.0, 11.0, 12.5].repeat(3));
+    let first = fields[0].h5md_name();
+    for series in ["step", "time"] {
+        assert_eq!(
+            bx.dataset(&format!("edges/{series}")).unwrap().read_raw::<f64>().unwrap(),
+            file.dataset(&format!("particles/all/{first}/{series}")).unwrap().read_raw::<f64>().unwrap()
+        );
+    }
+    assert!(edges.attr("unit").is_err(), "lj files are unitless");
 
     for field in fields {
         let g = file
@@ -187,7 +194,7 @@ fn append_adds_frames() {
     let path = tmp("append.h5");
     let n = 5;
     let fields = [H5mdField::Position, H5mdField::Id, H5mdField::Temperature];
-    let mut w = H5mdWriter::create(&path, n, [1.0, 2.0, 3.0], &fields, "a", "v").unwrap();
+    let mut w = H5mdWriter::create(&path, n, [1.0, 2.0, 3.0], &fields, &H5mdMeta::new("a", "v")).unwrap();
     write_frames(&mut w, 0, 2, n);
     drop(w);
     // Another field order is fine; the set matters.
@@ -215,7 +222,7 @@ fn append_overwrites_incomplete_frame() {
     let path = tmp("incomplete.h5");
     let n = 4;
     let fields = [H5mdField::Velocity, H5mdField::Mass];
-    let mut w = H5mdWriter::create(&path, n, [1.0; 3], &fields, "a", "v").unwrap();
+    let mut w = H5mdWriter::create(&path, n, [1.0; 3], &fields, &H5mdMeta::new("a", "v")).unwrap();
     write_frames(&mut w, 0, 2, n);
     w.begin_frame(99, 9.9).unwrap();
     w.write_rows(H5mdField::Mass, 0, &[1.0, 2.0]).unwrap();
@@ -243,7 +250,7 @@ fn append_overwrites_incomplete_frame() {
 fn append_mismatch_is_error() {
     let path = tmp("mismatch.h5");
     let fields = [H5mdField::Position, H5mdField::Species];
-    let mut w = H5mdWriter::create(&path, 6, [1.0; 3], &fields, "a", "v").unwrap();
+    let mut w = H5mdWriter::create(&path, 6, [1.0; 3], &fields, &H5mdMeta::new("a", "v")).unwrap();
     write_frames(&mut w, 0, 1, 6);
     drop(w);
     let e = H5mdWriter::append(&path, 5, &fields).unwrap_err();
@@ -275,17 +282,16 @@ fn bad_writes_are_errors() {
     let path = tmp("bad.h5");
     let n = 4;
     let fields = [H5mdField::Position, H5mdField::Species, H5mdField::Id];
-    assert!(H5mdWriter::create(&path, n, [1.0; 3], &[], "a", "v").is_err());
+    assert!(H5mdWriter::create(&path, n, [1.0; 3], &[], &H5mdMeta::new("a", "v")).is_err());
     assert!(H5mdWriter::create(
         &path,
         n,
         [1.0; 3],
         &[H5mdField::Mass, H5mdField::Mass],
-        "a",
-        "v"
+        &H5mdMeta::new("a", "v")
     )
     .is_err());
-    let mut w = H5mdWriter::create(&path, n, [1.0; 3], &fields, "a", "v").unwrap();
+    let mut w = H5mdWriter::create(&path, n, [1.0; 3], &fields, &H5mdMeta::new("a", "v")).unwrap();
     // Outside a frame.
     assert!(w.write_rows(H5mdField::Position, 0, &[0.0; 3]).is_err());
     assert!(w.end_frame().is_err());
@@ -324,7 +330,7 @@ fn bad_writes_are_errors() {
 fn zero_particles() {
     let path = tmp("empty.h5");
     let fields = [H5mdField::Position, H5mdField::Mass];
-    let mut w = H5mdWriter::create(&path, 0, [2.0; 3], &fields, "a", "v").unwrap();
+    let mut w = H5mdWriter::create(&path, 0, [2.0; 3], &fields, &H5mdMeta::new("a", "v")).unwrap();
     write_frames(&mut w, 0, 2, 0);
     assert!(w.begin_frame(30, 1.0).is_ok());
     assert!(w.write_rows(H5mdField::Mass, 0, &[1.0]).is_err());
@@ -358,7 +364,7 @@ fn killed_writer_child() {
     let path = PathBuf::from(path);
     let n = 50;
     let fields = [H5mdField::Position, H5mdField::Id];
-    let mut w = H5mdWriter::create(&path, n, [3.0; 3], &fields, "a", "v").unwrap();
+    let mut w = H5mdWriter::create(&path, n, [3.0; 3], &fields, &H5mdMeta::new("a", "v")).unwrap();
     write_frames(&mut w, 0, 3, n);
     w.begin_frame(30, 1.5).unwrap();
     w.write_rows(H5mdField::Position, 0, &rows(H5mdField::Position, 3, 0..n))
@@ -422,5 +428,53 @@ fn check_rejects_non_h5md() {
     assert!(e.0.contains("plain.h5"), "{e}");
     let e = H5mdWriter::append(&path, 1, &[H5mdField::Mass]).unwrap_err();
     assert!(e.0.contains("plain.h5"), "{e}");
+    let _ = std::fs::remove_file(&path);
+}
+
+#[test]
+fn units_author_edges_and_observables() {
+    let path = tmp("meta.h5");
+    let n = 4;
+    let fields = [H5mdField::Position, H5mdField::Velocity, H5mdField::Species];
+    let meta = H5mdMeta {
+        email: Some("a@b.org".into()),
+        units: Some("metal".into()),
+        observables: vec!["temp".into(), "c_x[1]".into()],
+        ..H5mdMeta::new("Ann", "v")
+    };
+    let mut w = H5mdWriter::create(&path, n, [1.0, 2.0, 3.0], &fields, &meta).unwrap();
+    write_frames(&mut w, 0, 1, n);
+    w.set_edges([4.0, 5.0, 6.0]);
+    w.begin_frame(10, 0.5).unwrap();
+    w.write_observables(&[("temp", 1.5), ("other", 9.0)]).unwrap();
+    w.end_frame().unwrap();
+    drop(w);
+    let mut w = H5mdWriter::append(&path, n, &fields).unwrap();
+    assert_eq!(w.observables().collect::<Vec<_>>(), ["temp", "c_x[1]"]);
+    w.begin_frame(20, 1.0).unwrap();
+    w.write_observables(&[("temp", 2.5), ("c_x[1]", -1.0)]).unwrap();
+    w.end_frame().unwrap();
+    drop(w);
+
+    let s = check_h5md(&path).unwrap();
+    assert_eq!((s.frames, s.observables.clone()), (3, vec!["temp".to_string(), "c_x[1]".to_string()]));
+    let file = File::open(&path).unwrap();
+    let text = |ds: &str, a: &str| file.dataset(ds).unwrap().attr(a).unwrap().read_scalar::<VarLenUnicode>().unwrap().to_string();
+    assert_eq!(text("particles/all/position/value", "unit"), "Angstrom");
+    assert_eq!(text("particles/all/velocity/value", "unit"), "Angstrom ps-1");
+    assert_eq!(text("particles/all/position/time", "unit"), "ps");
+    assert_eq!(text("particles/all/box/edges/value", "unit"), "Angstrom");
+    assert!(file.dataset("particles/all/species/value").unwrap().attr("unit").is_err());
+    let author = file.group("h5md/author").unwrap();
+    assert_eq!(author.attr("email").unwrap().read_scalar::<VarLenUnicode>().unwrap().as_str(), "a@b.org");
+    assert_eq!(author.attr("name").unwrap().read_scalar::<VarLenUnicode>().unwrap().as_str(), "Ann");
+    // the edges of each frame: the created box, the one set, kept by append
+    let edges = file.dataset("particles/all/box/edges/value").unwrap().read_raw::<f64>().unwrap();
+    assert_eq!(edges, [1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 4.0, 5.0, 6.0]);
+    let temp = file.dataset("observables/temp/value").unwrap().read_raw::<f64>().unwrap();
+    assert!(temp[0].is_nan() && temp[1..] == [1.5, 2.5], "{temp:?}");
+    let cx = file.dataset("observables/c_x[1]/value").unwrap().read_raw::<f64>().unwrap();
+    assert!(cx[0].is_nan() && cx[1].is_nan() && cx[2] == -1.0, "{cx:?}");
+    assert_eq!(file.dataset("observables/temp/step").unwrap().read_raw::<i64>().unwrap(), [0, 10, 20]);
     let _ = std::fs::remove_file(&path);
 }
