@@ -189,11 +189,11 @@ fn same_thermo_as_lammps(name: &str, input: &str, rows: usize) -> f64 {
     worst
 }
 
-/// compute msd with and without `com yes`, of all particles and of a group, over 100 steps
-/// of the deterministic scene in which particles cross the boundaries: the same values as
-/// LAMMPS's.
+/// compute msd with and without `com yes`, of all particles and of a group, and compute
+/// com of the group, over 100 steps of the deterministic scene in which particles cross
+/// the boundaries: the same values as LAMMPS's.
 #[test]
-fn msd_matches_lammps() {
+fn msd_and_com_match_lammps() {
     let worst = same_thermo_as_lammps("msd", MSD, 11);
     eprintln!("msd: worst relative difference from LAMMPS {worst:.1e}");
 }
@@ -262,6 +262,8 @@ fn msd_errors_name_the_line() {
         ("compute m all msd average yes", "in.x:4: compute: keyword average: only the default, average no, is supported"),
         ("compute m all msd start 0", "in.x:4: compute: unknown keyword 'start'; known: com"),
         ("compute m none msd", "in.x:4: compute: no group 'none'"),
+        ("compute c none com", "in.x:4: compute: no group 'none'"),
+        ("compute c all com extra", "in.x:4: compute: unexpected argument"),
     ] {
         expect_error(line, expected);
     }

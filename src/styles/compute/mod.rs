@@ -3,6 +3,7 @@
 //! fix ave/time) and `compute ID GROUP chunk/atom` ([`chunk`], read by fix ave/chunk).
 
 pub mod chunk;
+pub mod com;
 pub mod msd;
 pub mod rdf;
 pub mod reduce;
@@ -33,6 +34,8 @@ pub enum ComputeStyle {
     /// LAMMPS's compute temp of a group: sum m v^2 / (dof k_B) with dof = 3 N_group -
     /// `extra_dof` (3 unless `compute_modify ID extra/dof`).
     Temp { mask: u32, extra_dof: f64 },
+    /// LAMMPS's compute com: the group's centre of mass from unwrapped positions.
+    Com { mask: u32 },
     /// LAMMPS's compute ke/atom: m v^2 / 2 (0 outside the group).
     KeAtom { mask: u32 },
     /// LAMMPS's compute pe/atom: half the energy of each pair a particle is in (pairwise
@@ -104,6 +107,7 @@ pub fn parse(a: &mut Args, groups: &[String], computes: &[Compute], spacing: gen
         "dpd" => return Err(a.err(format!("compute dpd on group '{group}': only group all is supported"))),
         "tint" => ComputeStyle::Tint { mask: crate::base::groups::mask(groups, group, a)? },
         "temp" => ComputeStyle::Temp { mask: crate::base::groups::mask(groups, group, a)?, extra_dof: 3.0 },
+        "com" => ComputeStyle::Com { mask: crate::base::groups::mask(groups, group, a)? },
         "ke/atom" => ComputeStyle::KeAtom { mask: crate::base::groups::mask(groups, group, a)? },
         "pe/atom" => {
             // LAMMPS's keywords select energy terms; gendpde's pair (or internal) energy is all of pe
@@ -197,6 +201,8 @@ pub fn value(computes: &[Compute], sys: &System, totals: &Totals, name: &str) ->
         }
         // the scalar only (LAMMPS's vector, the kinetic energy tensor, is not provided)
         ComputeStyle::Temp { mask, extra_dof } => (rest == id).then(|| Kinetic::measure(sys, mask).temperature(totals.kb, extra_dof)),
+        // the vector only, as LAMMPS
+        ComputeStyle::Com { mask } => (rest != id && (1..=3).contains(&k)).then(|| com::centre_of_mass(sys, mask)[k - 1]),
         // per-atom values only (compute reduce)
         ComputeStyle::KeAtom { .. } | ComputeStyle::PeAtom { .. } => None,
     }

@@ -7,6 +7,7 @@
 //! follow no particle between ranks; the sums are exact, so the values do not depend on
 //! the rank count.
 
+use super::com::centre_of_mass;
 use crate::base::args::Args;
 use gendpde_engine::{exact_sums, Vec3};
 use gendpde_integrators::System;
@@ -50,19 +51,9 @@ impl Msd {
         Ok(msd)
     }
 
-    /// The group's centre of mass from unwrapped positions with `com yes`, else 0
-    /// (collective).
+    /// The group's centre of mass with `com yes`, else 0 (collective).
     fn centre(&self, sys: &System) -> Vec3 {
-        if !self.com {
-            return [0.0; 3];
-        }
-        let s = &sys.store;
-        let rows = (0..s.nlocal).filter(|&i| s.in_group(i, self.mask)).map(|i| {
-            let (x, m) = (sys.domain.unwrap(s.r[i], s.image[i]), s.mass[i]);
-            [m, m * x[0], m * x[1], m * x[2]]
-        });
-        let [m, mx, my, mz] = exact_sums(sys.comm.transport(), rows);
-        if m > 0.0 { [mx / m, my / m, mz / m] } else { [0.0; 3] }
+        if self.com { centre_of_mass(sys, self.mask) } else { [0.0; 3] }
     }
 
     /// <dx^2>, <dy^2>, <dz^2>, <dr^2> over the group (collective).
