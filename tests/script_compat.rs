@@ -5,20 +5,10 @@
 
 mod common;
 
+use common::{gendpde, tempdir};
 use common::lammps::{expect_success, parse_dump, parse_thermo_blocks, run_lammps, scripts_dir, DumpSnapshot, ThermoBlock};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
-
-fn tempdir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("gendpde-script-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn gendpde(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_gendpde")).args(args).current_dir(dir).output().expect("gendpde runs")
-}
 
 /// A fresh directory holding `script` as `in.x` and the data files of scripts/lammps/.
 fn stage(name: &str, script: &str) -> PathBuf {
@@ -148,13 +138,7 @@ fn create_atoms_random_is_rank_independent() {
     std::fs::write(dir.join("in.x"), RANDOM).unwrap();
     let mut first: Option<String> = None;
     for np in [1, 2, 3] {
-        let out = Command::new("mpirun")
-            .args(["--oversubscribe", "-np", &np.to_string(), env!("CARGO_BIN_EXE_gendpde"), "run", "in.x", "-log", "none"])
-            .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
-            .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
-            .current_dir(&dir)
-            .output()
-            .expect("mpirun runs");
+        let out = common::mpirun(np, &dir, &["run", "in.x", "-log", "none"]);
         assert!(out.status.success(), "{np} ranks: {}", stderr(&out));
         let text = std::fs::read_to_string(dir.join("rand.dump")).unwrap();
         assert_eq!(parse_dump(&text)[0].atoms.len(), 800);

@@ -12,7 +12,7 @@ pub mod particles;
 pub mod sweep_pairs;
 
 pub use cells::{CellGrid, GridError};
-pub use comm::{exact_sums, Comm, Local, ProcGrid, Transport};
+pub use comm::{exact_column_sums, exact_sums, Comm, Local, ProcGrid, Transport};
 pub use domain::Domain;
 pub use fields::Fields;
 pub use neighbor::NeighborList;

@@ -161,8 +161,8 @@ impl Interpreter {
             }
             "pair_style" => styles::pair_style(sim, a)?,
             "pair_coeff" => styles::pair_coeff(sim, a)?,
-            "fix" => styles::fix(sim, &mut outputs.averages, a)?,
-            "unfix" => styles::unfix(sim, &mut outputs.averages, a)?,
+            "fix" => styles::fix(sim, outputs, a)?,
+            "unfix" => styles::unfix(sim, outputs, a)?,
             "compute" => styles::compute(sim, a)?,
             "compute_modify" => crate::styles::compute::modify(&mut sim.computes, a)?,
             "thermo" => output::thermo(&mut outputs.thermo, a)?,

@@ -149,9 +149,8 @@ pub fn region(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
             k => return Err(a.err(format!("unknown keyword '{k}'; known: side, units"))),
         }
     }
-    // lattice spacings, as LAMMPS scales each style; its default lattice `lattice none 1.0`
-    // has spacing 1
-    let f = scale.map_or_else(|| sim.lattice.as_ref().map_or([1.0; 3], |l| l.spacing), |s| [s; 3]);
+    // lattice spacings, as LAMMPS scales each style
+    let f = scale.map_or_else(|| sim.lattice_spacing(), |s| [s; 3]);
     let shape = match shape {
         Shape::Block { lo, hi } => Shape::Block { lo: std::array::from_fn(|d| lo[d] * f[d]), hi: std::array::from_fn(|d| hi[d] * f[d]) },
         Shape::Sphere { centre, radius } => Shape::Sphere { centre: std::array::from_fn(|d| centre[d] * f[d]), radius: radius * f[0] },

@@ -4,7 +4,9 @@
 use crate::base::args::Args;
 use crate::base::script::echo;
 use crate::model::sim::Sim;
+use crate::output::ave_chunk::AveChunk;
 use crate::output::ave_time::AveTime;
+use crate::output::Outputs;
 use crate::styles::compute::{self, Definition};
 use crate::styles::fix::parse_fix;
 use crate::styles::pair::{parse_pair_coeff, parse_pair_style};
@@ -29,27 +31,37 @@ pub fn pair_coeff(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
 }
 
 /// `fix ID GROUP STYLE args...`: a style fix (redefining an ID of the same style replaces
-/// it) or a `fix ave/time` output (into `averages`).
-pub fn fix(sim: &mut Sim, averages: &mut Vec<AveTime>, a: &mut Args) -> Result<(), ScriptError> {
+/// it) or a `fix ave/time` or `fix ave/chunk` output (into `outputs`).
+pub fn fix(sim: &mut Sim, outputs: &mut Outputs, a: &mut Args) -> Result<(), ScriptError> {
     let cmd = a.command();
-    if cmd.args.get(2).map(String::as_str) == Some("ave/time") {
+    let style = cmd.args.get(2).map(String::as_str);
+    if let Some(style @ ("ave/time" | "ave/chunk")) = style {
         let id = a.word("a fix ID")?.to_string();
         let group = a.word("a group")?;
-        if group != "all" {
-            return Err(a.err(format!("group '{group}': fixes act on group all")));
-        }
-        a.word("ave/time")?;
-        if sim.fixes.iter().any(|f| f.id == id) {
+        a.word("a fix style")?;
+        let other_style = match style {
+            "ave/time" => outputs.chunk_averages.iter().any(|f| f.id == id),
+            _ => outputs.averages.iter().any(|f| f.id == id),
+        };
+        if other_style || sim.fixes.iter().any(|f| f.id == id) {
             return Err(a.err(format!("fix ID '{id}' is in use by another style (unfix it first)")));
         }
         let step = sim.system.as_ref().map_or(0, |s| s.step);
-        let fix = AveTime::parse(id, a, &sim.rdfs, step)?;
-        averages.retain(|f| f.id != fix.id);
-        averages.push(fix);
+        if style == "ave/chunk" {
+            let fix = AveChunk::parse(id, group, a, &sim.groups, &sim.chunks, step)?;
+            outputs.chunk_averages.retain(|f| f.id != fix.id);
+            outputs.chunk_averages.push(fix);
+        } else if group != "all" {
+            return Err(a.err(format!("group '{group}': fix ave/time acts on group all")));
+        } else {
+            let fix = AveTime::parse(id, a, &sim.rdfs, step)?;
+            outputs.averages.retain(|f| f.id != fix.id);
+            outputs.averages.push(fix);
+        }
         return Ok(());
     }
     let fix = parse_fix(cmd, sim.units.kb, &sim.groups)?;
-    if averages.iter().any(|f| f.id == fix.id) {
+    if outputs.has_fix(&fix.id) {
         return Err(a.err(format!("fix ID '{}' is in use by another style (unfix it first)", fix.id)));
     }
     match sim.fixes.iter_mut().find(|f| f.id == fix.id) {
@@ -62,27 +74,33 @@ pub fn fix(sim: &mut Sim, averages: &mut Vec<AveTime>, a: &mut Args) -> Result<(
     sim.check_density_cap().map_err(|e| a.err(e))
 }
 
-/// `unfix ID`: a style fix or a fix ave/time.
-pub fn unfix(sim: &mut Sim, averages: &mut Vec<AveTime>, a: &mut Args) -> Result<(), ScriptError> {
+/// `unfix ID`: a style fix, a fix ave/time or a fix ave/chunk.
+pub fn unfix(sim: &mut Sim, outputs: &mut Outputs, a: &mut Args) -> Result<(), ScriptError> {
     let id = a.word("a fix ID")?;
     a.done()?;
-    let before = sim.fixes.len() + averages.len();
-    sim.fixes.retain(|f| f.id != id);
-    averages.retain(|f| f.id != id);
-    if sim.fixes.len() + averages.len() == before {
+    if !sim.fixes.iter().any(|f| f.id == id) && !outputs.has_fix(id) {
         return Err(a.err(format!("no fix with ID '{id}'")));
     }
+    sim.fixes.retain(|f| f.id != id);
+    outputs.averages.retain(|f| f.id != id);
+    outputs.chunk_averages.retain(|f| f.id != id);
     Ok(())
 }
 
 /// `compute ID GROUP STYLE args...` (redefining an ID replaces it).
 pub fn compute(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
-    let def = compute::parse(a, &sim.groups)?;
+    let def = compute::parse(a, &sim.groups, &sim.computes, sim.lattice_spacing(), sim.system.as_ref(), sim.max_tag)?;
     sim.computes.retain(|c| c.id != def.id());
     sim.rdfs.retain(|r| r.id != def.id());
+    sim.chunks.retain(|r| r.id != def.id());
+    sim.msds.retain(|r| r.id != def.id());
+    sim.reduces.retain(|r| r.id != def.id());
     match def {
         Definition::Value(c) => sim.computes.push(c),
         Definition::Rdf(r) => sim.rdfs.push(r),
+        Definition::Chunk(c) => sim.chunks.push(c),
+        Definition::Msd(m) => sim.msds.push(m),
+        Definition::Reduce(r) => sim.reduces.push(r),
     }
     Ok(())
 }

@@ -4,6 +4,9 @@
 use crate::base::lattice::Lattice;
 use crate::base::region::Region;
 use crate::base::units::Units;
+use crate::styles::compute::chunk::ChunkAtom;
+use crate::styles::compute::msd::Msd;
+use crate::styles::compute::reduce::Reduce;
 use crate::styles::compute::rdf::Rdf;
 use crate::styles::compute::Compute;
 use crate::styles::fix::{Fix, FixStyle};
@@ -47,6 +50,12 @@ pub struct Sim {
     pub computes: Vec<Compute>,
     /// `compute ID all rdf` definitions.
     pub rdfs: Vec<Rdf>,
+    /// `compute ID GROUP chunk/atom` definitions.
+    pub chunks: Vec<ChunkAtom>,
+    /// `compute ID GROUP msd` definitions (thermo `c_ID[k]`).
+    pub msds: Vec<Msd>,
+    /// `compute ID GROUP reduce` definitions (thermo `c_ID`, `c_ID[k]`).
+    pub reduces: Vec<Reduce>,
     /// Group names by bit (an empty name is a free slot).
     pub groups: Vec<String>,
     /// State of fixes read from a restart, taken by the fixes as they are defined.
@@ -77,9 +86,18 @@ impl Sim {
             pair_text: Vec::new(),
             computes: Vec::new(),
             rdfs: Vec::new(),
+            chunks: Vec::new(),
+            msds: Vec::new(),
+            reduces: Vec::new(),
             groups: Vec::new(),
             restored_state: Vec::new(),
         }
+    }
+
+    /// The lattice spacings for `units lattice`: LAMMPS's default lattice, `lattice none
+    /// 1.0`, has spacing 1.
+    pub fn lattice_spacing(&self) -> gendpde_engine::Vec3 {
+        self.lattice.as_ref().map_or([1.0; 3], |l| l.spacing)
     }
 
     /// The ranks, for the box about to be created.

@@ -4,7 +4,7 @@
 //! Rank 0 writes the file and flushes each block.
 
 use crate::base::args::Args;
-use crate::output::schedule::{Frame, RunOutput, Span};
+use crate::output::schedule::{write_on_rank0, Frame, RunOutput, Sampling, Span};
 use crate::styles::compute::rdf::{Rdf, COLUMNS};
 use gendpde_io::ScriptError;
 use std::fs::File;
@@ -12,9 +12,7 @@ use std::io::{BufWriter, Write};
 
 pub struct AveTime {
     pub id: String,
-    nevery: u64,
-    nrepeat: u64,
-    nfreq: u64,
+    sampling: Sampling,
     /// (compute ID, column from 0) of each value.
     columns: Vec<(String, usize)>,
     file: String,
@@ -24,23 +22,13 @@ pub struct AveTime {
     out: Option<BufWriter<File>>,
     /// Sum of the samples of the current block, row-major (rows x columns).
     sums: Vec<f64>,
-    samples: u64,
-    /// The next step to sample (LAMMPS's nvalid).
-    next: u64,
 }
 
 impl AveTime {
     /// The words after `fix ID all ave/time`; `rdfs` are the computes defined so far and
     /// `step` the current step.
     pub fn parse(id: String, a: &mut Args, rdfs: &[Rdf], step: u64) -> Result<Self, ScriptError> {
-        let nevery = a.u64("Nevery")?;
-        let nrepeat = a.u64("Nrepeat")?;
-        let nfreq = a.u64("Nfreq")?;
-        if nevery == 0 || nrepeat == 0 || nfreq == 0 || nfreq % nevery != 0 || (nrepeat - 1).saturating_mul(nevery) >= nfreq {
-            return Err(a.err(format!(
-                "Nevery {nevery}, Nrepeat {nrepeat}, Nfreq {nfreq}: all must be positive, Nfreq a multiple of Nevery and (Nrepeat - 1) Nevery < Nfreq"
-            )));
-        }
+        let sampling = Sampling::parse(a, step)?;
         let (mut columns, mut nbin) = (Vec::new(), None);
         while let Some(v) = a.peek().filter(|w| w.starts_with("c_")) {
             a.word("a value")?;
@@ -84,24 +72,12 @@ impl AveTime {
         if !vector {
             return Err(a.err("missing keyword: mode vector (mode scalar is not supported)"));
         }
-        let mut fix = Self { id, nevery, nrepeat, nfreq, columns, file, format, out: None, sums: Vec::new(), samples: 0, next: 0 };
-        fix.next = fix.next_block(step);
-        Ok(fix)
+        Ok(Self { id, sampling, columns, file, format, out: None, sums: Vec::new() })
     }
 
     /// IDs of the computes the fix reads.
     pub fn computes(&self) -> impl Iterator<Item = &str> {
         self.columns.iter().map(|c| c.0.as_str())
-    }
-
-    /// The first sample of the next block at or after `step` (LAMMPS's nextvalid).
-    fn next_block(&self, step: u64) -> u64 {
-        let end = (step / self.nfreq) * self.nfreq + self.nfreq;
-        let mut first = if end - self.nfreq == step && self.nrepeat == 1 { step } else { end - (self.nrepeat - 1) * self.nevery };
-        if first < step {
-            first += self.nfreq;
-        }
-        first
     }
 
     /// Opens the file (with LAMMPS's three heading lines) at the first block, then
@@ -118,7 +94,7 @@ impl AveTime {
         for r in 0..nrow {
             text += &(r + 1).to_string();
             for c in 0..ncol {
-                let v = self.sums[r * ncol + c] / self.nrepeat as f64;
+                let v = self.sums[r * ncol + c] / self.sampling.nrepeat as f64;
                 text += &gendpde_io::format_printf(&self.format, v).map_err(std::io::Error::other)?;
             }
             text.push('\n');
@@ -132,16 +108,13 @@ impl AveTime {
 impl RunOutput for AveTime {
     /// The next sample (LAMMPS's nvalid).
     fn next_step(&self, _step: u64, _run: Span) -> Option<u64> {
-        Some(self.next)
+        Some(self.sampling.next)
     }
 
     /// Adds a sample and writes a block when it is complete. A failure on rank 0 stops
     /// all ranks.
     fn write(&mut self, f: &mut Frame) -> Result<(), String> {
         let (sys, rdfs, pair, skin) = (f.sys, &f.sim.rdfs, f.sim.pair.as_ref(), f.sim.skin);
-        if sys.step > self.next {
-            return Err(format!("fix {} ave/time: step {} lies past the next sample {} (reset_timestep?)", self.id, sys.step, self.next));
-        }
         // each compute once per sample
         let mut tables: Vec<(&str, Vec<[f64; COLUMNS]>)> = Vec::new();
         for id in self.computes() {
@@ -153,7 +126,7 @@ impl RunOutput for AveTime {
         }
         let ncol = self.columns.len();
         let nrow = tables[0].1.len();
-        if self.samples == 0 {
+        if self.sampling.samples == 0 {
             self.sums = vec![0.0; nrow * ncol];
         }
         for (c, (id, k)) in self.columns.iter().enumerate() {
@@ -162,17 +135,10 @@ impl RunOutput for AveTime {
                 self.sums[r * ncol + c] += row[*k];
             }
         }
-        self.samples += 1;
-        if self.samples < self.nrepeat {
-            self.next += self.nevery;
+        if !self.sampling.sample(sys.step, &format!("{} ave/time", self.id))? {
             return Ok(());
         }
-        let written = if sys.comm.rank() == 0 { self.write_block(sys.step, nrow).map_err(|e| format!("fix {} ave/time: writing {}: {e}", self.id, self.file)) } else { Ok(()) };
-        self.samples = 0;
-        self.next = sys.step + self.nfreq - (self.nrepeat - 1) * self.nevery;
-        match (sys.comm.any(written.is_err()), written) {
-            (true, Ok(())) => Err(format!("fix {} ave/time: writing {} failed on rank 0", self.id, self.file)),
-            (_, result) => result,
-        }
+        let what = format!("fix {} ave/time: writing {}", self.id, self.file);
+        write_on_rank0(sys, &what, || self.write_block(sys.step, nrow))
     }
 }

@@ -1,11 +1,12 @@
 //! When a run writes its outputs: each says at which step it is next due, and the run
 //! writes the due ones at its setup and after every step, in the order of `Outputs::all`.
 
+use crate::base::args::Args;
 use crate::model::sim::Sim;
 use crate::output::console::Output;
 use crate::output::thermo_settings::ThermoConfig;
 use gendpde_integrators::System;
-use gendpde_io::Variables;
+use gendpde_io::{ScriptError, Variables};
 
 /// The steps of one `run`: its setup at `first`, then the steps up to `last`.
 #[derive(Clone, Copy, Debug)]
@@ -36,4 +37,62 @@ pub trait RunOutput {
 
     /// Writes at step `frame.sys.step`. Every rank calls it.
     fn write(&mut self, frame: &mut Frame) -> Result<(), String>;
+}
+
+/// The sampling of fix ave/time and fix ave/chunk: blocks of Nrepeat samples Nevery steps
+/// apart, each ending on a multiple of Nfreq (LAMMPS's nvalid and nextvalid).
+pub struct Sampling {
+    pub nevery: u64,
+    pub nrepeat: u64,
+    pub nfreq: u64,
+    /// Samples of the current block so far.
+    pub samples: u64,
+    /// The next step to sample.
+    pub next: u64,
+}
+
+impl Sampling {
+    /// `Nevery Nrepeat Nfreq` of a fix defined at `step`.
+    pub fn parse(a: &mut Args, step: u64) -> Result<Self, ScriptError> {
+        let nevery = a.u64("Nevery")?;
+        let nrepeat = a.u64("Nrepeat")?;
+        let nfreq = a.u64("Nfreq")?;
+        if nevery == 0 || nrepeat == 0 || nfreq == 0 || nfreq % nevery != 0 || (nrepeat - 1).saturating_mul(nevery) >= nfreq {
+            return Err(a.err(format!(
+                "Nevery {nevery}, Nrepeat {nrepeat}, Nfreq {nfreq}: all must be positive, Nfreq a multiple of Nevery and (Nrepeat - 1) Nevery < Nfreq"
+            )));
+        }
+        let end = (step / nfreq) * nfreq + nfreq;
+        let mut next = if end - nfreq == step && nrepeat == 1 { step } else { end - (nrepeat - 1) * nevery };
+        if next < step {
+            next += nfreq;
+        }
+        Ok(Self { nevery, nrepeat, nfreq, samples: 0, next })
+    }
+
+    /// Counts the sample taken at `step` (the due one, else an error naming `fix`) and
+    /// schedules the next; true when it completes a block.
+    pub fn sample(&mut self, step: u64, fix: &str) -> Result<bool, String> {
+        if step > self.next {
+            return Err(format!("fix {fix}: step {step} lies past the next sample {} (reset_timestep?)", self.next));
+        }
+        self.samples += 1;
+        if self.samples < self.nrepeat {
+            self.next += self.nevery;
+            return Ok(false);
+        }
+        self.samples = 0;
+        self.next = step + self.nfreq - (self.nrepeat - 1) * self.nevery;
+        Ok(true)
+    }
+}
+
+/// Runs `write` on rank 0 (the file of an averaging fix) and stops every rank if it failed
+/// there; `what` ("fix ID STYLE: writing FILE") heads the message.
+pub fn write_on_rank0(sys: &System, what: &str, write: impl FnOnce() -> std::io::Result<()>) -> Result<(), String> {
+    let written = if sys.comm.rank() == 0 { write().map_err(|e| format!("{what}: {e}")) } else { Ok(()) };
+    match (sys.comm.any(written.is_err()), written) {
+        (true, Ok(())) => Err(format!("{what} failed on rank 0")),
+        (_, result) => result,
+    }
 }

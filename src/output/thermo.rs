@@ -246,7 +246,11 @@ impl<'a> ThermoContext<'a> {
         }
         let o = &self.obs;
         let totals = Totals { kb: self.sim.units.kb, atoms: o.atoms, u: o.u, u_cond: o.u_cond, inv_theta: o.inv_theta };
-        compute::value(&self.sim.computes, self.sys, &totals, name)
+        let (sim, sys) = (self.sim, self.sys);
+        compute::value(&sim.computes, sys, &totals, name).or_else(|| compute::msd_value(&sim.msds, sys, name)).or_else(|| {
+            let (v, extensive) = compute::reduce_value(&sim.reduces, &sim.computes, sys, sim.units.mvv2e, sim.pe_is_pair(), name)?;
+            Some(if extensive && self.norm && o.atoms > 0.0 { v / o.atoms } else { v })
+        })
     }
 
     /// Energy reservoir `id` has put into the particles since it was defined (extensive:

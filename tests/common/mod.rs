@@ -7,7 +7,15 @@ pub mod ranks;
 pub mod stats;
 
 use gendpde::{Interpreter, Mode, Output};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+pub use ranks::{mpirun, tempdir};
+
+/// Runs the gendpde program with `args` in `dir`.
+pub fn gendpde(dir: &Path, args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_gendpde")).args(args).current_dir(dir).output().expect("gendpde runs")
+}
 
 pub fn example(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("examples").join(name).join(format!("in.{name}"))

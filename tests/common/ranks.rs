@@ -23,7 +23,7 @@ pub fn mpirun(np: usize, dir: &Path, args: &[&str]) -> Output {
     out
 }
 
-/// A fresh directory for one test of this process.
+/// A fresh, empty directory for test `name` of this process.
 pub fn tempdir(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("gendpde-mpi-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);

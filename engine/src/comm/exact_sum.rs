@@ -11,48 +11,48 @@ const GRID_BITS: i32 = 96;
 
 /// Column sums of `rows`, identical for every decomposition of the rows over ranks.
 pub fn exact_sums<const K: usize>(t: &dyn Transport, rows: impl Iterator<Item = [f64; K]> + Clone) -> [f64; K] {
-    let mut max = [0.0f64; K];
-    for row in rows.clone() {
-        for k in 0..K {
-            max[k] = max[k].max(row[k].abs());
-        }
+    let sums = exact_column_sums(t, K, rows.flat_map(|row| row.into_iter().enumerate()));
+    std::array::from_fn(|k| sums[k])
+}
+
+/// Sums of `terms` (column, value) into `ncol` columns, identical for every decomposition
+/// of the terms over ranks (each column has its own grid). Panics on a column >= `ncol`.
+pub fn exact_column_sums(t: &dyn Transport, ncol: usize, terms: impl Iterator<Item = (usize, f64)> + Clone) -> Vec<f64> {
+    let mut max = vec![0.0f64; ncol];
+    for (k, v) in terms.clone() {
+        max[k] = max[k].max(v.abs());
     }
     t.max(&mut max);
-    let scale: [f64; K] = std::array::from_fn(|k| {
-        if max[k] > 0.0 && max[k].is_finite() {
-            2f64.powi(max[k].log2().ceil() as i32 - GRID_BITS)
+    let scale: Vec<f64> = max
+        .iter()
+        .map(|&m| if m > 0.0 && m.is_finite() { 2f64.powi(m.log2().ceil() as i32 - GRID_BITS) } else { 1.0 })
+        .collect();
+    let mut acc = vec![0i128; ncol];
+    let mut nonfinite = vec![false; ncol];
+    for (k, v) in terms {
+        if v.is_finite() {
+            acc[k] = acc[k].wrapping_add((v / scale[k]) as i128);
         } else {
-            1.0
-        }
-    });
-    let mut acc = [0i128; K];
-    let mut nonfinite = [false; K];
-    for row in rows {
-        for k in 0..K {
-            if row[k].is_finite() {
-                acc[k] = acc[k].wrapping_add((row[k] / scale[k]) as i128);
-            } else {
-                nonfinite[k] = true;
-            }
+            nonfinite[k] = true;
         }
     }
-    let mut words = Vec::with_capacity(3 * K);
-    for k in 0..K {
+    let mut words = Vec::with_capacity(3 * ncol);
+    for k in 0..ncol {
         words.push(acc[k] as u64);
         words.push((acc[k] >> 64) as u64);
         words.push(nonfinite[k] as u64);
     }
     let all = t.all_gather(&words);
-    let mut out = [0.0; K];
-    for k in 0..K {
-        let (mut total, mut bad) = (0i128, false);
-        for rank in all.chunks_exact(3 * K) {
-            total = total.wrapping_add((rank[3 * k] as u128 | ((rank[3 * k + 1] as u128) << 64)) as i128);
-            bad |= rank[3 * k + 2] != 0;
-        }
-        out[k] = if bad { f64::NAN } else { total as f64 * scale[k] };
-    }
-    out
+    (0..ncol)
+        .map(|k| {
+            let (mut total, mut bad) = (0i128, false);
+            for rank in all.chunks_exact(3 * ncol) {
+                total = total.wrapping_add((rank[3 * k] as u128 | ((rank[3 * k + 1] as u128) << 64)) as i128);
+                bad |= rank[3 * k + 2] != 0;
+            }
+            if bad { f64::NAN } else { total as f64 * scale[k] }
+        })
+        .collect()
 }
 
 #[cfg(test)]
@@ -80,5 +80,6 @@ mod tests {
     fn nan_and_empty_are_handled() {
         assert_eq!(exact_sums(&Local, std::iter::empty::<[f64; 1]>()), [0.0]);
         assert!(exact_sums(&Local, [[1.0], [f64::NAN]].into_iter())[0].is_nan());
+        assert_eq!(exact_column_sums(&Local, 2, [(1, 2.0), (1, 0.5)].into_iter()), vec![0.0, 2.5]);
     }
 }

@@ -11,7 +11,7 @@ mod mpi;
 mod procs;
 mod transport;
 
-pub use exact_sum::exact_sums;
+pub use exact_sum::{exact_column_sums, exact_sums};
 #[cfg(feature = "mpi")]
 pub use mpi::MpiTransport;
 pub use procs::ProcGrid;

@@ -1,9 +1,16 @@
 //! Compute styles: `compute ID all dpd`, `compute ID GROUP tint` and `compute ID GROUP
-//! temp`, global values read in thermo output as `c_ID` or `c_ID[k]`, and `compute ID all rdf` ([`rdf`], read by
-//! fix ave/time).
+//! temp`, global values read in thermo output as `c_ID` or `c_ID[k]`, `compute ID all rdf` ([`rdf`], read by
+//! fix ave/time) and `compute ID GROUP chunk/atom` ([`chunk`], read by fix ave/chunk).
 
+pub mod chunk;
+pub mod com;
+pub mod msd;
 pub mod rdf;
+pub mod reduce;
 
+use self::chunk::ChunkAtom;
+use self::msd::Msd;
+use self::reduce::Reduce;
 use self::rdf::Rdf;
 use crate::base::args::Args;
 use crate::styles::COMPUTE_STYLES;
@@ -27,6 +34,14 @@ pub enum ComputeStyle {
     /// LAMMPS's compute temp of a group: sum m v^2 / (dof k_B) with dof = 3 N_group -
     /// `extra_dof` (3 unless `compute_modify ID extra/dof`).
     Temp { mask: u32, extra_dof: f64 },
+    /// LAMMPS's compute com: the group's centre of mass from unwrapped positions.
+    Com { mask: u32 },
+    /// LAMMPS's compute ke/atom: m v^2 / 2 (0 outside the group).
+    KeAtom { mask: u32 },
+    /// LAMMPS's compute pe/atom: half the energy of each pair a particle is in (pairwise
+    /// styles), or its internal energy u (GenDPDE, whose pe is the sum of u); 0 outside
+    /// the group.
+    PeAtom { mask: u32 },
 }
 
 /// The kinetic sums of a group: its count and the diagonal of sum p p^T / m.
@@ -63,6 +78,9 @@ impl Kinetic {
 pub enum Definition {
     Value(Compute),
     Rdf(Rdf),
+    Chunk(ChunkAtom),
+    Msd(Msd),
+    Reduce(Reduce),
 }
 
 impl Definition {
@@ -70,12 +88,18 @@ impl Definition {
         match self {
             Self::Value(c) => &c.id,
             Self::Rdf(r) => &r.id,
+            Self::Chunk(c) => &c.id,
+            Self::Msd(m) => &m.id,
+            Self::Reduce(r) => &r.id,
         }
     }
 }
 
-/// The words of `compute ID GROUP STYLE args...`; `groups` are the group names by bit.
-pub fn parse(a: &mut Args, groups: &[String]) -> Result<Definition, ScriptError> {
+/// The words of `compute ID GROUP STYLE args...`; `groups` are the group names by bit,
+/// `spacing` the lattice spacings (LAMMPS's default lattice has spacing 1), `system` and
+/// `max_tag` the particles so far (compute msd records their positions).
+/// `computes` are those defined so far (compute reduce reads them).
+pub fn parse(a: &mut Args, groups: &[String], computes: &[Compute], spacing: gendpde_engine::Vec3, system: Option<&System>, max_tag: u64) -> Result<Definition, ScriptError> {
     let id = a.word("a compute ID")?.to_string();
     let group = a.word("a group")?;
     let style = match a.word("a compute style")? {
@@ -83,12 +107,58 @@ pub fn parse(a: &mut Args, groups: &[String]) -> Result<Definition, ScriptError>
         "dpd" => return Err(a.err(format!("compute dpd on group '{group}': only group all is supported"))),
         "tint" => ComputeStyle::Tint { mask: crate::base::groups::mask(groups, group, a)? },
         "temp" => ComputeStyle::Temp { mask: crate::base::groups::mask(groups, group, a)?, extra_dof: 3.0 },
+        "com" => ComputeStyle::Com { mask: crate::base::groups::mask(groups, group, a)? },
+        "ke/atom" => ComputeStyle::KeAtom { mask: crate::base::groups::mask(groups, group, a)? },
+        "pe/atom" => {
+            // LAMMPS's keywords select energy terms; gendpde's pair (or internal) energy is all of pe
+            while let Some(k) = a.peek() {
+                match k {
+                    "pair" | "bond" | "angle" | "dihedral" | "improper" | "kspace" | "fix" => a.word("a keyword")?,
+                    k => return Err(a.err(format!("unknown keyword '{k}'; known: pair, bond, angle, dihedral, improper, kspace, fix"))),
+                };
+            }
+            ComputeStyle::PeAtom { mask: crate::base::groups::mask(groups, group, a)? }
+        }
         "rdf" if group == "all" => return Ok(Definition::Rdf(Rdf::parse(id, a)?)),
+        "reduce" => {
+            let per_atom = |cid: &str| computes.iter().find(|c| c.id == cid).map(Compute::is_per_atom);
+            return Ok(Definition::Reduce(Reduce::parse(id, crate::base::groups::mask(groups, group, a)?, a, per_atom)?));
+        }
         "rdf" => return Err(a.err(format!("compute rdf on group {group}: only group all is supported"))),
+        "msd" => {
+            let sys = system.ok_or_else(|| a.err("compute msd before the box exists (create_box, read_data or read_restart)"))?;
+            return Ok(Definition::Msd(Msd::parse(id, crate::base::groups::mask(groups, group, a)?, a, sys, max_tag)?));
+        }
+        "chunk/atom" => return Ok(Definition::Chunk(ChunkAtom::parse(id, crate::base::groups::mask(groups, group, a)?, a, spacing)?)),
         other => return Err(a.err(format!("unknown compute style '{other}'; known: {COMPUTE_STYLES}"))),
     };
     a.done()?;
     Ok(Definition::Value(Compute { id, style }))
+}
+
+impl Compute {
+    /// Whether it has per-atom values (ke/atom, pe/atom) and no global ones.
+    pub fn is_per_atom(&self) -> bool {
+        matches!(self.style, ComputeStyle::KeAtom { .. } | ComputeStyle::PeAtom { .. })
+    }
+
+    /// The value of particle `i` of a per-atom compute (ke/atom, pe/atom; 0 outside its
+    /// group), None for global computes. `mvv2e` converts m v^2 to energy; `pair_energy`:
+    /// pe is the pair energy (pairwise styles), else the internal energy u.
+    pub fn per_atom(&self, sys: &System, i: usize, mvv2e: f64, pair_energy: bool) -> Option<f64> {
+        let s = &sys.store;
+        let (mask, pe) = match self.style {
+            ComputeStyle::KeAtom { mask } => (mask, false),
+            ComputeStyle::PeAtom { mask } => (mask, true),
+            _ => return None,
+        };
+        Some(match (s.in_group(i, mask), pe) {
+            (false, _) => 0.0,
+            (true, false) => 0.5 * mvv2e * s.p[i].iter().map(|p| p * p).sum::<f64>() / s.mass[i],
+            (true, true) if pair_energy => s.epair.get(i).copied().unwrap_or(0.0),
+            (true, true) => s.u[i],
+        })
+    }
 }
 
 /// The global sums a thermo line needs from the whole system (`output::thermo`).
@@ -131,7 +201,33 @@ pub fn value(computes: &[Compute], sys: &System, totals: &Totals, name: &str) ->
         }
         // the scalar only (LAMMPS's vector, the kinetic energy tensor, is not provided)
         ComputeStyle::Temp { mask, extra_dof } => (rest == id).then(|| Kinetic::measure(sys, mask).temperature(totals.kb, extra_dof)),
+        // the vector only, as LAMMPS
+        ComputeStyle::Com { mask } => (rest != id && (1..=3).contains(&k)).then(|| com::centre_of_mass(sys, mask)[k - 1]),
+        // per-atom values only (compute reduce)
+        ComputeStyle::KeAtom { .. } | ComputeStyle::PeAtom { .. } => None,
     }
+}
+
+/// `c_ID[k]` (k = 1..4) of a compute msd; None if `name` is no such reference.
+/// Collective.
+pub fn msd_value(msds: &[Msd], sys: &System, name: &str) -> Option<f64> {
+    let (id, k) = name.strip_prefix("c_")?.strip_suffix(']')?.split_once('[')?;
+    let k = k.parse::<usize>().ok().filter(|k| (1..=4).contains(k))?;
+    Some(msds.iter().find(|m| m.id == id)?.vector(sys)[k - 1])
+}
+
+/// `c_ID` or `c_ID[k]` of a compute reduce and whether it is extensive (divided by the
+/// particle count with `thermo_modify norm yes`); None if `name` is no such reference.
+/// Collective; `mvv2e` and `pair_energy` as for [`Compute::per_atom`].
+pub fn reduce_value(reduces: &[Reduce], computes: &[Compute], sys: &System, mvv2e: f64, pair_energy: bool, name: &str) -> Option<(f64, bool)> {
+    let (r, k) = reduces.iter().find_map(|r| Some((r, r.index(name)?)))?;
+    // None if the per-atom compute was redefined as another style
+    let compute = match r.compute_input(k) {
+        Some(cid) => Some(computes.iter().find(|c| c.id == cid && c.is_per_atom())?),
+        None => None,
+    };
+    let per_atom = |i| compute.and_then(|c| c.per_atom(sys, i, mvv2e, pair_energy)).unwrap_or(0.0);
+    Some((r.value(k, sys, per_atom), r.extensive()))
 }
 
 /// `compute_modify ID extra/dof N` (or `extra N`) of a compute temp.
