@@ -8,8 +8,10 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 source scripts/deps.sh
 install_build_deps
 cargo build --release --quiet --features mpi
+target="${CARGO_TARGET_DIR:-target}"
+[[ "$target" = /* ]] || target="$PWD/$target"
 cd examples/vdw-equilibrium
 if [ "${NP:-1}" -gt 1 ]; then
-  exec mpirun --oversubscribe -np "$NP" ../../target/release/gendpde run in.vdw-equilibrium "$@"
+  exec mpirun --oversubscribe -np "$NP" "$target/release/gendpde" run in.vdw-equilibrium "$@"
 fi
-exec ../../target/release/gendpde run in.vdw-equilibrium "$@"
+exec "$target/release/gendpde" run in.vdw-equilibrium "$@"
