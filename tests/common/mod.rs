@@ -10,6 +10,7 @@ use gendpde::{Interpreter, Mode, Output};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
+#[allow(unused_imports)] // not every test file launches mpirun
 pub use ranks::{mpirun, tempdir};
 
 /// Runs the gendpde program with `args` in `dir`.
