@@ -81,6 +81,7 @@ pub fn run(sim: &mut Sim, outputs: &mut Outputs, out: &mut Output, vars: &Variab
     sim.energy0.get_or_insert_with(|| Observables::measure(sys).energy());
     let run = Span { first: sys.step, last: sys.step + nsteps };
     let comm_before = sys.comm.time().as_secs_f64();
+    let traffic_before = sys.comm.traffic();
     let clock = Instant::now();
     let natoms = sys.comm.count(sys.store.nlocal);
     out.line(&format!("Setting up GenDPDE run: {natoms} particles, timestep {} ...", sim.dt));
@@ -127,6 +128,15 @@ pub fn run(sim: &mut Sim, outputs: &mut Outputs, out: &mut Output, vars: &Variab
     let comm = sys.comm.time().as_secs_f64() - comm_before;
     if secs > 0.0 {
         out.line(&format!("Comm time (rank 0) = {comm:.6} s ({:.1} % of the loop)", 100.0 * comm / secs));
+    }
+    let (messages, bytes) = sys.comm.traffic();
+    if sys.comm.size() > 1 && nsteps > 0 {
+        let per_step = |now: u64, before: u64| (now - before) as f64 / nsteps as f64;
+        out.line(&format!(
+            "Comm messages per step (rank 0, point to point) = {:.1}, {:.1} kB per step",
+            per_step(messages, traffic_before.0),
+            per_step(bytes, traffic_before.1) / 1e3
+        ));
     }
     out.line(&format!("Neighbor list builds = {}", sys.builds));
     if sys.substeps > 0 || sys.rejected > 0 {

@@ -47,6 +47,25 @@ pub struct Comm {
     written: Vec<bool>,
     /// Wall time spent in exchanges and collectives.
     time: std::cell::Cell<std::time::Duration>,
+    traffic: Traffic,
+}
+
+/// Point-to-point messages this rank sent to other ranks, and their f64 values.
+#[derive(Default)]
+struct Traffic {
+    messages: u64,
+    values: u64,
+}
+
+impl Traffic {
+    /// Sends `send` to `dest` and receives `src`'s buffer into `recv`, counted.
+    fn sendrecv(&mut self, t: &dyn Transport, send: &[f64], dest: usize, src: usize, recv: &mut Vec<f64>) {
+        if dest != t.rank() {
+            self.messages += 1;
+            self.values += send.len() as u64;
+        }
+        t.sendrecv(send, dest, src, recv);
+    }
 }
 
 impl Comm {
@@ -68,12 +87,18 @@ impl Comm {
             recv: Vec::new(),
             written: Vec::new(),
             time: Default::default(),
+            traffic: Traffic::default(),
         }
     }
 
     /// Wall time spent in communication so far (exchanges, ghosts, collectives).
     pub fn time(&self) -> std::time::Duration {
         self.time.get()
+    }
+
+    /// Point-to-point messages sent to other ranks so far, and their bytes.
+    pub fn traffic(&self) -> (u64, u64) {
+        (self.traffic.messages, 8 * self.traffic.values)
     }
 
     fn timed<R>(&self, f: impl FnOnce() -> R) -> R {
@@ -198,7 +223,7 @@ impl Comm {
                         }
                     }
                     let (dest, src) = self.grid.neighbours(d, dir);
-                    self.t.sendrecv(&self.send, dest, src, &mut self.recv);
+                    self.traffic.sendrecv(self.t.as_ref(), &self.send, dest, src, &mut self.recv);
                     for rec in self.recv.chunks_exact(store.owned_record()) {
                         store.unpack_owned(rec);
                         if !keep_cells {
@@ -234,7 +259,7 @@ impl Comm {
                     store.pack_ghost(i as usize, &layout, d, shift, cell_shift, &mut self.send);
                 }
                 let (dest, src) = self.grid.neighbours(d, dir);
-                self.t.sendrecv(&self.send, dest, src, &mut self.recv);
+                self.traffic.sendrecv(self.t.as_ref(), &self.send, dest, src, &mut self.recv);
                 let recv_start = store.len();
                 for rec in self.recv.chunks_exact(layout.width) {
                     store.unpack_ghost(rec);
@@ -260,7 +285,7 @@ impl Comm {
             for &i in &s.send {
                 store.pack_fields(i as usize, fields, Some((s.dim, s.shift)), &mut self.send);
             }
-            self.t.sendrecv(&self.send, s.dest, s.src, &mut self.recv);
+            self.traffic.sendrecv(self.t.as_ref(), &self.send, s.dest, s.src, &mut self.recv);
             for (k, rec) in self.recv.chunks_exact(width).enumerate() {
                 store.unpack_fields(s.recv_start + k, fields, rec);
             }
@@ -303,7 +328,7 @@ impl Comm {
                     store.pack_fields(s.recv_start + k, fields, None, &mut self.send);
                 }
             }
-            self.t.sendrecv(&self.send, s.src, s.dest, &mut self.recv);
+            self.traffic.sendrecv(self.t.as_ref(), &self.send, s.src, s.dest, &mut self.recv);
             for rec in self.recv.chunks_exact(width) {
                 let i = s.send[rec[0] as usize] as usize;
                 store.unpack_fields(i, fields, &rec[1..]);

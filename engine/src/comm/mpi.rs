@@ -3,7 +3,6 @@
 use super::Transport;
 use mpi::collective::SystemOperation;
 use mpi::environment::Universe;
-use mpi::point_to_point as p2p;
 use mpi::topology::SimpleCommunicator;
 use mpi::traits::*;
 
@@ -31,14 +30,19 @@ impl Transport for MpiTransport {
         self.world.size() as usize
     }
 
+    /// One message each way: the send is posted, the incoming message is probed for its
+    /// length and received, then the send completes (no separate length message).
     fn sendrecv(&self, data: &[f64], dest: usize, src: usize, recv: &mut Vec<f64>) {
         let dest = self.world.process_at_rank(dest as i32);
         let src = self.world.process_at_rank(src as i32);
-        let count = data.len() as u64;
-        let (incoming, _): (u64, _) = p2p::send_receive(&count, &dest, &src);
-        recv.clear();
-        recv.resize(incoming as usize, 0.0);
-        p2p::send_receive_into(data, &dest, &mut recv[..], &src);
+        mpi::request::scope(|scope| {
+            let sent = dest.immediate_send(scope, data);
+            let (message, status) = src.matched_probe();
+            recv.clear();
+            recv.resize(status.count(f64::equivalent_datatype()) as usize, 0.0);
+            message.matched_receive_into(&mut recv[..]);
+            sent.wait();
+        });
     }
 
     fn max(&self, values: &mut [f64]) {
