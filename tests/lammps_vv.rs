@@ -11,8 +11,8 @@
 
 mod common;
 
-use common::lammps::{agree_within, block_average, expect_success, parse_thermo_blocks, read_dump_snapshot, run_lammps, stage_inputs, ThermoBlock};
-use std::path::{Path, PathBuf};
+use common::lammps::{agree_within, block_average, compare_dumps, expect_success, parse_thermo_blocks, run_lammps, stage_inputs, ThermoBlock};
+use std::path::PathBuf;
 use std::process::Command;
 
 fn dir(name: &str) -> PathBuf {
@@ -42,29 +42,6 @@ fn both(name: &str, input: &str, vars: &[(&str, &str)]) -> ((PathBuf, ThermoBloc
 
 fn value(b: &ThermoBlock, row: usize, c: &str) -> f64 {
     b.rows[row][b.column_index(c).unwrap_or_else(|| panic!("no column {c}"))]
-}
-
-/// Largest per-particle |dr| / L and |dp| / |p| between two final dumps.
-fn compare_dumps(a: &Path, b: &Path) -> (f64, f64) {
-    let (a, b) = (read_dump_snapshot(a), read_dump_snapshot(b));
-    let len = a.bounds[0][1] - a.bounds[0][0];
-    assert_eq!(a.atoms.len(), b.atoms.len());
-    let col = |s: &common::lammps::DumpSnapshot, c: &str| s.column_index(c).unwrap();
-    let (mut dr, mut dp): (f64, f64) = (0.0, 0.0);
-    for ((ia, va), (ib, vb)) in a.atoms.iter().zip(&b.atoms) {
-        assert_eq!(ia, ib);
-        let (mut dv2, mut v2) = (0.0, 0.0);
-        for (x, v) in [("x", "vx"), ("y", "vy"), ("z", "vz")] {
-            let mut d = va[col(&a, x)] - vb[col(&b, x)];
-            d -= len * (d / len).round();
-            dr = dr.max(d.abs() / len);
-            let (p, q) = (va[col(&a, v)], vb[col(&b, v)]);
-            dv2 += (p - q) * (p - q);
-            v2 += q * q;
-        }
-        dp = dp.max((dv2 / v2).sqrt());
-    }
-    (dr, dp)
 }
 
 #[test]

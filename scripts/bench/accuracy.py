@@ -52,7 +52,10 @@ neighbor {skin} bin
 neigh_modify every 1 delay 0 check yes
 thermo_style custom step time temp tint press etotal
 thermo_modify format float %.15g
-timestep 0.01
+"""
+
+# both scenes: 300 steps at dt 0.01 from the lattice, then the measured run
+RUNS = """timestep 0.01
 thermo 100
 run 300
 reset_timestep 0
@@ -60,6 +63,7 @@ timestep {dt}
 thermo {every}
 run {steps}
 """
+TEMPLATE += RUNS
 
 # classic DPDE (LAMMPS's pairwise style); <T_int> is compute dpd's harmonic-mean theta
 DPDE_TEMPLATE = """units lj
@@ -82,15 +86,9 @@ compute dpdU all dpd
 variable etot equal pe+ke+c_dpdU[1]+c_dpdU[2]
 thermo_style custom step time temp press v_etot c_dpdU[4]
 thermo_modify norm no format float %.15g
-timestep 0.01
-thermo 100
-run 300
-reset_timestep 0
-timestep {dt}
-thermo {every}
-run {steps}
 """
 # the thermo columns of the energy and of <T_int>
+DPDE_TEMPLATE += RUNS
 COLUMNS = {"vdw": ("TotEng", "Tint"), "lj": ("TotEng", "Tint"), "dpde": ("v_etot", "c_dpdU[4]")}
 
 INTEGRATORS = {
