@@ -180,12 +180,13 @@ def figure(rows, noise, path):
     import matplotlib.pyplot as plt
     from matplotlib.lines import Line2D
     labels = list(dict.fromkeys(r["label"] for r in rows))
-    colours = {l: plt.cm.tab20(k % 20) for k, l in enumerate(labels)}
+    colours = {l: (plt.cm.tab20 if k < 20 else plt.cm.tab20b)(k % 20) for k, l in enumerate(labels)}
+    floors = {"vdw": ":", "lj": "-.", "dpde": (0, (1, 4))}
     marks = {"vdw": ("o", "vdW (filled)"), "lj": ("s", "LJ (open)"), "dpde": ("^", "classic DPDE (filled)")}
     panels = [("drift", "|relative energy drift rate| [1/τ, reduced units]", "log", None, "energy conservation"),
               ("dP", "|<P> error| [%]", "symlog", 0, "pressure, against the dt 0.0025 reference"),
               ("dT", "|<T_int> error| [%]", "symlog", 1, "internal temperature, against dt 0.0025")]
-    fig, axes = plt.subplots(1, 3, figsize=(17, 5.2))
+    fig, axes = plt.subplots(1, 3, figsize=(18, 6.4))
     for ax, (key, ylabel, scale, floor, title) in zip(axes, panels):
         for model, (mark, _) in marks.items():
             # the reference is the zero of the errors: shown on the drift panel only
@@ -199,7 +200,7 @@ def figure(rows, noise, path):
             front = pareto(pts)
             ax.plot(*zip(*front), {"vdw": "-", "lj": "--"}.get(model, ":"), color="0.4", lw=1, zorder=0)
             if floor is not None and model in noise:
-                ax.axhline(noise[model][floor], color="0.4", ls=":" if model == "vdw" else "-.", lw=1)
+                ax.axhline(noise[model][floor], color="0.4", ls=floors[model], lw=1)
         ax.set_xscale("log")
         ax.set_xticks([2e4, 5e4, 1e5, 2e5, 5e5, 1e6, 2e6], ["20k", "50k", "100k", "200k", "500k", "1M", "2M"])
         ax.set_xticks([], minor=True)
@@ -219,11 +220,13 @@ def figure(rows, noise, path):
              Line2D([], [], color="0.4", ls="--", label="Pareto front, LJ"),
              Line2D([], [], color="0.4", ls=":", lw=1, label="Pareto front, classic DPDE"),
              Line2D([], [], color="0.4", ls=":", label="noise floor (reference SEM), vdW"),
-             Line2D([], [], color="0.4", ls="-.", label="noise floor, LJ")]
-    fig.legend(handles=settings + scenes + lines, loc="center right", fontsize=8, title="setting (colour), scene (marker)",
+             Line2D([], [], color="0.4", ls="-.", label="noise floor, LJ"),
+             Line2D([], [], color="0.4", ls=floors["dpde"], label="noise floor, classic DPDE")]
+    fig.legend(handles=settings + scenes + lines, loc="center right", fontsize=7, title="setting (colour), scene (marker)",
                title_fontsize=8)
-    fig.suptitle("speed against accuracy, N = 2744, rc = 4 (defaults: dt 0.01, rc 4, quadratic weight, skin 0.4, eSSA)")
-    fig.tight_layout(rect=(0, 0, 0.85, 1))
+    fig.suptitle("speed against accuracy, N = 2744; GenDPDE defaults: dt 0.01, rc 4, quadratic weight, skin 0.4, eSSA; "
+                 "classic DPDE: rho 3, rc 1")
+    fig.tight_layout(rect=(0, 0, 0.84, 1))
     fig.savefig(path, dpi=90)
 
 
