@@ -146,6 +146,34 @@ fn every_style_is_bit_identical_on_1_2_3_4_ranks_and_an_uneven_grid() {
             30,
         ),
         (
+            // the box changed before the run (x longer, y and z shorter at the same volume)
+            "dpd-change-box",
+            pairwise_fluid(
+                "dpd",
+                3.0,
+                10,
+                "change_box all x scale 1.1 y volume z volume remap units box\npair_style dpd 1.0 1.0 4928\n\
+                 pair_coeff * * 25.0 4.5\nfix 1 all nve\n",
+            ) + dpd_thermo,
+            30,
+        ),
+        (
+            "dpd-fdt-vv",
+            pairwise_fluid("dpd", 3.0, 8, "pair_style dpd/fdt 1.0 1.0 4928\npair_coeff * * 25.0 3.0\nfix 1 all nve\n") + dpd_thermo,
+            30,
+        ),
+        (
+            "dpd-fdt-energy-vv",
+            pairwise_fluid(
+                "dpd",
+                3.0,
+                8,
+                "set group all dpd/theta 1.0\npair_style dpd/fdt/energy 1.0 4928\npair_coeff * * 25.0 3.0 1.0 1.0\n\
+                 fix 1 all dpd/energy\nfix 2 all nve\nfix 3 all eos/cv 10.0\n",
+            ) + dpd_thermo,
+            30,
+        ),
+        (
             "mdpd",
             pairwise_fluid(
                 "mdpd",

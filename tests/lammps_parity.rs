@@ -9,7 +9,7 @@
 
 mod common;
 
-use common::lammps::{agree_within, block_average, expect_success, parse_thermo_blocks, read_dump_snapshot, run_lammps, stage_inputs, ThermoBlock};
+use common::lammps::{agree_within, block_average, compare_dumps, expect_success, parse_thermo_blocks, run_lammps, stage_inputs, ThermoBlock};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
@@ -40,34 +40,10 @@ fn both(name: &str, input: &str, vars: &[(&str, &str)]) -> ((PathBuf, String), (
     ((dl, l), (dg, String::from_utf8_lossy(&out.stdout).into_owned()))
 }
 
-/// Largest per-particle |dr| / L and |dp| / |p| between the final dumps.
-fn compare_dumps(a: &Path, b: &Path, box_len: f64) -> (f64, f64) {
-    let (a, b) = (read_dump_snapshot(a), read_dump_snapshot(b));
-    assert_eq!(a.atoms.len(), b.atoms.len());
-    let col = |s: &common::lammps::DumpSnapshot, c: &str| s.column_index(c).unwrap();
-    let (mut dr, mut dp): (f64, f64) = (0.0, 0.0);
-    for ((ia, va), (ib, vb)) in a.atoms.iter().zip(&b.atoms) {
-        assert_eq!(ia, ib);
-        let mut dv2 = 0.0;
-        let mut v2 = 0.0;
-        for (x, v) in [("x", "vx"), ("y", "vy"), ("z", "vz")] {
-            let mut d = va[col(&a, x)] - vb[col(&b, x)];
-            d -= box_len * (d / box_len).round();
-            dr = dr.max(d.abs() / box_len);
-            let (p, q) = (va[col(&a, v)], vb[col(&b, v)]);
-            dv2 += (p - q) * (p - q);
-            v2 += q * q;
-        }
-        dp = dp.max((dv2 / v2).sqrt());
-    }
-    (dr, dp)
-}
-
 #[test]
 fn dpde_conservative_dynamics_matches_lammps_per_particle() {
     let ((dl, _), (dg, _)) = both("dpde-det", "in.dpde-deterministic", &[]);
-    let b = read_dump_snapshot(&dl.join("dpde-det.dump")).bounds;
-    let (dr, dp) = compare_dumps(&dl.join("dpde-det.dump"), &dg.join("dpde-det.dump"), b[0][1] - b[0][0]);
+    let (dr, dp) = compare_dumps(&dl.join("dpde-det.dump"), &dg.join("dpde-det.dump"));
     eprintln!("DPDE after 100 steps: max |dr|/L = {dr:.2e}, max |dp|/|p| = {dp:.2e}");
     assert!(dr < 1e-9 && dp < 1e-9, "dr {dr:e}, dp {dp:e}");
 }
@@ -75,9 +51,7 @@ fn dpde_conservative_dynamics_matches_lammps_per_particle() {
 #[test]
 fn mdpd_conservative_dynamics_matches_lammps_per_particle() {
     let ((dl, _), (dg, _)) = both("mdpd-det", "in.mdpd-deterministic", &[]);
-    let b = read_dump_snapshot(&dl.join("mdpd-det.dump")).bounds;
-    let box_len = b[0][1] - b[0][0];
-    let (dr, dp) = compare_dumps(&dl.join("mdpd-det.dump"), &dg.join("mdpd-det.dump"), box_len);
+    let (dr, dp) = compare_dumps(&dl.join("mdpd-det.dump"), &dg.join("mdpd-det.dump"));
     eprintln!("MDPD after 100 steps: max |dr|/L = {dr:.2e}, max |dp|/|p| = {dp:.2e}");
     assert!(dr < 1e-9 && dp < 1e-9, "dr {dr:e}, dp {dp:e}");
 }

@@ -20,6 +20,9 @@ impl Fields {
     pub const PAIR_ENERGY: Self = Self(256);
     /// The MDPD density of pairwise many-body styles, as LAMMPS's mdpd/rhosum sums it.
     pub const RHO: Self = Self(512);
+    /// The rates duCond/dt and duMech/dt of velocity-Verlet DPDE (LAMMPS's pair
+    /// dpd/fdt/energy without fix shardlow; not exchanged).
+    pub const DU: Self = Self(1024);
 
     pub const fn union(self, other: Self) -> Self {
         Self(self.0 | other.0)

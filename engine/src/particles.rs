@@ -284,6 +284,10 @@ particle_fields! {
     virial: Vec3, "virial", gate Fields::PRESSURE.union(Fields::PAIR_ENERGY), comm NONE, stages RESTART | RESUME;
     /// Half the pair energy of each pair a particle is in (pairwise styles).
     epair: f64, "epair", gate Fields::PAIR_ENERGY, comm NONE, stages RESTART | RESUME;
+    /// duCond/dt of velocity-Verlet DPDE from the last force pass (LAMMPS's duCond).
+    du_cond: f64, "duCond", gate Fields::DU, comm NONE, stages RESTART | RESUME;
+    /// duMech/dt of velocity-Verlet DPDE from the last force pass (LAMMPS's duMech).
+    du_mech: f64, "duMech", gate Fields::DU, comm NONE, stages RESTART | RESUME;
 }
 
 fn permute<T: Copy>(v: &mut Vec<T>, order: &[u32]) {

@@ -1,9 +1,11 @@
 //! LAMMPS's pairwise DPD styles, with LAMMPS's semantics, for users who compare with it:
 //! `pair dpd` (isothermal DPD, friction and noise in the force), `pair dpd/fdt` and
-//! `dpd/fdt/energy` (conservative force only; friction, noise and heat in `fix shardlow`,
-//! theta from `fix eos/cv`), and many-body DPD (`pair mdpd/rhosum` + `mdpd`, integrated
-//! by `fix mvv/dpd`). As in LAMMPS the sweep runs at the start of the step and theta is
-//! not refreshed between pairs (it follows the sweep through eos/cv).
+//! `dpd/fdt/energy` (with `fix shardlow`: conservative force only; friction, noise and heat
+//! in the sweep, theta from `fix eos/cv`; without it, velocity Verlet with every force in
+//! the pair pass and, for `dpd/fdt/energy`, the rates duCond and duMech that `fix
+//! dpd/energy` integrates by half steps), and many-body DPD (`pair mdpd/rhosum` + `mdpd`,
+//! integrated by `fix mvv/dpd`). As in LAMMPS the sweep runs at the start of the step and
+//! theta is not refreshed between pairs (it follows the sweep through eos/cv).
 //!
 //! Formulas (LAMMPS documentation and sources): w = 1 - r/rc;
 //! dpd: F = [a0 w - gamma w^2 (e.v) + sigma w xi / sqrt(dt)] e, sigma = sqrt(2 k_B T gamma);
@@ -12,12 +14,19 @@
 //! Shardlow DPDE pair update: gamma = sigma^2 / (2 k_B theta_ij), 1/theta_ij the mean of
 //! 1/theta_i and 1/theta_j; heat kappa w^2 (1/theta_i - 1/theta_j) dt + sqrt(2 k_B kappa)
 //! w xibar sqrt(dt) into i (uCond); -dK/2 into each u (uMech).
+//! Velocity-Verlet DPDE (pair dpd/fdt/energy, no shardlow): the dpd force with gamma_ij
+//! = sigma^2 / (2 k_B theta_ij); duMech_i and duMech_j += [gamma w^2 (e.v)^2 - sigma^2
+//! mu_ij w^2 / 2 - sigma w (e.v) xi / sqrt(dt)] / 2 with mu_ij = 1/m_i + 1/m_j (the work
+//! of friction and noise, with the Ito term); duCond_i (-duCond_j) += kappa w^2 (1/theta_i
+//! - 1/theta_j) + sqrt(2 k_B kappa) w xibar / sqrt(dt); fix dpd/energy: u += dt/2 du
+//! before the first and before the second half kick (fix_dpd_energy.cpp), eos/cv after
+//! the drift and at the end of the step.
 
 use crate::error::{lowest, StepError};
 use crate::heat::{Original, Temps};
 use crate::pair_update::{pair_update, PairDrive, PairState};
 use crate::physics::{Physics, SetupError};
-use crate::rng::{normal_pair, stream, Normals};
+use crate::rng::{stream, Normals};
 use crate::settings::Settings;
 use crate::sweep::SWEPT;
 use crate::system::System;
@@ -32,12 +41,14 @@ pub enum PairForce {
     Dpd { a0: f64, rc: f64, gamma: f64, sigma: f64 },
     /// Warren's many-body DPD; rho from the Lucy kernel of support `h`.
     Mdpd { a: f64, b: f64, rc: f64, rd: f64, gamma: f64, sigma: f64, h: f64 },
+    /// Velocity-Verlet DPDE: a0 w(rc), friction from `sigma` and theta_ij, heat `kappa`.
+    DpdEnergy { a0: f64, rc: f64, sigma: f64, kappa: f64 },
 }
 
 impl PairForce {
     fn cutoff(&self) -> f64 {
         match self {
-            Self::Dpd { rc, .. } => *rc,
+            Self::Dpd { rc, .. } | Self::DpdEnergy { rc, .. } => *rc,
             Self::Mdpd { rc, rd, h, .. } => rc.max(*rd).max(*h),
         }
     }
@@ -69,6 +80,8 @@ pub struct ClassicDpd {
     pub integration: Integration,
     /// `fix eos/cv`: theta = u / C_V.
     pub cv: Option<f64>,
+    /// `fix dpd/energy`: u integrated from the rates of [`PairForce::DpdEnergy`].
+    pub energy: bool,
     pub kb: f64,
     pub seed: u64,
     pub settings: Settings,
@@ -129,30 +142,64 @@ impl ClassicDpd {
         let inv_sqrt_dt = 1.0 / self.settings.dt.sqrt();
         let (seed, pairs, s) = (self.seed, &sys.nlist.pairs, &mut sys.store);
         let inv_rc = match self.force {
-            PairForce::Dpd { rc, .. } | PairForce::Mdpd { rc, .. } => 1.0 / rc,
+            PairForce::Dpd { rc, .. } | PairForce::Mdpd { rc, .. } | PairForce::DpdEnergy { rc, .. } => 1.0 / rc,
         };
-        let noise = |s: &Particles, i: usize, j: usize| normal_pair(seed, step, s.tag[i].min(s.tag[j]), s.tag[i].max(s.tag[j]), stream::FORCE).0;
+        let normals = Normals::get();
+        let noise = move |s: &Particles, i: usize, j: usize| normals.pair(seed, step, s.tag[i].min(s.tag[j]), s.tag[i].max(s.tag[j]), stream::FORCE);
         match self.force {
             // w = 0 beyond rc: no branch to mispredict on the skin's pairs
-            PairForce::Dpd { a0, rc, gamma: 0.0, sigma: 0.0 } => tally::<true>(s, pairs, rc, |_, _, _, _, r| {
+            PairForce::Dpd { a0, rc, gamma: 0.0, sigma: 0.0 } => tally::<true, false>(s, pairs, rc, |_, _, _, _, r| {
                 let w = (1.0 - r * inv_rc).max(0.0);
-                (a0 * w, 0.25 * a0 * rc * w * w)
+                Terms::conservative(a0 * w, 0.25 * a0 * rc * w * w)
             }),
-            PairForce::Dpd { a0, rc, gamma, sigma } => tally::<false>(s, pairs, rc, |s, i, j, d, r| {
+            PairForce::Dpd { a0, rc, gamma, sigma } => tally::<false, false>(s, pairs, rc, |s, i, j, d, r| {
                 let w = 1.0 - r * inv_rc;
-                let fp = a0 * w - gamma * w * w * dot(d, sub(velocity(s, i), velocity(s, j))) / r + sigma * w * noise(s, i, j) * inv_sqrt_dt;
-                (fp, 0.25 * a0 * rc * w * w)
+                let fp = a0 * w - gamma * w * w * dot(d, sub(velocity(s, i), velocity(s, j))) / r + sigma * w * noise(s, i, j).0 * inv_sqrt_dt;
+                Terms::conservative(fp, 0.25 * a0 * rc * w * w)
             }),
-            PairForce::Mdpd { a, b, rc, rd, gamma, sigma, .. } => tally::<false>(s, pairs, rc, |s, i, j, d, r| {
+            PairForce::Mdpd { a, b, rc, rd, gamma, sigma, .. } => tally::<false, false>(s, pairs, rc, |s, i, j, d, r| {
                 let wc = 1.0 - r * inv_rc;
                 let wd = (1.0 - r / rd).max(0.0);
                 let rho = s.rho[i] + s.rho[j];
                 let mut fp = a * wc + b * rho * wd;
                 if gamma > 0.0 || sigma > 0.0 {
-                    fp += -gamma * wc * wc * dot(d, sub(velocity(s, i), velocity(s, j))) / r + sigma * wc * noise(s, i, j) * inv_sqrt_dt;
+                    fp += -gamma * wc * wc * dot(d, sub(velocity(s, i), velocity(s, j))) / r + sigma * wc * noise(s, i, j).0 * inv_sqrt_dt;
                 }
-                (fp, 0.25 * (a * rc * wc * wc + b * rd * rho * wd * wd))
+                Terms::conservative(fp, 0.25 * (a * rc * wc * wc + b * rd * rho * wd * wd))
             }),
+            PairForce::DpdEnergy { a0, rc, sigma, kappa } => {
+                let (kb, alpha) = (self.kb, (2.0 * self.kb * kappa).sqrt());
+                tally::<false, true>(s, pairs, rc, |s, i, j, d, r| {
+                    let w = 1.0 - r * inv_rc;
+                    let wd = w * w;
+                    let (inv_i, inv_j) = (1.0 / s.theta[i], 1.0 / s.theta[j]);
+                    let gamma = sigma * sigma * 0.5 * (inv_i + inv_j) / (2.0 * kb);
+                    let ev = dot(d, sub(velocity(s, i), velocity(s, j))) / r;
+                    let (xi, xibar) = noise(s, i, j);
+                    let random = sigma * w * xi * inv_sqrt_dt;
+                    let mu = 1.0 / s.mass[i] + 1.0 / s.mass[j];
+                    // the heat noise goes + into the particle of lower tag
+                    let xibar = if s.tag[i] < s.tag[j] { xibar } else { -xibar };
+                    Terms {
+                        force: a0 * w - gamma * wd * ev + random,
+                        energy: 0.25 * a0 * rc * wd,
+                        du_mech: 0.5 * (gamma * wd * ev * ev - 0.5 * sigma * sigma * mu * wd - ev * random),
+                        du_cond: kappa * (inv_i - inv_j) * wd + alpha * w * xibar * inv_sqrt_dt,
+                    }
+                })
+            }
+        }
+    }
+
+    /// `fix dpd/energy`: u += h du for owned particles (uCond += h duCond).
+    fn energy_half(&self, sys: &mut System, h: f64) {
+        if !self.energy {
+            return;
+        }
+        let s = &mut sys.store;
+        for i in 0..s.nlocal {
+            s.u_cond[i] += h * s.du_cond[i];
+            s.u[i] += h * (s.du_cond[i] + s.du_mech[i]);
         }
     }
 
@@ -207,13 +254,28 @@ impl ClassicDpd {
     fn after_drift(&self, sys: &mut System, drifted: Result<(), StepError>) -> Result<(), StepError> {
         sys.settle(drifted)?;
         self.relist(sys);
-        sys.comm.forward(&mut sys.store, Fields::MOMENTUM);
+        sys.comm.forward(&mut sys.store, self.moved());
         if let PairForce::Mdpd { h, .. } = self.force {
             self.rho(sys, h);
             sys.comm.forward(&mut sys.store, Fields::RHO);
         }
         self.forces(sys, sys.step + 1);
         Ok(())
+    }
+
+    /// Whether the pair pass reads theta (velocity-Verlet DPDE).
+    fn vv_dpde(&self) -> bool {
+        matches!(self.force, PairForce::DpdEnergy { .. })
+    }
+
+    /// What ghosts need after the particles moved: momenta, and the energies and theta
+    /// of velocity-Verlet DPDE.
+    fn moved(&self) -> Fields {
+        if self.vv_dpde() {
+            Fields::MOMENTUM | Fields::ENERGY | Fields::U_COND | Fields::THETA
+        } else {
+            Fields::MOMENTUM
+        }
     }
 }
 
@@ -244,6 +306,9 @@ impl Physics for ClassicDpd {
         let mut fields = Fields::THETA | Fields::PAIR_ENERGY;
         if self.shardlow.as_ref().is_some_and(|s| s.temperature.is_none()) {
             fields = fields | Fields::U_COND | Fields::INV_TAU;
+        }
+        if self.vv_dpde() {
+            fields = fields | Fields::U_COND | Fields::DU;
         }
         if matches!(self.force, PairForce::Mdpd { .. }) {
             fields = fields | Fields::RHO;
@@ -283,10 +348,21 @@ impl Physics for ClassicDpd {
         }
         match self.integration {
             Integration::Nve => {
+                // fix dpd/energy, fix nve (initial_integrate), fix eos/cv (post_integrate)
+                self.energy_half(sys, 0.5 * dt);
                 verlet::kick(sys, 0.5 * dt);
-                let drifted = verlet::drift(sys, dt);
+                let mut drifted = verlet::drift(sys, dt);
+                if self.vv_dpde() {
+                    drifted = lowest(drifted, self.eos(sys));
+                }
                 self.after_drift(sys, drifted)?;
+                // final_integrate, then fix eos/cv (end_of_step)
+                self.energy_half(sys, 0.5 * dt);
                 verlet::kick(sys, 0.5 * dt);
+                if self.vv_dpde() {
+                    let state = self.eos(sys);
+                    sys.settle(state)?;
+                }
             }
             Integration::Mvv { lambda } => {
                 // vest = v + dt/2 f/m; r += dt vest; v += lambda dt f/m (the estimate the
@@ -309,7 +385,7 @@ impl Physics for ClassicDpd {
                 }
             }
         }
-        sys.comm.forward(&mut sys.store, Fields::MOMENTUM);
+        sys.comm.forward(&mut sys.store, self.moved());
         sys.step += 1;
         sys.time += dt;
         Ok(())
@@ -322,16 +398,36 @@ fn velocity(s: &gendpde_engine::Particles, i: usize) -> [f64; 3] {
     [s.p[i][0] * k, s.p[i][1] * k, s.p[i][2] * k]
 }
 
-/// Sums pair forces, energies and virials over the half list into the owned particles
-/// (see [`gendpde_engine::NeighborList::pairs`]). `pair(s, i, j, r_ij, r)` gives the
-/// scalar force F (f_ij = F e_ij) and the pair energy of a pair closer than `rc`; with
+/// What a pair adds to its particles: the scalar force F (f_ij = F e_ij), the pair
+/// energy, and for velocity-Verlet DPDE duMech (to both) and duCond (+ to i, - to j).
+struct Terms {
+    force: f64,
+    energy: f64,
+    du_mech: f64,
+    du_cond: f64,
+}
+
+impl Terms {
+    #[inline(always)]
+    fn conservative(force: f64, energy: f64) -> Self {
+        Self { force, energy, du_mech: 0.0, du_cond: 0.0 }
+    }
+}
+
+/// Sums pair forces, energies and virials (and with `DU` the energy rates) over the half
+/// list into the owned particles (see [`gendpde_engine::NeighborList::pairs`]).
+/// `pair(s, i, j, r_ij, r)` gives the [`Terms`] of a pair closer than `rc`; with
 /// `CLAMPED` it is called for every pair of the list and must give zeros beyond `rc`.
 #[inline(always)]
-fn tally<const CLAMPED: bool>(s: &mut Particles, pairs: &[[u32; 2]], rc: f64, pair: impl Fn(&Particles, usize, usize, Vec3, f64) -> (f64, f64)) {
+fn tally<const CLAMPED: bool, const DU: bool>(s: &mut Particles, pairs: &[[u32; 2]], rc: f64, pair: impl Fn(&Particles, usize, usize, Vec3, f64) -> Terms) {
     let n = s.nlocal;
     s.f[..n].fill([0.0; 3]);
     s.epair[..n].fill(0.0);
     s.virial[..n].fill([0.0; 3]);
+    if DU {
+        s.du_mech[..n].fill(0.0);
+        s.du_cond[..n].fill(0.0);
+    }
     for &[i, j] in pairs {
         let (i, j) = (i as usize, j as usize);
         let d = sub(s.r[i], s.r[j]);
@@ -341,8 +437,8 @@ fn tally<const CLAMPED: bool>(s: &mut Particles, pairs: &[[u32; 2]], rc: f64, pa
         }
         let r = r2.sqrt();
         let inv_r = 1.0 / r;
-        let (fp, e) = pair(s, i, j, d, r);
-        let fpair = fp * inv_r;
+        let t = pair(s, i, j, d, r);
+        let fpair = t.force * inv_r;
         let df = [fpair * d[0], fpair * d[1], fpair * d[2]];
         let virial = [0.5 * df[0] * d[0], 0.5 * df[1] * d[1], 0.5 * df[2] * d[2]];
         for (k, sign) in [(i, 1.0), (j, -1.0)] {
@@ -351,7 +447,11 @@ fn tally<const CLAMPED: bool>(s: &mut Particles, pairs: &[[u32; 2]], rc: f64, pa
                     s.f[k][c] += sign * df[c];
                     s.virial[k][c] += virial[c];
                 }
-                s.epair[k] += e;
+                s.epair[k] += t.energy;
+                if DU {
+                    s.du_mech[k] += t.du_mech;
+                    s.du_cond[k] += sign * t.du_cond;
+                }
             }
         }
     }

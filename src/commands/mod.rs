@@ -1,6 +1,7 @@
 //! The script interpreter: reads commands one at a time, handles the loop commands
 //! (label, next, jump) and hands every other command to the body of its family.
 
+mod change_box;
 mod group;
 mod output;
 mod particles;
@@ -134,6 +135,7 @@ impl Interpreter {
             "region" => setup::region(sim, a)?,
             "processors" => setup::processors(sim, a)?,
             "create_box" => setup::create_box(sim, a)?,
+            "change_box" => change_box::change_box(sim, a)?,
             "create_atoms" => setup::create_atoms(sim, a)?,
             "mass" => setup::mass(sim, a)?,
             "set" => setup::set(sim, a)?,

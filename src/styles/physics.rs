@@ -31,8 +31,8 @@ pub fn build_physics(
             return pairwise(cmd, p, fixes, settings, kb);
         }
     };
-    if fixes.iter().any(|f| matches!(f.style, FixStyle::Nve | FixStyle::Mvv { .. })) {
-        return Err(err("pair gendpde integrates with fix nve/gendpde or vv/euler (fix nve and mvv/dpd belong to LAMMPS's pairwise styles)".into()));
+    if fixes.iter().any(|f| matches!(f.style, FixStyle::Nve | FixStyle::Mvv { .. } | FixStyle::DpdEnergy)) {
+        return Err(err("pair gendpde integrates with fix nve/gendpde or vv/euler (fix nve, mvv/dpd and dpd/energy belong to LAMMPS's pairwise styles)".into()));
     }
     let eos: Vec<&EosModel> = fixes.iter().filter_map(|f| if let FixStyle::Eos(e) = &f.style { Some(e) } else { None }).collect();
     let eos = match eos.as_slice() {
@@ -153,9 +153,15 @@ fn pairwise(cmd: &Command, p: &Pairwise, fixes: &[Fix], settings: Settings, kb: 
         (true, Some(_)) => return Err(err("fix nve and fix mvv/dpd both integrate: keep one")),
         (false, None) => return Err(err("no integrator: add fix nve (or fix mvv/dpd for mdpd)")),
     };
+    let energy = has(|s| matches!(s, FixStyle::DpdEnergy));
     let sigma_of = |t: f64| (2.0 * kb * t * c.gamma).sqrt();
     let (force, sweep) = match p.kind {
         Kind::Dpd { temperature } => (PairForce::Dpd { a0: c.a, rc: c.rc, gamma: c.gamma, sigma: sigma_of(temperature) }, None),
+        // velocity Verlet (pair_dpd_fdt.cpp without fix shardlow): gamma = sigma^2 / (2 k_B T)
+        Kind::DpdFdt { temperature } if !shardlow => {
+            (PairForce::Dpd { a0: c.a, rc: c.rc, gamma: c.sigma * c.sigma / (2.0 * kb * temperature), sigma: c.sigma }, None)
+        }
+        Kind::DpdFdtEnergy if !shardlow => (PairForce::DpdEnergy { a0: c.a, rc: c.rc, sigma: c.sigma, kappa: c.kappa }, None),
         Kind::DpdFdt { temperature } => (
             PairForce::Dpd { a0: c.a, rc: c.rc, gamma: 0.0, sigma: 0.0 },
             Some(ShardlowDpd { sigma: c.sigma, kappa: 0.0, rc: c.rc, temperature: Some(temperature) }),
@@ -170,10 +176,11 @@ fn pairwise(cmd: &Command, p: &Pairwise, fixes: &[Fix], settings: Settings, kb: 
             (force, None)
         }
     };
-    match (&p.kind, shardlow) {
-        (Kind::DpdFdt { .. } | Kind::DpdFdtEnergy, false) => return Err(err("pair dpd/fdt and dpd/fdt/energy need fix shardlow")),
-        (Kind::Dpd { .. } | Kind::Mdpd { .. }, true) => return Err(err("fix shardlow works with pair dpd/fdt and dpd/fdt/energy")),
-        _ => {}
+    if shardlow && matches!(p.kind, Kind::Dpd { .. } | Kind::Mdpd { .. }) {
+        return Err(err("fix shardlow works with pair dpd/fdt and dpd/fdt/energy"));
+    }
+    if energy && (shardlow || !matches!(p.kind, Kind::DpdFdtEnergy)) {
+        return Err(err("fix dpd/energy integrates pair dpd/fdt/energy without fix shardlow (with it the sweep moves u)"));
     }
     if matches!(p.kind, Kind::DpdFdtEnergy) && cv.is_none() {
         return Err(err("pair dpd/fdt/energy needs fix eos/cv"));
@@ -181,5 +188,5 @@ fn pairwise(cmd: &Command, p: &Pairwise, fixes: &[Fix], settings: Settings, kb: 
     if matches!(integration, Integration::Mvv { .. }) && !matches!(p.kind, Kind::Mdpd { .. }) {
         return Err(err("fix mvv/dpd integrates pair mdpd"));
     }
-    Ok(Box::new(ClassicDpd { force, shardlow: sweep, integration, cv, kb, seed: p.seed, settings }))
+    Ok(Box::new(ClassicDpd { force, shardlow: sweep, integration, cv, energy, kb, seed: p.seed, settings }))
 }

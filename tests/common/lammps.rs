@@ -130,6 +130,30 @@ pub fn stage_with(dir: &Path, input: &str, name: &str, before: &str, after: &str
     std::fs::write(dir.join(name), text).unwrap_or_else(|e| panic!("cannot write {name}: {e}"));
 }
 
+/// Largest per-particle |dr| / L (minimum image, L the x length of `a`'s box) and
+/// |dp| / |p| between two final dumps of the same particles.
+pub fn compare_dumps(a: &Path, b: &Path) -> (f64, f64) {
+    let (a, b) = (read_dump_snapshot(a), read_dump_snapshot(b));
+    let len = a.bounds[0][1] - a.bounds[0][0];
+    assert_eq!(a.atoms.len(), b.atoms.len());
+    let col = |s: &DumpSnapshot, c: &str| s.column_index(c).unwrap();
+    let (mut dr, mut dp): (f64, f64) = (0.0, 0.0);
+    for ((ia, va), (ib, vb)) in a.atoms.iter().zip(&b.atoms) {
+        assert_eq!(ia, ib);
+        let (mut dv2, mut v2) = (0.0, 0.0);
+        for (x, v) in [("x", "vx"), ("y", "vy"), ("z", "vz")] {
+            let mut d = va[col(&a, x)] - vb[col(&b, x)];
+            d -= len * (d / len).round();
+            dr = dr.max(d.abs() / len);
+            let (p, q) = (va[col(&a, v)], vb[col(&b, v)]);
+            dv2 += (p - q) * (p - q);
+            v2 += q * q;
+        }
+        dp = dp.max((dv2 / v2).sqrt());
+    }
+    (dr, dp)
+}
+
 /// One thermo block: the headings and the numeric rows under them.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ThermoBlock {

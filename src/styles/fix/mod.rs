@@ -29,6 +29,9 @@ pub enum FixStyle {
     Nve,
     /// `fix mvv/dpd [LAMBDA]` (pair mdpd).
     Mvv { lambda: f64 },
+    /// `fix dpd/energy`: uCond and uMech by half steps from the rates of pair
+    /// dpd/fdt/energy (velocity-Verlet DPDE, without fix shardlow).
+    DpdEnergy,
 }
 
 #[derive(Clone, Debug)]
@@ -73,6 +76,7 @@ pub fn parse_fix(cmd: &Command, kb: f64, groups: &[String]) -> Result<Fix, Scrip
         }
         "vv/euler" => FixStyle::VvEuler { heat: heat_keyword(&mut a)?.unwrap_or(HeatModel::Original) },
         "nve" => FixStyle::Nve,
+        "dpd/energy" => FixStyle::DpdEnergy,
         "mvv/dpd" => FixStyle::Mvv { lambda: if a.remaining() > 0 { a.positive("lambda")? } else { 0.5 } },
         "shardlow" => {
             let (mut heat, mut substeps, mut reject) = (HeatModel::Original, DEFAULT_SUBSTEPS, false);
