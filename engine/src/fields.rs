@@ -20,6 +20,8 @@ impl Fields {
     pub const PAIR_ENERGY: Self = Self(256);
     /// The MDPD density of pairwise many-body styles, as LAMMPS's mdpd/rhosum sums it.
     pub const RHO: Self = Self(512);
+    /// eDPD's particle temperature (atom_style edpd; allocates heat capacity and flux too).
+    pub const EDPD: Self = Self(1024);
 
     pub const fn union(self, other: Self) -> Self {
         Self(self.0 | other.0)
