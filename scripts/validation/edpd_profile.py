@@ -1,0 +1,128 @@
+#!/usr/bin/env python3
+"""eDPD temperature profile between a heat source and a sink: LAMMPS's example
+examples/PACKAGES/dpd-meso/edpd/in.edpd (copied unchanged to scripts/lammps/in.edpd), run
+unchanged by the reference LAMMPS and by gendpde over several seeds.
+
+The example: 16000 eDPD particles in 20 x 20 x 10 (periodic), T = 1, C_V = 1e5;
+fix edpd/source heats y in [0, 10] and cools y in [-10, 0] at dT/dt = +-0.01; 500 steps,
+then fix ave/chunk averages c_temp (compute edpd/temp/atom) over 1 bins of y, every step of
+the next 500 (t = 5.01 .. 10). Seeds: the example's three (create_atoms, pair_style,
+velocity) plus k for run k = 0, 1, ...
+
+Per bin: mean and standard error over the seeds, for each code, and the difference in units
+of the combined standard error. Analytic: the heat equation dT/dt = D T'' + s(y) with the
+square-wave source s, from T = 1 at t = 0, is T - 1 = sum_{n odd} 4 s0 / (n pi)
+sin(k_n y) (1 - exp(-D k_n^2 t)) / (D k_n^2), k_n = n pi / 10 (the steady state, the
+periodic parabola, is 8.5 time units of the slowest mode away at t = 10); averaged over each
+bin and over the sampled steps. D is fitted (least squares over the bins) for each code and
+compared with the conduction part predicted from pair edpd at T = 1 for an ideal-gas
+structure, D_c = C_V kappa rho (1/6) int (1 - r/r_cT)^p_T r^2 d^3r (the particles' own
+diffusion adds to it).
+
+    python3 scripts/validation/edpd_profile.py [--seeds 3] [--out docs/validation/edpd_profile.json]
+
+Environment: GENDPDE (default target/release/gendpde), LMP (default
+/work/shared/lammps/lmp). Writes the JSON with both profiles, the fit and the comparison.
+"""
+import argparse
+import json
+import math
+import os
+import subprocess
+import tempfile
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+GENDPDE = os.environ.get("GENDPDE", str(ROOT / "target" / "release" / "gendpde"))
+LMP = os.environ.get("LMP", "/work/shared/lammps/lmp")
+SEEDS = ("276438", "9872598", "432982")
+S0, HALF, CV, KAPPA, RHO, RCT, PT = 0.01, 10.0, 1.0e5, 1.41e-5, 4.0, 1.58, 2.0
+
+
+def run(code, k, script):
+    text = (ROOT / "scripts" / "lammps" / script).read_text()
+    for s in SEEDS:
+        text = text.replace(s, str(int(s) + k))
+    d = Path(tempfile.mkdtemp(prefix=f"edpd-{code}-{k}-"))
+    (d / script).write_text(text)
+    exe = [LMP, "-in", script, "-log", "none"] if code == "lammps" else [GENDPDE, "-in", script, "-log", "none"]
+    r = subprocess.run(exe, cwd=d, capture_output=True, text=True)
+    if r.returncode != 0:
+        raise SystemExit(f"{code} seed {k}: {r.stdout[-2000:]}{r.stderr[-2000:]}")
+    rows = [line.split() for line in (d / "temp.profile").read_text().splitlines() if line.strip() and not line.startswith("#")]
+    prof = [(float(w[1]), float(w[3])) for w in rows if len(w) == 5]
+    return [y for y, _ in prof], [t for _, t in prof]
+
+
+def stats(runs):
+    n = len(runs)
+    mean = [sum(r[b] for r in runs) / n for b in range(len(runs[0]))]
+    se = [math.sqrt(sum((r[b] - mean[b]) ** 2 for r in runs) / (n - 1) / n) for b in range(len(mean))]
+    return mean, se
+
+
+def analytic(y, d, times):
+    """Bin- and time-averaged T - 1 at bin centre y for diffusivity d."""
+    total = 0.0
+    for n in range(1, 200, 2):
+        k = n * math.pi / HALF
+        bin_avg = math.sin(k * y) * math.sin(k / 2) / (k / 2)
+        growth = sum(1 - math.exp(-d * k * k * t) for t in times) / len(times)
+        total += 4 * S0 / (n * math.pi) * bin_avg * growth / (d * k * k)
+    return total
+
+
+def fit_d(ys, mean, times):
+    """Least-squares D by golden-section search on the sum of squared residuals."""
+    cost = lambda d: sum((analytic(y, d, times) - (m - 1.0)) ** 2 for y, m in zip(ys, mean))
+    lo, hi = 0.05, 20.0
+    g = (math.sqrt(5) - 1) / 2
+    for _ in range(80):
+        a, b = hi - g * (hi - lo), lo + g * (hi - lo)
+        if cost(a) < cost(b):
+            hi = b
+        else:
+            lo = a
+    d = 0.5 * (lo + hi)
+    return d, math.sqrt(cost(d) / len(ys))
+
+
+def conduction_d():
+    """D_c = C_V kappa rho (1/6) int w_rT^2 r^2 d^3r, w_rT^2 = (1 - r/r_cT)^p_T (T = 1)."""
+    m = 20000
+    h = RCT / m
+    integral = sum(4 * math.pi * ((i + 0.5) * h) ** 4 * (1 - (i + 0.5) * h / RCT) ** PT for i in range(m)) * h
+    return CV * KAPPA * RHO * integral / 6
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--seeds", type=int, default=3)
+    ap.add_argument("--script", default="in.edpd")
+    ap.add_argument("--out", default=str(ROOT / "docs" / "validation" / "edpd_profile.json"))
+    args = ap.parse_args()
+    jobs = [(code, k) for k in range(args.seeds) for code in ("lammps", "gendpde")]
+    with ThreadPoolExecutor(2) as pool:
+        results = list(pool.map(lambda job: (job, run(job[0], job[1], args.script)), jobs))
+    ys = results[0][1][0]
+    times = [0.01 * (500 + s) for s in range(1, 501)]
+    out = {"script": args.script, "seeds": args.seeds, "y": ys, "D_conduction_predicted": conduction_d()}
+    for code in ("lammps", "gendpde"):
+        mean, se = stats([prof for (c, _), (_, prof) in results if c == code])
+        d, rms = fit_d(ys, mean, times)
+        out[code] = {"mean": mean, "se": se, "D_fit": d, "fit_rms": rms}
+    z = [(a - b) / math.hypot(s, t) for a, b, s, t in zip(out["lammps"]["mean"], out["gendpde"]["mean"], out["lammps"]["se"], out["gendpde"]["se"])]
+    out["z"] = z
+    out["max_abs_z"] = max(abs(v) for v in z)
+    out["chi2_per_bin"] = sum(v * v for v in z) / len(z)
+    Path(args.out).write_text(json.dumps(out, indent=1) + "\n")
+    print(f"{args.script}, {args.seeds} seeds: max |z| = {out['max_abs_z']:.2f}, chi2/bin = {out['chi2_per_bin']:.2f}")
+    for code in ("lammps", "gendpde"):
+        print(f"  {code}: D_fit = {out[code]['D_fit']:.3f} (rms {out[code]['fit_rms']:.2e}); D_c predicted {out['D_conduction_predicted']:.3f}")
+    for y, a, s, b, t in zip(ys, out["lammps"]["mean"], out["lammps"]["se"], out["gendpde"]["mean"], out["gendpde"]["se"]):
+        print(f"  y {y:6.2f}  LAMMPS {a:.5f} +- {s:.5f}  gendpde {b:.5f} +- {t:.5f}")
+
+
+if __name__ == "__main__":
+    main()
