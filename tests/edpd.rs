@@ -156,3 +156,31 @@ fn lammps_edpd_examples_run_unchanged_and_heat_the_source_half() {
         assert!(hot - cold > 0.002 && hot - cold < 0.006, "{name}: heated half {hot}, cooled half {cold}");
     }
 }
+
+#[test]
+fn bad_edpd_input_is_refused_naming_the_line() {
+    let d = dir("errors");
+    let head = "units lj\natom_style edpd\nregion b block 0 8 0 8 0 8\ncreate_box 2 b\ncreate_atoms 1 random 100 7 NULL\nmass * 1.0\n";
+    let pair = "pair_style edpd 1.58 9872598\npair_coeff * * 18.75 4.5 0.41 1.58 1.41E-5 2.0 1.58\n";
+    let cases = [
+        (format!("{head}pair_style edpd 1.58 9872598\npair_coeff * * 18.75 4.5 0.41 1.58\n"), "in.bad:8: pair_coeff: missing argument"),
+        (format!("{head}pair_style edpd 1.58 9872598\npair_coeff * * 18.75 4.5 0.41 1.58 1.41E-5 2.0 1.58 power 1 2 3\n"), "in.bad:8: pair_coeff: missing argument"),
+        (format!("{head}pair_style edpd 1.58 9872598\npair_coeff * * 18.75 4.5 0.41 1.58 1.41E-5 2.0 1.58 slope 1 2 3 4\n"), "in.bad:8: pair_coeff: unknown keyword 'slope'"),
+        (format!("{head}pair_style edpd 1.58 0\n"), "in.bad:7: pair_style: the random seed must be positive"),
+        (format!("{head}set atom * edpd/temp -1.0\n"), "in.bad:7: set:"),
+        (format!("{head}{pair}fix s all edpd/source region nowhere 0.1\n"), "in.bad:9: fix: region nowhere for fix edpd/source does not exist"),
+        (format!("{head}{pair}fix s all edpd/source cube 0 0 0 1 0.1\n"), "in.bad:9: fix: expected sphere, cuboid or region, got 'cube'"),
+        (format!("{head}{pair}run 0\n"), "in.bad:9: run: pair edpd integrates with fix mvv/edpd"),
+        (format!("{head}pair_style edpd 1.58 9872598\npair_coeff 1 1 18.75 4.5 0.41 1.58 1.41E-5 2.0 1.58\nfix 1 all mvv/edpd\nrun 0\n"), "in.bad:10: run: pair edpd: no coefficients for types 1 2"),
+        (format!("{head}{pair}fix 1 all nve\nrun 0\n"), "in.bad:10: run: fix 1 does not act on pair edpd"),
+        (format!("units lj\natom_style atomic\nregion b block 0 8 0 8 0 8\ncreate_box 1 b\ncreate_atoms 1 random 10 7 NULL\nset atom * edpd/cv 2.0\n"), "in.bad:6: set: set edpd/cv needs atom_style edpd"),
+    ];
+    for (script, expected) in cases {
+        std::fs::write(d.join("in.bad"), &script).unwrap();
+        let out = Command::new(env!("CARGO_BIN_EXE_gendpde")).current_dir(&d).args(["-in", "in.bad", "-log", "none"]).output().unwrap();
+        let text = format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+        assert!(!out.status.success(), "accepted:\n{script}");
+        assert!(text.contains(expected), "expected '{expected}' for\n{script}\ngot:\n{text}");
+        assert!(!text.contains("panicked"), "panic for\n{script}\n{text}");
+    }
+}

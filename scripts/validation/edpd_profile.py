@@ -19,7 +19,11 @@ compared with the conduction part predicted from pair edpd at T = 1 for an ideal
 structure, D_c = C_V kappa rho (1/6) int (1 - r/r_cT)^p_T r^2 d^3r (the particles' own
 diffusion adds to it).
 
-    python3 scripts/validation/edpd_profile.py [--seeds 3] [--out docs/validation/edpd_profile.json]
+    python3 scripts/validation/edpd_profile.py [--seeds 3] [--narrow] [--jobs 2] [--script in.edpd-region]
+        [--out docs/validation/edpd_profile.json]
+
+--narrow shrinks the box across the gradient (x and z to 8, 5120 particles) for a cheaper
+run with the same profile.
 
 Environment: GENDPDE (default target/release/gendpde), LMP (default
 /work/shared/lammps/lmp). Writes the JSON with both profiles, the fit and the comparison.
@@ -37,11 +41,14 @@ ROOT = Path(__file__).resolve().parents[2]
 GENDPDE = os.environ.get("GENDPDE", str(ROOT / "target" / "release" / "gendpde"))
 LMP = os.environ.get("LMP", "/work/shared/lammps/lmp")
 SEEDS = ("276438", "9872598", "432982")
+NARROW_N = 5120  # --narrow: x and z of 8 instead of 20 and 10, the same density 4
 S0, HALF, CV, KAPPA, RHO, RCT, PT = 0.01, 10.0, 1.0e5, 1.41e-5, 4.0, 1.58, 2.0
 
 
-def run(code, k, script):
+def run(code, k, script, narrow):
     text = (ROOT / "scripts" / "lammps" / script).read_text()
+    if narrow:
+        text = text.replace("block -10 10 -10 10 -5 5 units box", "block -4 4 -10 10 -4 4 units box").replace("random 16000", f"random {NARROW_N}")
     for s in SEEDS:
         text = text.replace(s, str(int(s) + k))
     d = Path(tempfile.mkdtemp(prefix=f"edpd-{code}-{k}-"))
@@ -100,14 +107,16 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--seeds", type=int, default=3)
     ap.add_argument("--script", default="in.edpd")
+    ap.add_argument("--narrow", action="store_true", help="a box 8 x 20 x 8 (5120 particles) instead of 20 x 20 x 10")
+    ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--out", default=str(ROOT / "docs" / "validation" / "edpd_profile.json"))
     args = ap.parse_args()
     jobs = [(code, k) for k in range(args.seeds) for code in ("lammps", "gendpde")]
-    with ThreadPoolExecutor(2) as pool:
-        results = list(pool.map(lambda job: (job, run(job[0], job[1], args.script)), jobs))
+    with ThreadPoolExecutor(args.jobs) as pool:
+        results = list(pool.map(lambda job: (job, run(job[0], job[1], args.script, args.narrow)), jobs))
     ys = results[0][1][0]
     times = [0.01 * (500 + s) for s in range(1, 501)]
-    out = {"script": args.script, "seeds": args.seeds, "y": ys, "D_conduction_predicted": conduction_d()}
+    out = {"script": args.script, "narrow": args.narrow, "seeds": args.seeds, "y": ys, "D_conduction_predicted": conduction_d()}
     for code in ("lammps", "gendpde"):
         mean, se = stats([prof for (c, _), (_, prof) in results if c == code])
         d, rms = fit_d(ys, mean, times)
