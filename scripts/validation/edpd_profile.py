@@ -69,23 +69,22 @@ def stats(runs):
     return mean, se
 
 
-def analytic(y, d, times):
-    """Bin- and time-averaged T - 1 at bin centre y for diffusivity d."""
-    total = 0.0
+def analytic(ys, d, times):
+    """Bin- and time-averaged T - 1 at the bin centres ys for diffusivity d."""
+    modes = []
     for n in range(1, 200, 2):
         k = n * math.pi / HALF
-        bin_avg = math.sin(k * y) * math.sin(k / 2) / (k / 2)
         growth = sum(1 - math.exp(-d * k * k * t) for t in times) / len(times)
-        total += 4 * S0 / (n * math.pi) * bin_avg * growth / (d * k * k)
-    return total
+        modes.append((k, 4 * S0 / (n * math.pi) * math.sin(k / 2) / (k / 2) * growth / (d * k * k)))
+    return [sum(a * math.sin(k * y) for k, a in modes) for y in ys]
 
 
 def fit_d(ys, mean, times):
     """Least-squares D by golden-section search on the sum of squared residuals."""
-    cost = lambda d: sum((analytic(y, d, times) - (m - 1.0)) ** 2 for y, m in zip(ys, mean))
+    cost = lambda d: sum((a - (m - 1.0)) ** 2 for a, m in zip(analytic(ys, d, times), mean))
     lo, hi = 0.05, 20.0
     g = (math.sqrt(5) - 1) / 2
-    for _ in range(80):
+    for _ in range(60):
         a, b = hi - g * (hi - lo), lo + g * (hi - lo)
         if cost(a) < cost(b):
             hi = b
