@@ -136,7 +136,7 @@ fn eos(model: String, params: Vec<String>, theta: Option<f64>, u: Option<f64>, n
     let mut args = vec!["eos".to_string(), "all".to_string(), format!("eos/{model}")];
     args.extend(params);
     let cmd = gendpde_io::Command { name: "fix".into(), args, loc: gendpde_io::Location { file: "<command line>".into(), line: 0 } };
-    let result = gendpde::styles::fix::parse_fix(&cmd, 1.0, &[], &Default::default()).map_err(|e| e.message).and_then(|fix| match fix.style {
+    let result = gendpde::styles::fix::parse_fix(&cmd, 1.0, &[]).map_err(|e| e.message).and_then(|fix| match fix.style {
         gendpde::styles::fix::FixStyle::Eos(m) => m.describe(theta, u, n),
         _ => Err(format!("unknown EOS model '{model}'")),
     });

@@ -9,6 +9,7 @@
 //!    to the bit;
 //! 4. LAMMPS's examples in.edpd and in.edpd-region run unchanged (shortened to 2 x 10
 //!    steps) and heat the source half.
+//!
 //! The temperature profile of in.edpd over several seeds: scripts/validation/edpd_profile.py.
 
 mod common;
@@ -173,7 +174,7 @@ fn bad_edpd_input_is_refused_naming_the_line() {
         (format!("{head}{pair}run 0\n"), "in.bad:9: run: pair edpd integrates with fix mvv/edpd"),
         (format!("{head}pair_style edpd 1.58 9872598\npair_coeff 1 1 18.75 4.5 0.41 1.58 1.41E-5 2.0 1.58\nfix 1 all mvv/edpd\nrun 0\n"), "in.bad:10: run: pair edpd: no coefficients for types 1 2"),
         (format!("{head}{pair}fix 1 all nve\nrun 0\n"), "in.bad:10: run: fix 1 does not act on pair edpd"),
-        (format!("units lj\natom_style atomic\nregion b block 0 8 0 8 0 8\ncreate_box 1 b\ncreate_atoms 1 random 10 7 NULL\nset atom * edpd/cv 2.0\n"), "in.bad:6: set: set edpd/cv needs atom_style edpd"),
+        ("units lj\natom_style atomic\nregion b block 0 8 0 8 0 8\ncreate_box 1 b\ncreate_atoms 1 random 10 7 NULL\nset atom * edpd/cv 2.0\n".to_string(), "in.bad:6: set: set edpd/cv needs atom_style edpd"),
     ];
     for (script, expected) in cases {
         std::fs::write(d.join("in.bad"), &script).unwrap();

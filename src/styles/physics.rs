@@ -23,7 +23,6 @@ pub fn build_physics(
     skin: f64,
     rebuild: RebuildPolicy,
     kb: f64,
-    ntypes: usize,
 ) -> Result<Box<dyn Physics>, ScriptError> {
     let err = |m: String| ScriptError::at(cmd, m);
     let pair = match pair.ok_or_else(|| err("no pair style is defined (pair_style)".into()))? {
@@ -34,7 +33,7 @@ pub fn build_physics(
         }
         PairStyle::Edpd(p) => {
             let settings = Settings { dt, skin, rebuild, motion: Motion::Fixed, dissipation: None, reservoirs: Vec::new() };
-            return edpd(cmd, p, fixes, settings, kb, ntypes);
+            return edpd(cmd, p, fixes, settings, kb);
         }
     };
     if let Some(f) = fixes.iter().find(|f| matches!(f.style, FixStyle::MvvEdpd { .. } | FixStyle::EdpdSource { .. })) {
@@ -197,9 +196,9 @@ fn pairwise(cmd: &Command, p: &Pairwise, fixes: &[Fix], settings: Settings, kb: 
 }
 
 /// The dynamics of an eDPD scene: pair edpd, fix mvv/edpd and any fix edpd/source.
-fn edpd(cmd: &Command, p: &PairEdpd, fixes: &[Fix], settings: Settings, kb: f64, ntypes: usize) -> Result<Box<dyn Physics>, ScriptError> {
+fn edpd(cmd: &Command, p: &PairEdpd, fixes: &[Fix], settings: Settings, kb: f64) -> Result<Box<dyn Physics>, ScriptError> {
     let err = |m: String| ScriptError::at(cmd, m);
-    let coeff = p.table(ntypes).map_err(err)?;
+    let coeff = p.table().map_err(err)?;
     let mut lambda = None;
     let mut sources = Vec::new();
     for f in fixes {
@@ -218,5 +217,5 @@ fn edpd(cmd: &Command, p: &PairEdpd, fixes: &[Fix], settings: Settings, kb: f64,
         }
     }
     let lambda = lambda.ok_or_else(|| err("pair edpd integrates with fix mvv/edpd".into()))?;
-    Ok(Box::new(Edpd { coeff, ntypes, seed: p.seed, kb, lambda, sources, settings }))
+    Ok(Box::new(Edpd { coeff, ntypes: p.ntypes, seed: p.seed, kb, lambda, sources, settings }))
 }

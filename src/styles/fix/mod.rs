@@ -61,8 +61,13 @@ pub const DEFAULT_SUBSTEPS: u32 = 4;
 pub const MAX_SUBSTEPS: u32 = 8;
 
 /// `fix ID GROUP STYLE args...`; `kb` is Boltzmann's constant of the units, `groups`
-/// the group names by bit, `regions` the regions defined so far.
-pub fn parse_fix(cmd: &Command, kb: f64, groups: &[String], regions: &HashMap<String, Region>) -> Result<Fix, ScriptError> {
+/// the group names by bit (no regions: see [`parse_fix_in`]).
+pub fn parse_fix(cmd: &Command, kb: f64, groups: &[String]) -> Result<Fix, ScriptError> {
+    parse_fix_in(cmd, kb, groups, &HashMap::new())
+}
+
+/// [`parse_fix`] with the regions defined so far (fix edpd/source region).
+pub fn parse_fix_in(cmd: &Command, kb: f64, groups: &[String], regions: &HashMap<String, Region>) -> Result<Fix, ScriptError> {
     let mut a = Args::new(cmd);
     let id = a.word("a fix ID")?.to_string();
     let group = a.word("a group")?;

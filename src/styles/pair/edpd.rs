@@ -11,6 +11,8 @@ pub struct PairEdpd {
     /// The global cutoff of `pair_style` (each pair_coeff gives its own).
     pub cutoff: f64,
     pub seed: u64,
+    /// The number of particle types (set by the first pair_coeff).
+    pub ntypes: usize,
     /// Coefficients by type pair (`ntypes * ntypes`, symmetric), None while unset.
     pub coeff: Vec<Option<EdpdCoeff>>,
 }
@@ -23,7 +25,7 @@ pub fn parse_style(a: &mut Args) -> Result<PairEdpd, ScriptError> {
         return Err(a.err("the random seed must be positive"));
     }
     a.done()?;
-    Ok(PairEdpd { cutoff, seed, coeff: Vec::new() })
+    Ok(PairEdpd { cutoff, seed, ntypes: 0, coeff: Vec::new() })
 }
 
 /// A `pair_coeff` line of pair edpd.
@@ -53,8 +55,8 @@ pub fn parse_coeff(p: &mut PairEdpd, cmd: &Command, ntypes: usize) -> Result<(),
             _ => return Err(a.err(format!("unknown keyword '{k}'; known: power, kappa"))),
         }
     }
-    if p.coeff.len() != ntypes * ntypes {
-        p.coeff = vec![None; ntypes * ntypes];
+    if p.ntypes != ntypes {
+        (p.ntypes, p.coeff) = (ntypes, vec![None; ntypes * ntypes]);
     }
     for i in ti {
         for j in tj.clone() {
@@ -72,7 +74,11 @@ impl PairEdpd {
     }
 
     /// The coefficients of every type pair; Err names the first pair without.
-    pub fn table(&self, ntypes: usize) -> Result<Vec<EdpdCoeff>, String> {
+    pub fn table(&self) -> Result<Vec<EdpdCoeff>, String> {
+        if self.ntypes == 0 {
+            return Err("pair edpd has no coefficients (pair_coeff)".into());
+        }
+        let ntypes = self.ntypes;
         (0..ntypes * ntypes)
             .map(|k| self.coeff.get(k).cloned().flatten().ok_or_else(|| format!("pair edpd: no coefficients for types {} {} (pair_coeff)", k / ntypes + 1, k % ntypes + 1)))
             .collect()
