@@ -108,24 +108,38 @@ def main():
     ap.add_argument("--script", default="in.edpd")
     ap.add_argument("--narrow", action="store_true", help="a box 8 x 20 x 8 (5120 particles) instead of 20 x 20 x 10")
     ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("--first", type=int, default=0, help="the first seed offset k")
+    ap.add_argument("--combine", nargs="+", help="no runs: combine the runs kept in these JSON files")
     ap.add_argument("--out", default=str(ROOT / "docs" / "validation" / "edpd_profile.json"))
     args = ap.parse_args()
-    jobs = [(code, k) for k in range(args.seeds) for code in ("lammps", "gendpde")]
-    with ThreadPoolExecutor(args.jobs) as pool:
-        results = list(pool.map(lambda job: (job, run(job[0], job[1], args.script, args.narrow)), jobs))
-    ys = results[0][1][0]
+    if args.combine:
+        loaded = [json.loads(Path(f).read_text()) for f in args.combine]
+        ys, narrow, script = loaded[0]["y"], loaded[0]["narrow"], loaded[0]["script"]
+        runs = {code: [r for j in loaded for r in j["runs"][code]] for code in ("lammps", "gendpde")}
+    else:
+        jobs = [(code, k) for k in range(args.first, args.first + args.seeds) for code in ("lammps", "gendpde")]
+        with ThreadPoolExecutor(args.jobs) as pool:
+            results = list(pool.map(lambda job: (job, run(job[0], job[1], args.script, args.narrow)), jobs))
+        ys, narrow, script = results[0][1][0], args.narrow, args.script
+        runs = {code: [prof for (c, _), (_, prof) in results if c == code] for code in ("lammps", "gendpde")}
     times = [0.01 * (500 + s) for s in range(1, 501)]
-    out = {"script": args.script, "narrow": args.narrow, "seeds": args.seeds, "y": ys, "D_conduction_predicted": conduction_d()}
+    nseeds = len(runs["lammps"])
+    out = {"script": script, "narrow": narrow, "seeds": nseeds, "y": ys, "D_conduction_predicted": conduction_d(), "runs": runs}
     for code in ("lammps", "gendpde"):
-        mean, se = stats([prof for (c, _), (_, prof) in results if c == code])
+        mean, se = stats(runs[code])
         d, rms = fit_d(ys, mean, times)
-        out[code] = {"mean": mean, "se": se, "D_fit": d, "fit_rms": rms}
-    z = [(a - b) / math.hypot(s, t) for a, b, s, t in zip(out["lammps"]["mean"], out["gendpde"]["mean"], out["lammps"]["se"], out["gendpde"]["se"])]
-    out["z"] = z
-    out["max_abs_z"] = max(abs(v) for v in z)
-    out["chi2_per_bin"] = sum(v * v for v in z) / len(z)
+        # the seed noise is alike in every bin: its variance pooled over the bins
+        pooled = math.sqrt(sum(x * x for x in se) / len(se))
+        out[code] = {"mean": mean, "se": se, "se_pooled": pooled, "D_fit": d, "fit_rms": rms}
+    diff = [a - b for a, b in zip(out["lammps"]["mean"], out["gendpde"]["mean"])]
+    z = [x / math.hypot(s, t) for x, s, t in zip(diff, out["lammps"]["se"], out["gendpde"]["se"])]
+    zp = [x / math.hypot(out["lammps"]["se_pooled"], out["gendpde"]["se_pooled"]) for x in diff]
+    out.update(z=z, max_abs_z=max(map(abs, z)), chi2_per_bin=sum(v * v for v in z) / len(z))
+    out.update(z_pooled=zp, max_abs_z_pooled=max(map(abs, zp)), chi2_per_bin_pooled=sum(v * v for v in zp) / len(zp))
+    out["max_abs_diff"] = max(map(abs, diff))
     Path(args.out).write_text(json.dumps(out, indent=1) + "\n")
-    print(f"{args.script}, {args.seeds} seeds: max |z| = {out['max_abs_z']:.2f}, chi2/bin = {out['chi2_per_bin']:.2f}")
+    print(f"{script}{' (narrow)' if narrow else ''}, {nseeds} seeds: max |diff| = {out['max_abs_diff']:.2e}; per-bin SE: max |z| = {out['max_abs_z']:.2f}, "
+          f"chi2/bin = {out['chi2_per_bin']:.2f}; pooled SE: max |z| = {out['max_abs_z_pooled']:.2f}, chi2/bin = {out['chi2_per_bin_pooled']:.2f}")
     for code in ("lammps", "gendpde"):
         print(f"  {code}: D_fit = {out[code]['D_fit']:.3f} (rms {out[code]['fit_rms']:.2e}); D_c predicted {out['D_conduction_predicted']:.3f}")
     for y, a, s, b, t in zip(ys, out["lammps"]["mean"], out["lammps"]["se"], out["gendpde"]["mean"], out["gendpde"]["se"]):
