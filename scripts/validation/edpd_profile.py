@@ -32,6 +32,7 @@ import argparse
 import json
 import math
 import os
+import shutil
 import subprocess
 import tempfile
 from concurrent.futures import ThreadPoolExecutor
@@ -59,6 +60,7 @@ def run(code, k, script, narrow):
         raise SystemExit(f"{code} seed {k}: {r.stdout[-2000:]}{r.stderr[-2000:]}")
     rows = [line.split() for line in (d / "temp.profile").read_text().splitlines() if line.strip() and not line.startswith("#")]
     prof = [(float(w[1]), float(w[3])) for w in rows if len(w) == 5]
+    shutil.rmtree(d)
     return [y for y, _ in prof], [t for _, t in prof]
 
 
