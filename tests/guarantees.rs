@@ -184,6 +184,20 @@ fn every_style_is_bit_identical_on_1_2_3_4_ranks_and_an_uneven_grid() {
             ) + "thermo_style custom step temp press pe ke\n",
             30,
         ),
+        (
+            // eDPD with a heat source and sink: T (mean in c_Tm) enters every force
+            "edpd",
+            pairwise_fluid(
+                "edpd",
+                4.0,
+                12,
+                "set group all edpd/cv 100.0\npair_style edpd 1.58 9872598\n\
+                 pair_coeff * * 18.75 4.5 0.41 1.58 1.41E-3 2.0 1.58 power 10.54 -3.66 3.44 -4.10 kappa -0.44 -3.21 5.04 0.00\n\
+                 fix 1 all mvv/edpd 0.5\nfix hot all edpd/source cuboid 2.0 2.0 2.0 3.0 3.0 3.0 0.5\n\
+                 fix cold all edpd/source sphere 5.5 5.5 5.5 1.5 -0.5\ncompute t all edpd/temp/atom\ncompute Tm all reduce ave c_t\n",
+            ) + "thermo_style custom step temp press pe ke c_Tm\n",
+            30,
+        ),
     ];
     for (name, scene, steps) in &scenes {
         let start = std::time::Instant::now();

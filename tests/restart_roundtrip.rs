@@ -38,6 +38,7 @@ const CASES: &[Case] = &[
     Case { script: "scripts/lammps/in.dpd-fdt", vars: &[], every: 5, k: 10 },
     Case { script: "scripts/lammps/in.dpde-vv-lj", vars: &[("equil", "5")], every: 5, k: 10 },
     Case { script: "scripts/lammps/in.dpd-vv", vars: &[], every: 5, k: 10 },
+    Case { script: "scripts/lammps/in.edpd-gradient", vars: &[], every: 5, k: 10 },
 ];
 
 /// Commands of the original script a continuation repeats: the output settings (the

@@ -23,6 +23,8 @@ impl Fields {
     /// The rates duCond/dt and duMech/dt of velocity-Verlet DPDE (LAMMPS's pair
     /// dpd/fdt/energy without fix shardlow; not exchanged).
     pub const DU: Self = Self(1024);
+    /// eDPD's particle temperature (atom_style edpd; allocates heat capacity and flux too).
+    pub const EDPD: Self = Self(2048);
 
     pub const fn union(self, other: Self) -> Self {
         Self(self.0 | other.0)

@@ -279,6 +279,14 @@ particle_fields! {
     inv_tau: f64, "inv_tau", gate Fields::INV_TAU, comm Fields::INV_TAU, stages GHOST;
     /// MDPD density rho_i = sum_j m_j W(r_ij) (LAMMPS mdpd/rhosum).
     rho: f64, "rho", gate Fields::RHO, comm Fields::RHO, stages GHOST;
+    /// eDPD temperature T (LAMMPS atom_style edpd's edpd_temp).
+    edpd_temp: f64, "edpd_temp", gate Fields::EDPD, comm Fields::EDPD, stages MIGRATE | GHOST | RESTART;
+    /// eDPD heat capacity C_V (edpd_cv).
+    edpd_cv: f64, "edpd_cv", gate Fields::EDPD, comm NONE, stages MIGRATE | GHOST | RESTART;
+    /// eDPD heat flux Q = dT/dt C_V of owned particles (edpd_flux), from that step's noise.
+    edpd_flux: f64, "edpd_flux", gate Fields::EDPD, comm NONE, stages RESTART | RESUME;
+    /// Half-step temperature estimate of fix mvv/edpd (vest_temp, owned particles).
+    vest_temp: f64, "vest_temp", gate Fields::EDPD, comm NONE, stages MIGRATE | RESTART;
     /// Per-particle diagonal virial sum_j F_ij (x_ij^2, y_ij^2, z_ij^2) / 2 of owned
     /// particles (its trace is the scalar virial).
     virial: Vec3, "virial", gate Fields::PRESSURE.union(Fields::PAIR_ENERGY), comm NONE, stages RESTART | RESUME;

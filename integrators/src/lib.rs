@@ -4,6 +4,7 @@
 //! Equation numbers: 2019 PCCP paper unless stated.
 
 pub mod classic;
+pub mod edpd;
 pub mod error;
 pub mod heat;
 pub mod isentropic;
@@ -19,6 +20,7 @@ pub mod verlet;
 pub mod vv_euler;
 
 pub use classic::{ClassicDpd, Integration, PairForce, ShardlowDpd};
+pub use edpd::{Edpd, EdpdCoeff, HeatSource, SourceShape};
 pub use error::StepError;
 pub use heat::HeatModel;
 pub use physics::{GenDpde, Physics, SetupError};

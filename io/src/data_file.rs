@@ -38,6 +38,8 @@ pub enum AtomStyle {
     /// `id type rho x y z [ix iy iz]` (LAMMPS atom_style mdpd; rho is recomputed, so
     /// the column is read and checked but not kept).
     Mdpd,
+    /// `id type edpd_temp edpd_cv x y z [ix iy iz]` (LAMMPS atom_style edpd).
+    Edpd,
 }
 
 impl AtomStyle {
@@ -47,6 +49,7 @@ impl AtomStyle {
             AtomStyle::Atomic => "atomic",
             AtomStyle::Dpd => "dpd",
             AtomStyle::Mdpd => "mdpd",
+            AtomStyle::Edpd => "edpd",
         }
     }
 
@@ -56,6 +59,7 @@ impl AtomStyle {
             "atomic" => Some(AtomStyle::Atomic),
             "dpd" => Some(AtomStyle::Dpd),
             "mdpd" => Some(AtomStyle::Mdpd),
+            "edpd" => Some(AtomStyle::Edpd),
             _ => None,
         }
     }
@@ -66,6 +70,7 @@ impl AtomStyle {
             AtomStyle::Atomic => &["id", "type", "x", "y", "z"],
             AtomStyle::Dpd => &["id", "type", "dpdTheta", "x", "y", "z"],
             AtomStyle::Mdpd => &["id", "type", "rho", "x", "y", "z"],
+            AtomStyle::Edpd => &["id", "type", "edpd_temp", "edpd_cv", "x", "y", "z"],
         }
     }
 }
@@ -79,6 +84,8 @@ pub struct DataAtom {
     pub kind: u32,
     /// Internal temperature `dpdTheta` (`Some` exactly for [`AtomStyle::Dpd`]).
     pub theta: Option<f64>,
+    /// eDPD temperature and heat capacity (`Some` exactly for [`AtomStyle::Edpd`]).
+    pub edpd: Option<[f64; 2]>,
     /// Position.
     pub r: [f64; 3],
     /// Image flags (zero when the line has none).
@@ -218,6 +225,12 @@ fn render(data: &DataFile, style: AtomStyle) -> Result<String, String> {
         }
         if style == AtomStyle::Mdpd {
             out.push_str(" 0.0");
+        }
+        if style == AtomStyle::Edpd {
+            let Some([t, cv]) = a.edpd else {
+                return Err(format!("atom {} has no edpd_temp and edpd_cv", a.tag));
+            };
+            let _ = write!(out, " {:?} {:?}", finite("edpd_temp", t)?, finite("edpd_cv", cv)?);
         }
         for x in a.r {
             let _ = write!(out, " {:?}", finite("position", x)?);
@@ -689,8 +702,16 @@ impl<'a> Parser<'a> {
             let tag = atom_id(words[0]).map_err(err)?;
             let kind = atom_type(words[1], ntypes).map_err(err)?;
             let mut col = 2;
+            let mut edpd = None;
             let theta = match self.style {
                 AtomStyle::Atomic => None,
+                AtomStyle::Edpd => {
+                    let t = number(words[col]).map_err(|e| err(format!("edpd_temp: {e}")))?;
+                    let cv = number(words[col + 1]).map_err(|e| err(format!("edpd_cv: {e}")))?;
+                    col += 2;
+                    edpd = Some([t, cv]);
+                    None
+                }
                 AtomStyle::Dpd => {
                     let theta = number(words[col]).map_err(|e| err(format!("dpdTheta: {e}")))?;
                     col += 1;
@@ -731,6 +752,7 @@ impl<'a> Parser<'a> {
                 tag,
                 kind,
                 theta,
+                edpd,
                 r,
                 image,
             });

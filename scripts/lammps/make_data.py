@@ -13,7 +13,10 @@ Files (all single atom type, periodic orthogonal boxes starting at 0):
   data.dpde         atom_style dpd,  metal, N = 1000, L = 60 A,               theta = 300 K,
                     v ~ N(0, kT/m) for m = 100 g/mol at 300 K (the mass comes from `mass 1 100.0`)
 
-Atoms lines: dpd  `id type dpdTheta x y z`;  mdpd `id type rho x y z` (rho is recomputed by
+  data.edpd-small   atom_style edpd, lj,    N = 2048, L = 8      (rho = 4), 2 types (alternating),
+                    T ~ U(0.7, 1.3), cv ~ U(5, 15), uniform random positions, v ~ N(0, 1)
+
+Atoms lines: edpd `id type edpd_temp edpd_cv x y z`; dpd  `id type dpdTheta x y z`;  mdpd `id type rho x y z` (rho is recomputed by
 pair mdpd/rhosum before the first force, the column is written as 0).
 Positions: data.dpde-3000 is uniform random in the box (soft potential: overlaps are harmless,
 the statistical scene equilibrates first); the three 13^3 files are simple-cubic lattices with
@@ -110,6 +113,25 @@ def main():
     std = math.sqrt(BOLTZ_METAL * 300.0 / (100.0 * MVV2E_METAL))  # A/ps
     write(os.path.join(out, "data.dpde"), "DPDE metal N=1000 L=60 A theta=300 K", "dpd", length,
           pos, gaussian_velocities(rng, len(pos), std), "300.0", ".8f")
+
+    # f. eDPD parity scene (lj): 2048 particles of two types, per-particle T and cv
+    rng = random.Random(2014)
+    n, length = 2048, 8.0
+    pos = uniform_positions(rng, n, length)
+    vel = gaussian_velocities(rng, n, 1.0)
+    lines = ["LAMMPS data file: eDPD lj rho=4 N=2048 two types (scripts/lammps/make_data.py)", "",
+             f"{n} atoms", "2 atom types", ""]
+    for ax in "xyz":
+        lines.append(f"0.0 {length!r} {ax}lo {ax}hi")
+    lines += ["", "Masses", "", "1 1.0", "2 1.0", "", "Atoms # edpd", ""]
+    for i, (x, y, z) in enumerate(pos, start=1):
+        t, cv = rng.uniform(0.7, 1.3), rng.uniform(5.0, 15.0)
+        lines.append(f"{i} {1 + i % 2} {t:.10f} {cv:.10f} {x:.10f} {y:.10f} {z:.10f}")
+    lines += ["", "Velocities", ""]
+    for i, (a, b, c) in enumerate(vel, start=1):
+        lines.append(f"{i} {a:.10f} {b:.10f} {c:.10f}")
+    with open(os.path.join(out, "data.edpd-small"), "w") as fh:
+        fh.write("\n".join(lines) + "\n")
 
 
 if __name__ == "__main__":

@@ -10,7 +10,7 @@ use crate::base::memory;
 use crate::base::units::Units;
 use crate::model::sim::Sim;
 use crate::output::thermo::ThermoConfig;
-use gendpde_engine::{Comm, Domain, ProcGrid, Vec3};
+use gendpde_engine::{Comm, Domain, Fields, ProcGrid, Vec3};
 use gendpde_integrators::System;
 use gendpde_io::{AtomStyle, ScriptError};
 
@@ -51,13 +51,15 @@ pub fn boundary(a: &mut Args) -> Result<(), ScriptError> {
     a.done()
 }
 
-/// `atom_style atomic|dpd|gendpde|mdpd`: the columns of data files.
+/// `atom_style atomic|dpd|gendpde|mdpd|edpd`: the columns of data files (edpd: and the
+/// per-particle temperature, heat capacity and flux of eDPD).
 pub fn atom_style(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     sim.atom_style = match a.word("an atom style")? {
         "atomic" => AtomStyle::Atomic,
         "dpd" | "gendpde" => AtomStyle::Dpd,
         "mdpd" => AtomStyle::Mdpd,
-        s => return Err(a.err(format!("unknown atom style '{s}'; known: atomic, dpd, gendpde, mdpd"))),
+        "edpd" => AtomStyle::Edpd,
+        s => return Err(a.err(format!("unknown atom style '{s}'; known: atomic, dpd, gendpde, mdpd, edpd"))),
     };
     a.done()
 }
@@ -211,7 +213,11 @@ pub fn create_box(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     let procs = ProcGrid::choose(transport.size(), domain.len(), sim.procs).map_err(|e| a.err(e))?;
     sim.ntypes = n;
     sim.masses = vec![None; n];
-    sim.system = Some(System::new(domain, Comm::new(transport, procs)));
+    let mut sys = System::new(domain, Comm::new(transport, procs));
+    if sim.atom_style == AtomStyle::Edpd {
+        sys.store.enable(Fields::EDPD);
+    }
+    sim.system = Some(sys);
     Ok(())
 }
 
@@ -296,6 +302,11 @@ pub fn create_atoms(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
         sim.max_tag += 1;
         if sys.comm.keeps(&sys.domain, r) {
             sys.store.push(sim.max_tag, kind as u32, mass, r);
+            if sys.store.has(Fields::EDPD) {
+                // LAMMPS's atom_vec_edpd create_atom_post
+                let i = sys.store.nlocal - 1;
+                (sys.store.edpd_temp[i], sys.store.edpd_cv[i], sys.store.vest_temp[i]) = (1.0, 1.0e5, 1.0);
+            }
         }
     }
     sim.check_density_cap().map_err(|e| a.err(e))
@@ -341,9 +352,9 @@ fn retype(s: &mut gendpde_engine::Particles, i: usize, kind: u32, masses: &[Opti
     s.mass[i] = new;
 }
 
-/// `set atom|type|group ID KEYWORD VALUE ...` with keywords theta (dpd/theta), u, type T
-/// and type/fraction T FRACTION SEED (as LAMMPS: each selected particle becomes type T
-/// with probability FRACTION).
+/// `set atom|type|group ID KEYWORD VALUE ...` with keywords theta (dpd/theta), u, type T,
+/// type/fraction T FRACTION SEED (as LAMMPS: each selected particle becomes type T
+/// with probability FRACTION), edpd/temp and edpd/cv (atom_style edpd).
 pub fn set(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     let style = a.word("atom, type or group")?;
     let group_mask = if style == "group" { Some(groups::mask(&sim.groups, a.word("a group ID")?, a)?) } else { None };
@@ -408,7 +419,21 @@ pub fn set(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
                     }
                 }
             }
-            k => return Err(a.err(format!("unknown set keyword '{k}'; known: theta, dpd/theta, u, type, type/fraction"))),
+            "edpd/temp" | "edpd/cv" => {
+                let what = if key == "edpd/temp" { "the eDPD temperature" } else { "the eDPD heat capacity" };
+                let x = a.positive(what)?;
+                if !s.has(Fields::EDPD) {
+                    return Err(a.err(format!("set {key} needs atom_style edpd")));
+                }
+                for &i in &selected {
+                    if key == "edpd/temp" {
+                        (s.edpd_temp[i], s.vest_temp[i]) = (x, x);
+                    } else {
+                        s.edpd_cv[i] = x;
+                    }
+                }
+            }
+            k => return Err(a.err(format!("unknown set keyword '{k}'; known: theta, dpd/theta, u, type, type/fraction, edpd/temp, edpd/cv"))),
         }
     }
     Ok(())

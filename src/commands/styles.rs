@@ -8,7 +8,7 @@ use crate::output::ave_chunk::AveChunk;
 use crate::output::ave_time::AveTime;
 use crate::output::Outputs;
 use crate::styles::compute::{self, Definition};
-use crate::styles::fix::parse_fix;
+use crate::styles::fix::parse_fix_in;
 use crate::styles::pair::{parse_pair_coeff, parse_pair_style};
 use gendpde_io::ScriptError;
 
@@ -48,7 +48,7 @@ pub fn fix(sim: &mut Sim, outputs: &mut Outputs, a: &mut Args) -> Result<(), Scr
         }
         let step = sim.system.as_ref().map_or(0, |s| s.step);
         if style == "ave/chunk" {
-            let fix = AveChunk::parse(id, group, a, &sim.groups, &sim.chunks, step)?;
+            let fix = AveChunk::parse(id, group, a, &sim.groups, &sim.chunks, &sim.computes, step)?;
             outputs.chunk_averages.retain(|f| f.id != fix.id);
             outputs.chunk_averages.push(fix);
         } else if group != "all" {
@@ -60,7 +60,7 @@ pub fn fix(sim: &mut Sim, outputs: &mut Outputs, a: &mut Args) -> Result<(), Scr
         }
         return Ok(());
     }
-    let fix = parse_fix(cmd, sim.units.kb, &sim.groups)?;
+    let fix = parse_fix_in(cmd, sim.units.kb, &sim.groups, &sim.regions)?;
     if outputs.has_fix(&fix.id) {
         return Err(a.err(format!("fix ID '{}' is in use by another style (unfix it first)", fix.id)));
     }

@@ -1,7 +1,8 @@
 //! `fix ID GROUP ave/chunk Nevery Nrepeat Nfreq CHUNKID value ... [norm all|sample|none]
 //! [ave one|running|window M] [adof A] [cdof C] [file FILE] [format F] [title1|2|3 T]`:
-//! per-chunk averages of density/number, density/mass, temp, vx vy vz and fx fy fz over
-//! the bins of a compute chunk/atom, in LAMMPS's fix ave/chunk file layout and arithmetic.
+//! per-chunk averages of density/number, density/mass, temp, vx vy vz, fx fy fz and
+//! per-atom computes c_ID over the bins of a compute chunk/atom, in LAMMPS's fix
+//! ave/chunk file layout and arithmetic.
 //!
 //! Each sample sums the particles of each bin with exact sums (integer counts), so the
 //! file does not depend on the number of ranks; rank 0 writes it and flushes each block.
@@ -10,7 +11,9 @@ use crate::base::args::Args;
 use crate::base::groups;
 use crate::base::units::Units;
 use crate::output::schedule::{write_on_rank0, Frame, RunOutput, Sampling, Span};
+use crate::model::sim::Sim;
 use crate::styles::compute::chunk::ChunkAtom;
+use crate::styles::compute::Compute;
 use gendpde_engine::exact_column_sums;
 use gendpde_integrators::System;
 use gendpde_io::ScriptError;
@@ -26,6 +29,8 @@ enum Value {
     Temp,
     Velocity(usize),
     Force(usize),
+    /// Per-atom compute `c_ID` (the ID is the value's name, without `c_`).
+    PerAtom,
 }
 
 impl Value {
@@ -38,6 +43,8 @@ impl Value {
             Self::Temp => s.p[i].iter().map(|p| p * p).sum::<f64>() / s.mass[i],
             Self::Velocity(k) => s.p[i][k] / s.mass[i],
             Self::Force(k) => s.f[i][k],
+            // read through its compute (`sample`)
+            Self::PerAtom => 0.0,
         }
     }
 }
@@ -94,7 +101,8 @@ pub struct AveChunk {
 impl AveChunk {
     /// The words after `fix ID GROUP ave/chunk`; `chunks` are the chunk/atom computes
     /// defined so far, `step` the current step.
-    pub fn parse(id: String, group: &str, a: &mut Args, group_names: &[String], chunks: &[ChunkAtom], step: u64) -> Result<Self, ScriptError> {
+    /// `computes`: those defined so far (a `c_ID` value names a per-atom one).
+    pub fn parse(id: String, group: &str, a: &mut Args, group_names: &[String], chunks: &[ChunkAtom], computes: &[Compute], step: u64) -> Result<Self, ScriptError> {
         let mask = groups::mask(group_names, group, a)?;
         let sampling = Sampling::parse(a, step)?;
         let chunk = a.word("a compute chunk/atom ID")?.to_string();
@@ -109,8 +117,9 @@ impl AveChunk {
                 "temp" => Value::Temp,
                 "vx" | "vy" | "vz" => Value::Velocity(usize::from(w.as_bytes()[1] - b'x')),
                 "fx" | "fy" | "fz" => Value::Force(usize::from(w.as_bytes()[1] - b'x')),
+                _ if w.strip_prefix("c_").is_some_and(|c| computes.iter().any(|x| x.id == c && x.is_per_atom())) => Value::PerAtom,
                 _ if w.starts_with("c_") || w.starts_with("f_") || w.starts_with("v_") => {
-                    return Err(a.err(format!("value '{w}': per-atom computes, fixes and variables are not supported; values: density/number, density/mass, temp, vx, vy, vz, fx, fy, fz")));
+                    return Err(a.err(format!("value '{w}': not a per-atom compute (per-atom fixes and variables are not supported); values: density/number, density/mass, temp, vx, vy, vz, fx, fy, fz, c_ID")));
                 }
                 _ => break,
             };
@@ -160,17 +169,36 @@ impl AveChunk {
     }
 
     /// The sums of one sample: count and values per chunk (exact over the ranks).
-    fn sample(&self, chunk: &ChunkAtom, sys: &System) -> Result<Block, String> {
+    fn sample(&self, chunk: &ChunkAtom, sim: &Sim, sys: &System) -> Result<Block, String> {
         let (d, s) = (&sys.domain, &sys.store);
+        // the per-atom computes of c_ID values, by value
+        let computes = self
+            .names
+            .iter()
+            .zip(&self.values)
+            .map(|(name, v)| match v {
+                Value::PerAtom => {
+                    let id = name.strip_prefix("c_").unwrap_or(name);
+                    sim.computes.iter().find(|c| c.id == id && c.is_per_atom()).map(Some).ok_or_else(|| format!("fix {} ave/chunk: per-atom compute '{id}' no longer exists", self.id))
+                }
+                _ => Ok(None),
+            })
+            .collect::<Result<Vec<_>, String>>()?;
+        let (mvv2e, pair_energy) = (sim.units.mvv2e, sim.pe_is_pair());
+        let term = |j: usize, v: Value, i: usize| match computes[j] {
+            Some(c) => c.per_atom(sys, i, mvv2e, pair_energy).unwrap_or(0.0),
+            None => v.term(sys, i),
+        };
         let bins = chunk.bins(d)?;
         if bins.nchunk() != self.nchunk {
             return Err(format!("fix {} ave/chunk: the box changed the number of chunks within a block ({} to {})", self.id, self.nchunk, bins.nchunk()));
         }
         let ncol = 1 + self.values.len();
         let members = (0..s.nlocal).filter(|&i| s.in_group(i, self.mask) && s.in_group(i, chunk.mask));
+        let term = &term;
         let terms = members.flat_map(|i| {
             let row = chunk.chunk(&bins, d, s.r[i]) * ncol;
-            std::iter::once((row, 1.0)).chain(self.values.iter().enumerate().map(move |(j, v)| (row + 1 + j, v.term(sys, i))))
+            std::iter::once((row, 1.0)).chain(self.values.iter().enumerate().map(move |(j, v)| (row + 1 + j, term(j, *v, i))))
         });
         Ok(exact_column_sums(sys.comm.transport(), self.nchunk * ncol, terms))
     }
@@ -306,7 +334,7 @@ impl RunOutput for AveChunk {
             self.nchunk = bins.nchunk();
             self.many = vec![0.0; self.nchunk * (1 + self.values.len())];
         }
-        let one = self.sample(chunk, sys)?;
+        let one = self.sample(chunk, f.sim, sys)?;
         self.add(&one, units, bins.volume);
         if !self.sampling.sample(sys.step, &format!("{} ave/chunk", self.id))? {
             return Ok(());

@@ -55,7 +55,7 @@ fn scaled(s: &System, i: usize, k: usize) -> f64 {
     (s.store.r[i][k] - s.domain.lo[k]) / s.domain.len()[k]
 }
 
-/// LAMMPS's dump keywords and gendpde's (p, u, theta, n).
+/// LAMMPS's dump keywords and gendpde's (p, u, theta, n, and eDPD's T, C_V and Q).
 pub const KEYWORDS: &[Keyword] = &[
     field("id", "id", 0),
     field("type", "type", 0),
@@ -88,6 +88,9 @@ pub const KEYWORDS: &[Keyword] = &[
     derived("uMech", |s, i| s.store.u[i] - s.store.u_cond[i], &["uCond"]),
     field("n", "n", 0),
     field("rho", "rho", 0),
+    field("edpd_temp", "edpd_temp", 0),
+    field("edpd_cv", "edpd_cv", 0),
+    field("edpd_flux", "edpd_flux", 0),
 ];
 
 /// The keyword names, for error messages.

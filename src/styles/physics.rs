@@ -2,12 +2,13 @@
 //! monomorphised over its EOS and weight function, or LAMMPS's pairwise DPD styles.
 
 use crate::styles::fix::eos::{each_eos, EosModel};
-use crate::styles::fix::{Fix, FixStyle};
+use crate::styles::fix::{Fix, FixStyle, Source};
+use crate::styles::pair::edpd::PairEdpd;
 use crate::styles::pair::gendpde::{PairCoeff, PairGendpde};
 use crate::styles::pair::pairwise::{Kind, Pairwise};
 use crate::styles::pair::PairStyle;
 use gendpde_integrators::{
-    ClassicDpd, Dissipation, FixedEntropy, GenDpde, HeatModel, Integration, Motion, PairForce, Physics, RebuildPolicy, Reservoir, Settings, ShardlowDpd, Species,
+    ClassicDpd, Dissipation, Edpd, HeatSource, SourceShape, FixedEntropy, GenDpde, HeatModel, Integration, Motion, PairForce, Physics, RebuildPolicy, Reservoir, Settings, ShardlowDpd, Species,
 };
 use gendpde_io::{Command, ScriptError};
 use gendpde_potentials::volume::PartitionVolume;
@@ -30,7 +31,14 @@ pub fn build_physics(
             let settings = Settings { dt, skin, rebuild, motion: Motion::Fixed, dissipation: None, reservoirs: Vec::new() };
             return pairwise(cmd, p, fixes, settings, kb);
         }
+        PairStyle::Edpd(p) => {
+            let settings = Settings { dt, skin, rebuild, motion: Motion::Fixed, dissipation: None, reservoirs: Vec::new() };
+            return edpd(cmd, p, fixes, settings, kb);
+        }
     };
+    if let Some(f) = fixes.iter().find(|f| matches!(f.style, FixStyle::MvvEdpd { .. } | FixStyle::EdpdSource { .. })) {
+        return Err(err(format!("fix {} belongs to pair edpd", f.id)));
+    }
     if fixes.iter().any(|f| matches!(f.style, FixStyle::Nve | FixStyle::Mvv { .. } | FixStyle::DpdEnergy)) {
         return Err(err("pair gendpde integrates with fix nve/gendpde or vv/euler (fix nve, mvv/dpd and dpd/energy belong to LAMMPS's pairwise styles)".into()));
     }
@@ -144,6 +152,9 @@ fn pairwise(cmd: &Command, p: &Pairwise, fixes: &[Fix], settings: Settings, kb: 
         FixStyle::Eos(EosModel::Linear(e)) if !gendpde_potentials::Eos::density_dependent(e) && e.q == 0.0 => Some(e.cv),
         _ => None,
     });
+    if let Some(f) = fixes.iter().find(|f| matches!(f.style, FixStyle::MvvEdpd { .. } | FixStyle::EdpdSource { .. })) {
+        return Err(err(&format!("fix {} belongs to pair edpd", f.id)));
+    }
     if has(|s| matches!(s, FixStyle::Verlet { .. } | FixStyle::VvEuler { .. } | FixStyle::Reservoir { .. })) {
         return Err(err("fix nve/gendpde, vv/euler and heat/reservoir belong to pair gendpde; LAMMPS's pairwise styles use fix nve, shardlow, eos/cv, mvv/dpd"));
     }
@@ -189,4 +200,29 @@ fn pairwise(cmd: &Command, p: &Pairwise, fixes: &[Fix], settings: Settings, kb: 
         return Err(err("fix mvv/dpd integrates pair mdpd"));
     }
     Ok(Box::new(ClassicDpd { force, shardlow: sweep, integration, cv, energy, kb, seed: p.seed, settings }))
+}
+
+/// The dynamics of an eDPD scene: pair edpd, fix mvv/edpd and any fix edpd/source.
+fn edpd(cmd: &Command, p: &PairEdpd, fixes: &[Fix], settings: Settings, kb: f64) -> Result<Box<dyn Physics>, ScriptError> {
+    let err = |m: String| ScriptError::at(cmd, m);
+    let coeff = p.table().map_err(err)?;
+    let mut lambda = None;
+    let mut sources = Vec::new();
+    for f in fixes {
+        match &f.style {
+            FixStyle::MvvEdpd { lambda: l } if lambda.is_none() => lambda = Some(*l),
+            FixStyle::MvvEdpd { .. } => return Err(err("more than one fix mvv/edpd is defined".into())),
+            FixStyle::EdpdSource { shape, value, mask } => {
+                let shape = match shape.clone() {
+                    Source::Sphere { centre, radius } => SourceShape::Sphere { centre, radius },
+                    Source::Cuboid { centre, edges } => SourceShape::Cuboid { centre, edges },
+                    Source::Region(r) => SourceShape::Region(std::sync::Arc::new(move |x| r.contains(x))),
+                };
+                sources.push(HeatSource { mask: *mask, shape, value: *value });
+            }
+            _ => return Err(err(format!("fix {} does not act on pair edpd (its fixes: mvv/edpd, edpd/source)", f.id))),
+        }
+    }
+    let lambda = lambda.ok_or_else(|| err("pair edpd integrates with fix mvv/edpd".into()))?;
+    Ok(Box::new(Edpd { coeff, ntypes: p.ntypes, seed: p.seed, kb, lambda, sources, settings }))
 }

@@ -109,6 +109,7 @@ fn reads_small_file() {
             tag: 2,
             kind: 2,
             theta: Some(1.25),
+            edpd: None,
             r: [9.75, -4.0, 3.0],
             image: [1, -1, 2],
         }

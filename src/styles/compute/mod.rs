@@ -42,6 +42,9 @@ pub enum ComputeStyle {
     /// styles), or its internal energy u (GenDPDE, whose pe is the sum of u); 0 outside
     /// the group.
     PeAtom { mask: u32 },
+    /// LAMMPS DPD-MESO's compute edpd/temp/atom: the eDPD temperature T (0 outside the
+    /// group).
+    EdpdTempAtom { mask: u32 },
 }
 
 /// The kinetic sums of a group: its count and the diagonal of sum p p^T / m.
@@ -109,6 +112,7 @@ pub fn parse(a: &mut Args, groups: &[String], computes: &[Compute], spacing: gen
         "temp" => ComputeStyle::Temp { mask: crate::base::groups::mask(groups, group, a)?, extra_dof: 3.0 },
         "com" => ComputeStyle::Com { mask: crate::base::groups::mask(groups, group, a)? },
         "ke/atom" => ComputeStyle::KeAtom { mask: crate::base::groups::mask(groups, group, a)? },
+        "edpd/temp/atom" => ComputeStyle::EdpdTempAtom { mask: crate::base::groups::mask(groups, group, a)? },
         "pe/atom" => {
             // LAMMPS's keywords select energy terms; gendpde's pair (or internal) energy is all of pe
             while let Some(k) = a.peek() {
@@ -139,10 +143,10 @@ pub fn parse(a: &mut Args, groups: &[String], computes: &[Compute], spacing: gen
 impl Compute {
     /// Whether it has per-atom values (ke/atom, pe/atom) and no global ones.
     pub fn is_per_atom(&self) -> bool {
-        matches!(self.style, ComputeStyle::KeAtom { .. } | ComputeStyle::PeAtom { .. })
+        matches!(self.style, ComputeStyle::KeAtom { .. } | ComputeStyle::PeAtom { .. } | ComputeStyle::EdpdTempAtom { .. })
     }
 
-    /// The value of particle `i` of a per-atom compute (ke/atom, pe/atom; 0 outside its
+    /// The value of particle `i` of a per-atom compute (ke/atom, pe/atom, edpd/temp/atom; 0 outside its
     /// group), None for global computes. `mvv2e` converts m v^2 to energy; `pair_energy`:
     /// pe is the pair energy (pairwise styles), else the internal energy u.
     pub fn per_atom(&self, sys: &System, i: usize, mvv2e: f64, pair_energy: bool) -> Option<f64> {
@@ -150,6 +154,7 @@ impl Compute {
         let (mask, pe) = match self.style {
             ComputeStyle::KeAtom { mask } => (mask, false),
             ComputeStyle::PeAtom { mask } => (mask, true),
+            ComputeStyle::EdpdTempAtom { mask } => return Some(if s.in_group(i, mask) { s.edpd_temp.get(i).copied().unwrap_or(0.0) } else { 0.0 }),
             _ => return None,
         };
         Some(match (s.in_group(i, mask), pe) {
@@ -204,7 +209,7 @@ pub fn value(computes: &[Compute], sys: &System, totals: &Totals, name: &str) ->
         // the vector only, as LAMMPS
         ComputeStyle::Com { mask } => (rest != id && (1..=3).contains(&k)).then(|| com::centre_of_mass(sys, mask)[k - 1]),
         // per-atom values only (compute reduce)
-        ComputeStyle::KeAtom { .. } | ComputeStyle::PeAtom { .. } => None,
+        ComputeStyle::KeAtom { .. } | ComputeStyle::PeAtom { .. } | ComputeStyle::EdpdTempAtom { .. } => None,
     }
 }
 

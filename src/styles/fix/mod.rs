@@ -6,10 +6,12 @@ pub mod eos;
 
 use self::eos::{parse_eos, EosModel};
 use crate::base::args::Args;
+use crate::base::region::Region;
 use crate::base::script::echo;
 use crate::styles::FIX_STYLES;
 use gendpde_integrators::{HeatModel, Work};
 use gendpde_io::{Command, ScriptError};
+use std::collections::HashMap;
 
 /// The fix styles.
 #[derive(Clone, Debug, PartialEq)]
@@ -32,6 +34,21 @@ pub enum FixStyle {
     /// `fix dpd/energy`: uCond and uMech by half steps from the rates of pair
     /// dpd/fdt/energy (velocity-Verlet DPDE, without fix shardlow).
     DpdEnergy,
+    /// `fix mvv/edpd [LAMBDA]` (pair edpd): modified velocity Verlet of x, v and T.
+    MvvEdpd { lambda: f64 },
+    /// `fix ID GROUP edpd/source sphere|cuboid|region ... VALUE` (pair edpd).
+    EdpdSource { shape: Source, value: f64, mask: u32 },
+}
+
+/// Where `fix edpd/source` heats.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Source {
+    /// `sphere CX CY CZ RADIUS`.
+    Sphere { centre: [f64; 3], radius: f64 },
+    /// `cuboid CX CY CZ LX LY LZ`.
+    Cuboid { centre: [f64; 3], edges: [f64; 3] },
+    /// `region ID`, as defined when the fix was.
+    Region(Region),
 }
 
 #[derive(Clone, Debug)]
@@ -47,8 +64,13 @@ pub const DEFAULT_SUBSTEPS: u32 = 4;
 pub const MAX_SUBSTEPS: u32 = 8;
 
 /// `fix ID GROUP STYLE args...`; `kb` is Boltzmann's constant of the units, `groups`
-/// the group names by bit.
+/// the group names by bit (no regions: see [`parse_fix_in`]).
 pub fn parse_fix(cmd: &Command, kb: f64, groups: &[String]) -> Result<Fix, ScriptError> {
+    parse_fix_in(cmd, kb, groups, &HashMap::new())
+}
+
+/// [`parse_fix`] with the regions defined so far (fix edpd/source region).
+pub fn parse_fix_in(cmd: &Command, kb: f64, groups: &[String], regions: &HashMap<String, Region>) -> Result<Fix, ScriptError> {
     let mut a = Args::new(cmd);
     let id = a.word("a fix ID")?.to_string();
     let group = a.word("a group")?;
@@ -78,6 +100,8 @@ pub fn parse_fix(cmd: &Command, kb: f64, groups: &[String]) -> Result<Fix, Scrip
         "nve" => FixStyle::Nve,
         "dpd/energy" => FixStyle::DpdEnergy,
         "mvv/dpd" => FixStyle::Mvv { lambda: if a.remaining() > 0 { a.positive("lambda")? } else { 0.5 } },
+        "mvv/edpd" => FixStyle::MvvEdpd { lambda: if a.remaining() > 0 { a.f64("lambda")? } else { 0.5 } },
+        "edpd/source" => edpd_source(&mut a, mask, regions)?,
         "shardlow" => {
             let (mut heat, mut substeps, mut reject) = (HeatModel::Original, DEFAULT_SUBSTEPS, false);
             while let Some(k) = a.peek() {
@@ -104,8 +128,8 @@ pub fn parse_fix(cmd: &Command, kb: f64, groups: &[String]) -> Result<Fix, Scrip
         }
         other => return Err(a.err(format!("unknown fix style '{other}'; known: {FIX_STYLES}"))),
     };
-    if group != "all" && !matches!(style, FixStyle::Reservoir { .. }) {
-        return Err(a.err(format!("group '{group}': fix {style_name} acts on group all (only heat/reservoir takes a group)")));
+    if group != "all" && !matches!(style, FixStyle::Reservoir { .. } | FixStyle::EdpdSource { .. }) {
+        return Err(a.err(format!("group '{group}': fix {style_name} acts on group all (only heat/reservoir and edpd/source take a group)")));
     }
     a.done()?;
     Ok(Fix { id, style, text: echo(cmd) })
@@ -121,4 +145,19 @@ fn heat_keyword(a: &mut Args) -> Result<Option<HeatModel>, ScriptError> {
         }
         Some(other) => Err(a.err(format!("unknown keyword '{other}'; known: heat"))),
     }
+}
+
+/// The words after `fix ID GROUP edpd/source` (LAMMPS DPD-MESO).
+fn edpd_source(a: &mut Args, mask: u32, regions: &HashMap<String, Region>) -> Result<FixStyle, ScriptError> {
+    let vec3 = |a: &mut Args, what: &str| -> Result<[f64; 3], ScriptError> { Ok([a.f64(what)?, a.f64(what)?, a.f64(what)?]) };
+    let shape = match a.word("sphere, cuboid or region")? {
+        "sphere" => Source::Sphere { centre: vec3(a, "the centre (3 numbers)")?, radius: a.f64("the radius")? },
+        "cuboid" => Source::Cuboid { centre: vec3(a, "the centre (3 numbers)")?, edges: vec3(a, "the edge lengths (3 numbers)")? },
+        "region" => {
+            let id = a.word("a region ID")?;
+            Source::Region(regions.get(id).cloned().ok_or_else(|| a.err(format!("region {id} for fix edpd/source does not exist")))?)
+        }
+        w => return Err(a.err(format!("expected sphere, cuboid or region, got '{w}'"))),
+    };
+    Ok(FixStyle::EdpdSource { shape, value: a.f64("the heat source value")?, mask })
 }

@@ -1,9 +1,11 @@
-//! Pair styles: `pair_style` and `pair_coeff` of GenDPDE ([`gendpde`]) and of LAMMPS's
-//! pairwise DPD styles ([`pairwise`]).
+//! Pair styles: `pair_style` and `pair_coeff` of GenDPDE ([`gendpde`]), of LAMMPS's
+//! pairwise DPD styles ([`pairwise`]) and of eDPD ([`edpd`]).
 
+pub mod edpd;
 pub mod gendpde;
 pub mod pairwise;
 
+use self::edpd::PairEdpd;
 use self::gendpde::PairGendpde;
 use self::pairwise::Pairwise;
 use crate::base::args::Args;
@@ -15,6 +17,8 @@ pub enum PairStyle {
     Gendpde(PairGendpde),
     /// LAMMPS's pairwise DPD styles.
     Pairwise(Pairwise),
+    /// DPD-MESO's energy-conserving DPD.
+    Edpd(PairEdpd),
 }
 
 impl PairStyle {
@@ -25,6 +29,7 @@ impl PairStyle {
         match self {
             Self::Gendpde(p) => p.coeff.as_ref().map_or(p.cutoff, |c| p.cutoff.max(c.rc_friction).max(c.rc_heat)),
             Self::Pairwise(p) => p.coeff.as_ref().map_or(p.cutoff, |c| c.rc).max(p.rhosum.unwrap_or(0.0)),
+            Self::Edpd(p) => p.cutoff(),
         }
     }
 }
@@ -34,6 +39,7 @@ pub fn parse_pair_style(cmd: &Command) -> Result<PairStyle, ScriptError> {
     let mut a = Args::new(cmd);
     match a.word("a pair style")? {
         "gendpde" => self::gendpde::parse_style(&mut a).map(PairStyle::Gendpde),
+        "edpd" => self::edpd::parse_style(&mut a).map(PairStyle::Edpd),
         other => self::pairwise::parse_style(other, &mut a).map(PairStyle::Pairwise),
     }
 }
@@ -46,5 +52,6 @@ pub fn parse_pair_coeff(cmd: &Command, pair: &mut PairStyle, ntypes: usize) -> R
             Ok(())
         }
         PairStyle::Pairwise(p) => self::pairwise::parse_coeff(p, cmd, ntypes),
+        PairStyle::Edpd(p) => self::edpd::parse_coeff(p, cmd, ntypes),
     }
 }

@@ -1,0 +1,86 @@
+//! `pair_style edpd CUTOFF SEED` and `pair_coeff I J A0 GAMMA POWER CUTOFF KAPPA POWER_T
+//! CUTOFF_T [power c1 c2 c3 c4] [kappa c1 c2 c3 c4]` (LAMMPS DPD-MESO's eDPD; the force
+//! law is in `gendpde_integrators::edpd`). Coefficients are kept per type pair.
+
+use crate::base::args::Args;
+use gendpde_integrators::EdpdCoeff;
+use gendpde_io::{Command, ScriptError};
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct PairEdpd {
+    /// The global cutoff of `pair_style` (each pair_coeff gives its own).
+    pub cutoff: f64,
+    pub seed: u64,
+    /// The number of particle types (set by the first pair_coeff).
+    pub ntypes: usize,
+    /// Coefficients by type pair (`ntypes * ntypes`, symmetric), None while unset.
+    pub coeff: Vec<Option<EdpdCoeff>>,
+}
+
+/// The words after `pair_style edpd`.
+pub fn parse_style(a: &mut Args) -> Result<PairEdpd, ScriptError> {
+    let cutoff = a.positive("the cutoff")?;
+    let seed = a.u64("the random seed")?;
+    if seed == 0 {
+        return Err(a.err("the random seed must be positive"));
+    }
+    a.done()?;
+    Ok(PairEdpd { cutoff, seed, ntypes: 0, coeff: Vec::new() })
+}
+
+/// A `pair_coeff` line of pair edpd.
+pub fn parse_coeff(p: &mut PairEdpd, cmd: &Command, ntypes: usize) -> Result<(), ScriptError> {
+    let mut a = Args::new(cmd);
+    let (ti, tj) = (a.types(ntypes)?, a.types(ntypes)?);
+    let mut c = EdpdCoeff {
+        a0: a.f64("A0")?,
+        gamma: a.non_negative("gamma")?,
+        power: a.f64("the power of the dissipative weight")?,
+        rc: a.positive("the cutoff")?,
+        kappa: a.non_negative("kappa")?,
+        power_t: a.f64("the power of the heat weight")?,
+        rc_t: a.positive("the heat cutoff")?,
+        power_poly: None,
+        kappa_poly: None,
+    };
+    while let Some(k) = a.peek() {
+        a.word("power or kappa")?;
+        let mut poly = [0.0; 4];
+        for x in &mut poly {
+            *x = a.f64(&format!("four coefficients after '{k}'"))?;
+        }
+        match k {
+            "power" => c.power_poly = Some(poly),
+            "kappa" => c.kappa_poly = Some(poly),
+            _ => return Err(a.err(format!("unknown keyword '{k}'; known: power, kappa"))),
+        }
+    }
+    if p.ntypes != ntypes {
+        (p.ntypes, p.coeff) = (ntypes, vec![None; ntypes * ntypes]);
+    }
+    for i in ti {
+        for j in tj.clone() {
+            p.coeff[(i - 1) * ntypes + j - 1] = Some(c.clone());
+            p.coeff[(j - 1) * ntypes + i - 1] = Some(c.clone());
+        }
+    }
+    Ok(())
+}
+
+impl PairEdpd {
+    /// The largest force or heat cutoff (the pair_style cutoff before any pair_coeff).
+    pub fn cutoff(&self) -> f64 {
+        self.coeff.iter().flatten().map(|c| c.rc.max(c.rc_t)).reduce(f64::max).unwrap_or(self.cutoff)
+    }
+
+    /// The coefficients of every type pair; Err names the first pair without.
+    pub fn table(&self) -> Result<Vec<EdpdCoeff>, String> {
+        if self.ntypes == 0 {
+            return Err("pair edpd has no coefficients (pair_coeff)".into());
+        }
+        let ntypes = self.ntypes;
+        (0..ntypes * ntypes)
+            .map(|k| self.coeff.get(k).cloned().flatten().ok_or_else(|| format!("pair edpd: no coefficients for types {} {} (pair_coeff)", k / ntypes + 1, k % ntypes + 1)))
+            .collect()
+    }
+}
