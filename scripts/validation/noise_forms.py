@@ -7,6 +7,7 @@ classic DPDE form (`noise harmonic T0`, constant sigma, gamma_ij = sigma^2/(2 k_
     python3 scripts/validation/noise_forms.py momentum [--n 10] [--time 100]
     python3 scripts/validation/noise_forms.py vdw [--n 10] [--rc 2.5] [--steps 3000]
     python3 scripts/validation/noise_forms.py flash [--n 14] [--steps 3000] [--law harmonic]
+    python3 scripts/validation/noise_forms.py table    # markdown rows from results.json
 
 momentum: examples/momentum-noise (u = C_V theta, no conservative force, kappa = 0, so the
 heat model does not enter), C_V in {5, 10, 20, 60} with each law; at C_V = 10 also
@@ -128,9 +129,28 @@ def flash(args):
     common.save(f"noise_forms_flash_{args.law or 'all'}", {"runs": rows})
 
 
+def table(args):
+    """Markdown rows of the saved runs (for docs/VALIDATION.md)."""
+    import json
+    data = json.loads((common.OUT / "results.json").read_text())
+    for scene in ("noise_forms_momentum", "noise_forms_vdw"):
+        if scene not in data:
+            continue
+        print(f"\n{scene}\n")
+        print("| run | T_kin - <theta> | <theta> | var/<theta>^2 (eq 91) | skewness (eq 91) |")
+        print("|---|---|---|---|---|")
+        for r in data[scene]["runs"]:
+            if "failed" in r:
+                print(f"| {r['tag']} | stopped: {r['failed'].split('run stopped: ')[-1][:60]} | | | |")
+                continue
+            print(f"| {r['tag']} | {r['dT']:+.4f} +- {r['dT_err']:.4f} | {r['theta']:.4f} +- {r['theta_err']:.4f} | "
+                  f"{r['var_ratio']:.4f} +- {r['var_ratio_err']:.4f} ({r['gamma_var']:.4f}) | "
+                  f"{r['skew']:.3f} +- {r['skew_err']:.3f} ({r['gamma_skew']:.3f}) |")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("part", choices=["momentum", "vdw", "flash"])
+    ap.add_argument("part", choices=["momentum", "vdw", "flash", "table"])
     ap.add_argument("--n", type=int, default=None, help="lattice cells per side (momentum, vdw 10; flash 14)")
     ap.add_argument("--rc", type=float, default=2.5, help="vdw: density, friction and heat cutoff")
     ap.add_argument("--time", type=float, default=100.0, help="momentum: sampled time units per run")
@@ -140,7 +160,7 @@ def main():
     args = ap.parse_args()
     args.n = args.n or (14 if args.part == "flash" else 10)
     args.steps = args.steps or 3000
-    {"momentum": momentum, "vdw": vdw, "flash": flash}[args.part](args)
+    {"momentum": momentum, "vdw": vdw, "flash": flash, "table": table}[args.part](args)
 
 
 if __name__ == "__main__":
