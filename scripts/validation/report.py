@@ -87,14 +87,83 @@ parameter changed at a time (skewness errors treat the frames as independent):
 
 The deviation does not shrink with the time step, so it is not a discretisation error of
 the integrator; it shrinks when the heat conduction outweighs the friction (gamma / 10 or
-kappa x 10). It comes from the model's two noise terms: eq 76 scales the momentum noise
-with the arithmetic mean (theta_i + theta_j)/2 and pins the mean of theta to T_kin,
-while the heat exchange of eqs 70 and 80-81, driven by 1/theta with a constant amplitude,
-alone would make exp(s/k_B) (a Gamma of shape C_V + 1) the stationary law. Neither term
-alone gives eq 91, and their mixture depends on gamma / kappa. The paper's figures, at
-C_V = 60 and on a linear scale, cannot show a skewness difference of 0.09; the engine
-implements eqs 75-81 as printed (integrators/src/pair_update.rs), so this is the model's
-behaviour, left as found.
+kappa x 10). It comes from eq 76's momentum noise, whose stationary law is not eq 88 (the
+heat laws, original and Fourier, both have eq 88 as their stationary law: docs/DESIGN.md,
+"Choices where the papers are silent or wrong"), so the shape moves with gamma / kappa.
+The paper's figures, at C_V = 60 and on a linear scale, cannot show a skewness difference
+of 0.09. `fix shardlow ... noise harmonic T0` offers the form that reproduces eq 91 (next
+section).
+"""
+
+
+def noise_forms_section(d, rows):
+    """Issue 19: eq 76 against the harmonic noise, momentum-only and vdW scenes, flash."""
+    def table(runs):
+        out = ["| run | T_kin - <theta> | <theta> | var/<theta>^2 (eq 91) | skewness (eq 91) | wall s |", "|---|---|---|---|---|---|"]
+        for r in runs:
+            if "failed" in r:
+                out.append(f"| {r['tag']} | stopped: {r['failed'].split('run stopped: ')[-1].split(';')[0]} | | | | |")
+                continue
+            out.append(f"| {r['tag']} | {r['dT']:+.4f} +- {r['dT_err']:.4f} | {r['theta']:.4f} +- {r['theta_err']:.4f} | "
+                       f"{r['var_ratio']:.4f} +- {r['var_ratio_err']:.4f} ({r['gamma_var']:.4f}) | "
+                       f"{r['skew']:.3f} +- {r['skew_err']:.3f} ({r['gamma_skew']:.3f}) | {r['wall_s']:.0f} |")
+        return "\n".join(out)
+    mom = d.get("noise_forms_momentum", {}).get("runs", [])
+    vdw = d.get("noise_forms_vdw", {}).get("runs", [])
+    flash = [r for k in ("noise_forms_flash_arithmetic", "noise_forms_flash_harmonic") for r in d.get(k, {}).get("runs", [])]
+    key = {r["tag"].split("_n10")[0]: r for r in mom if "failed" not in r}
+    a, h = key.get("arithmetic_cv10_dt0.01_m1"), key.get("harmonic_cv10_dt0.01_m1")
+    if a and h:
+        rows.append(f"| Issue 19: momentum noise alone, C_V = 10 | eq 91: var/T^2 0.100, skewness 0.632 | "
+                    f"eq 76: {a['var_ratio']:.4f} / {a['skew']:.3f} +- {a['skew_err']:.3f}; harmonic: "
+                    f"{h['var_ratio']:.4f} / {h['skew']:.3f} +- {h['skew_err']:.3f} | N = {a['N']}, {d['noise_forms_momentum']['time']:g} time units each |")
+    flash_text = "\n".join(f"| {r['law']} | {r['T_kin']:.4f} | {r['T_int']:.4f} | {100 * r['rel_diff']:+.3f} +- {100 * r['rel_diff_err']:.3f} % | "
+                            f"{r['max_rel_energy_drift']:.1e} | {r['wall_s']:.0f} |" for r in flash)
+    for r in flash:
+        rows.append(f"| Fig 7 with `noise {r['law']}` | T_kin = T_int within 0.01 % | T_kin/T_int - 1 = {100 * r['rel_diff']:+.3f} +- "
+                    f"{100 * r['rel_diff_err']:.3f} % | N = {r['N']}, {r['steps']} steps |")
+    return f"""### Momentum noise and the shape of eq 91 (`noise_forms.py`, issue 19)
+
+`fix shardlow` offers two momentum friction/noise laws: the papers' eq 76 (`noise
+arithmetic`, the default: constant gamma_ij, sigma_ij^2 = k_B (theta_i + theta_j) gamma_ij)
+and the classic DPDE form (`noise harmonic T0`: constant sigma_ij^2 = 2 k_B gamma omega^2 T0,
+gamma_ij = sigma_ij^2 / (2 k_B Theta_ij), 1/Theta_ij = (1/tau_i + 1/tau_j)/2). A Fokker-Planck
+argument along the line one pair update moves on (docs/DESIGN.md, "Choices where the
+papers are silent or wrong") shows that only the harmonic form has eq 88 as its stationary
+law, for any EOS and unequal masses; eq 76 misses it by k_B/(2 C_V) at equal temperatures,
+which vanishes in the isothermal limit.
+
+**Momentum-only scene** (examples/momentum-noise: u = C_V theta, no conservative force,
+kappa = 0, so the heat model does not enter; N = 1000 at rho = 0.5, gamma = 4.5, rc = 2,
+T = 1.5, T0 = 1.5). Means over all frames (every 0.5 time units) after 10 time units;
+errors from 5 blocks of consecutive frames. A particle's theta decorrelates in about 7
+time units at C_V = 10 and proportionally more slowly at larger C_V, so the C_V = 60 rows
+hold only a few independent samples per particle and their errors are rough. In
+parentheses eq 91 (Gamma of shape C_V/k_B). Eq 76 drives single particles to theta <= 0
+(a particle's momentum noise follows its partner's theta): those pair updates are left out
+(`reject yes`, counted in results.json); the harmonic form runs without.
+
+{table(mom)}
+
+**vdW scene** (examples/distributions, excess vdW, T = 1.5, rho = 0.5, reduced to N = 1000
+and rc = 2.5; kappa = 1 for the original heat law, 1/T^2 for the Fourier one; runs of
+{vdw[0].get('steps', '-') if vdw else '-'} steps after a quarter as many). With heat conduction both forms come closer to
+eq 91 (the heat laws alone have it as their stationary law), but eq 76 still leaves theta
+less skewed; at C_V = 5 it stops (a particle's theta turns negative in the reversible step
+after its momentum noise, even with the sweep's rejection), the harmonic form does not.
+
+{table(vdw)}
+
+**Flash heating** (Fig 7, examples/flash-heating, LJ C_V = 60, reduced to N = 2744 at
+rc = 4, 500 steps at T = 1.5, then {flash[0]['steps'] if flash else '-'} steps after the slab is heated to T = 5;
+means over the second half, errors from 5 blocks). T0 = 1.5, so the harmonic friction at
+theta ~ 3.2 is about half eq 76's.
+
+| noise | <T_kin> | <T_int> | T_kin/T_int - 1 | max |dE/E| | wall s |
+|---|---|---|---|---|---|
+{flash_text}
+
+**Which form reproduces the papers' equilibrium**: RESULT_STATEMENT
 """
 
 
@@ -214,6 +283,8 @@ chi^2 p-values of theta and u are the shape of the theta distribution (below).
 """)
     if "theta_shape" in d:
         parts.append(theta_shape_section(d["theta_shape"], rows))
+    if "noise_forms_momentum" in d:
+        parts.append(noise_forms_section(d, rows))
     if "local_density" in d:
         parts.append(local_density_section(d["local_density"], rows))
 
