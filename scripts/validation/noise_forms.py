@@ -81,7 +81,7 @@ def fmt(r):
 def momentum(args):
     rows = []
     cases = [(5.0, 0.01, 1.0), (10.0, 0.01, 1.0), (10.0, 0.02, 1.0), (10.0, 0.01, 3.0), (20.0, 0.01, 1.0), (60.0, 0.01, 1.0),
-             (10.0, 0.005, 1.0)]
+             (10.0, 0.005, 1.0)][:None if args.fine_dt else -1]
     for cv, dt, m2 in cases:
         for law, noise in LAWS.items():
             steps = round(args.time / dt)
@@ -159,6 +159,7 @@ def main():
     ap.add_argument("--time", type=float, default=100.0, help="momentum: sampled time units per run")
     ap.add_argument("--steps", type=int, default=None, help="vdw and flash: sampled steps (3000)")
     ap.add_argument("--equil", type=int, default=500, help="flash: steps at T = 1.5 before the heating")
+    ap.add_argument("--no-fine-dt", dest="fine_dt", action="store_false", help="momentum: leave out dt = 0.005")
     ap.add_argument("--law", choices=list(LAWS), help="flash: only this law (to run the two side by side)")
     args = ap.parse_args()
     args.n = args.n or (14 if args.part == "flash" else 10)
