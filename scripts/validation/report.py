@@ -163,7 +163,59 @@ theta ~ 3.2 is about half eq 76's.
 |---|---|---|---|---|---|
 {flash_text}
 
-**Which form reproduces the papers' equilibrium**: RESULT_STATEMENT
+**Which form reproduces the papers' equilibrium.** In the momentum-only scene, where the
+friction and noise alone set the law, `noise harmonic` gives eq 91's mean, variance and
+skewness within about two standard errors at C_V = 5, 10 and 20, at dt 0.01 and 0.02 and with
+masses 1 and 3 (C_V = 10: skewness 0.58-0.64 against 0.632; issue 19's exact pair-OU check:
+0.628). Eq 76 gives eq 91's mean and variance but about half its skewness at every C_V,
+independent of dt and of the masses (C_V = 5: 0.47 against 0.89; 10: 0.30-0.32 against
+0.63, issue 19: 0.306; 20: 0.17 against 0.45). The first and fourth rows of issue 19's table
+are reproduced by the engine. Two caveats: at C_V = 60 a run of 100 time units has not
+relaxed the shape of theta from its lattice start (both forms: variance 20 % low), so those
+rows do not compare the laws; and the harmonic form's T_kin - <theta> at C_V = 5, dt 0.01,
+is +0.013 +- 0.004 (the other harmonic rows are within 2 sigma of 0). In the vdW scene the
+runs are only 20 time units, long enough for the shape at C_V = 5 and 10 only: there the
+harmonic form matches eq 91 (C_V = 10: skewness 0.58 and 0.63 with the original and
+Fourier heat laws, eq 91 0.632; C_V = 5: 0.92 and 0.88 against 0.89), eq 76 stays below
+(0.46 and 0.50 at C_V = 10) and stops at C_V = 5. **Recommendation**: `noise harmonic T0`
+(T0 near the run's temperature, so that the friction matches gamma of `pair_coeff`) when
+the distribution of theta matters or C_V is small; it also never needed the rejection of
+pair updates that eq 76 needs at C_V <= 10. The default stays eq 76, to reproduce the
+papers as printed.
+"""
+
+
+def mc_pressure_section(d, rows):
+    """Issue 19 item 4: the virial pressure of eq 92's configurational weight by MC against
+    the engine's, vdW excess at T = 1.5, rho = 0.5."""
+    runs = [(k, v) for k, v in d.items() if k.startswith("local_density_mc_pressure_rc")]
+    e = d.get("pressure_mc_engine")
+    lines = []
+    for _, m in sorted(runs, key=lambda kv: kv[1]["rc"]):
+        eng = f"{e['engine']['P']:.4f} +- {e['engine']['P_err']:.4f} (T_int {e['engine']['T_int']:.4f}; at T = 1.5 {e['engine']['P_at_T']:.4f})" if e and e["rc"] == m["rc"] else "-"
+        lines.append(f"| {m['rc']:g} | {m['N']} | {m['sweeps']} | {m['P']:.4f} +- {m['P_err']:.4f} | {m['mean_n']:.5f} / {m['std_n']:.4f} | {eng} | "
+                     f"{100 * (m['P'] / e['eos'] - 1):+.2f} % |" if e else "")
+    if not lines:
+        return ""
+    return f"""### vdW pressure: the engine against a Monte Carlo of eq 92 (`local_density_mc.py`, issue 19)
+
+The Monte Carlo of eq 92's weight exp(-sum_i [V(n_i)/T + ln psi(n_i)]) also gives the virial
+pressure of the model: with F = V + k_B T ln psi per particle the pair force is
+-(F'(n_i) + F'(n_j)) w'(r) e_ij, P = rho k_B T + <sum r . f>/(3V). Excess vdW at T = 1.5,
+rho = 0.5 (vdW EOS: {e['eos']:.4f}). The engine row is the default scene (examples/distributions,
+C_V = 60, eq 76) with its virial pressure moved to T = 1.5 along the mean-field slope
+dP/dT = rho/(1 - b rho) (kinetic part with T_kin, configurational with T_int); its error
+counts 30 thermo samples in 5 blocks.
+
+| rc | N (MC) | sweeps | P (MC) | <n> / sd(n) (MC) | P (engine) | MC - EOS |
+|---|---|---|---|---|---|---|
+{chr(10).join(lines)}
+
+At rc = 3 the engine lies {100 * (e['engine']['P_at_T'] / runs[0][1]['P'] - 1):+.1f} % above the MC (1.5 standard errors, the engine's
+error dominating), as issue 19 found at rc = 4 (+0.2-0.5 %); both lie about 9 % below the
+vdW EOS, the model's finite-rc deviation (issue 19: -8.9 %, -4.2 %, -2.2 % at rc = 3, 4, 5).
+Runs at rc = 4 and 5 and for the LJ model, and longer engine runs to resolve the 0.5 %, are
+left open.
 """
 
 
@@ -287,6 +339,8 @@ chi^2 p-values of theta and u are the shape of the theta distribution (below).
         parts.append(noise_forms_section(d, rows))
     if "local_density" in d:
         parts.append(local_density_section(d["local_density"], rows))
+    if "pressure_mc_engine" in d:
+        parts.append(mc_pressure_section(d, rows))
 
     if "pressure" in d:
         parts.append(pressure_section(d, rows))
