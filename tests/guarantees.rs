@@ -87,6 +87,8 @@ fn every_style_is_bit_identical_on_1_2_3_4_ranks_and_an_uneven_grid() {
     let scenes: Vec<(&str, String, u64)> = vec![
         ("gendpde-vdw-original", gendpde_fluid("eos/vdw 60.0 2.4682 1.4142 excess", original), 30),
         ("gendpde-lj-fourier", gendpde_fluid("eos/lj 60.0", &fourier), 30),
+        // the harmonic noise reads 1/tau, which the Fourier law alone does not keep
+        ("gendpde-vdw-fourier-harmonic-noise", gendpde_fluid("eos/vdw 60.0 2.4682 1.4142 excess", &(fourier.clone() + "unfix ssa\nfix ssa all shardlow heat fourier noise harmonic 1.5\n")), 30),
         (
             "gendpde-vdw-isentropic",
             gendpde_fluid("eos/vdw 60.0 2.4682 1.4142 excess", &original.replace("nve/gendpde", "nve/gendpde work isentropic")),

@@ -24,6 +24,7 @@ const CASES: &[Case] = &[
     Case { script: "examples/flash-heating/in.flash-heating", vars: &[("n", "11"), ("rc", "3.0"), ("equil", "5")], every: 5, k: 10 },
     Case { script: "examples/heat-gradient/in.heat-gradient", vars: &[("L", "6"), ("w", "2"), ("ny", "9")], every: 5, k: 10 },
     Case { script: "examples/heat-mixture/in.heat-mixture", vars: &[], every: 5, k: 10 },
+    Case { script: "examples/momentum-noise/in.momentum-noise", vars: &[("noise", "harmonic 1.5"), ("equil", "5"), ("dump", "5")], every: 5, k: 10 },
     Case { script: "examples/heat-only/in.heat-only", vars: &[], every: 5, k: 10 },
     Case { script: "examples/isothermal/in.isothermal", vars: &[("n", "11"), ("rc", "3.0"), ("equil", "5")], every: 5, k: 10 },
     Case { script: "examples/lj-fluid/in.lj-fluid", vars: &[("n", "11"), ("rc", "3.0"), ("equil", "5")], every: 5, k: 10 },

@@ -24,6 +24,7 @@
 
 use crate::error::{lowest, StepError};
 use crate::heat::{Original, Temps};
+use crate::noise::Arithmetic;
 use crate::pair_update::{pair_update, PairDrive, PairState};
 use crate::physics::{Physics, SetupError};
 use crate::rng::{stream, Normals};
@@ -235,7 +236,7 @@ impl ClassicDpd {
                 };
                 let (mut p_i, mut p_j, mut u_i, mut u_j) = (s.p[i], s.p[j], s.u[i], s.u[j]);
                 let state = PairState { p_i: &mut p_i, p_j: &mut p_j, u_i: &mut u_i, u_j: &mut u_j, inv_m_i: 1.0 / s.mass[i], inv_m_j: 1.0 / s.mass[j] };
-                let moved = pair_update::<Original>(state, &drive, kb, dt, sqrt_dt);
+                let moved = pair_update::<Original, Arithmetic>(state, &drive, kb, dt, sqrt_dt);
                 (s.p[i], s.p[j], s.u[i], s.u[j]) = (p_i, p_j, u_i, u_j);
                 if !s.u_cond.is_empty() {
                     s.u_cond[i] += moved.heat;

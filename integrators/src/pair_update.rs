@@ -5,6 +5,7 @@
 //! Conserves total momentum and K + u exactly up to round-off.
 
 use crate::heat::{HeatFlow, Temps};
+use crate::noise::Noise;
 use gendpde_engine::{dot, Vec3};
 
 /// The pair's mechanical state, updated in place.
@@ -22,7 +23,8 @@ pub struct PairState<'a> {
 pub struct PairDrive {
     /// Unit vector e_ij = (r_i - r_j)/|r_i - r_j|.
     pub e: Vec3,
-    /// gamma omega(r)^2 (eq 66).
+    /// Friction kernel gamma omega(r)^2 (eq 66), times T0 for the harmonic noise
+    /// ([`Noise::coefficients`]).
     pub gamma: f64,
     /// kappa omegabar(r)^2 (eq 71).
     pub kappa: f64,
@@ -43,7 +45,7 @@ pub struct PairDeltas {
 
 /// Applies Phi^irr_ij over `dt` (eq 87); returns the energy it moved.
 #[inline(always)]
-pub fn pair_update<H: HeatFlow>(s: PairState<'_>, d: &PairDrive, kb: f64, dt: f64, sqrt_dt: f64) -> PairDeltas {
+pub fn pair_update<H: HeatFlow, N: Noise>(s: PairState<'_>, d: &PairDrive, kb: f64, dt: f64, sqrt_dt: f64) -> PairDeltas {
     let e = d.e;
     let (pi, pj) = (*s.p_i, *s.p_j);
     let mut qi = pi;
@@ -54,12 +56,12 @@ pub fn pair_update<H: HeatFlow>(s: PairState<'_>, d: &PairDrive, kb: f64, dt: f6
         // after the explicit half kick is v.e + mu a, so no intermediate kick (which can
         // overshoot by orders of magnitude when gamma dt mu >> 1) is rounded into p
         let mu = s.inv_m_i + s.inv_m_j;
-        let sigma = (kb * (d.ti.theta + d.tj.theta) * d.gamma).sqrt();
+        let (gamma, sigma) = N::coefficients(kb, d.gamma, d.ti, d.tj);
         let noise = 0.5 * sqrt_dt * sigma * d.xi;
         let v = [pi[0] * s.inv_m_i - pj[0] * s.inv_m_j, pi[1] * s.inv_m_i - pj[1] * s.inv_m_j, pi[2] * s.inv_m_i - pj[2] * s.inv_m_j];
         let ve = dot(v, e);
-        let a = -0.5 * dt * d.gamma * ve + noise;
-        let implicit = 0.5 * dt * d.gamma / (1.0 + 0.5 * mu * d.gamma * dt);
+        let a = -0.5 * dt * gamma * ve + noise;
+        let implicit = 0.5 * dt * gamma / (1.0 + 0.5 * mu * gamma * dt);
         let b = -implicit * (ve + mu * a + sqrt_dt * mu * sigma * d.xi * 0.5) + noise;
         let big_a = a + b;
         kick(&mut qi, &mut qj, e, big_a);
@@ -92,6 +94,7 @@ fn kick(qi: &mut Vec3, qj: &mut Vec3, e: Vec3, a: f64) {
 mod tests {
     use super::*;
     use crate::heat::{Fourier, Original};
+    use crate::noise::{Arithmetic, Harmonic};
 
     struct Lcg(u64);
     impl Lcg {
@@ -104,7 +107,7 @@ mod tests {
         }
     }
 
-    fn check_conservation<H: HeatFlow>() -> (f64, f64) {
+    fn check_conservation<H: HeatFlow, N: Noise>() -> (f64, f64) {
         let mut g = Lcg(7);
         let (mut worst_p, mut worst_e): (f64, f64) = (0.0, 0.0);
         for _ in 0..20_000 {
@@ -138,7 +141,7 @@ mod tests {
             };
             let before_e = energy(p_i, p_j, u_i, u_j);
             let s = PairState { p_i: &mut p_i, p_j: &mut p_j, u_i: &mut u_i, u_j: &mut u_j, inv_m_i: 1.0 / m_i, inv_m_j: 1.0 / m_j };
-            pair_update::<H>(s, &d, 1.0, dt, dt.sqrt());
+            pair_update::<H, N>(s, &d, 1.0, dt, dt.sqrt());
             let after_p = [p_i[0] + p_j[0], p_i[1] + p_j[1], p_i[2] + p_j[2]];
             let pscale = dot(p_i, p_i).sqrt() + dot(p_j, p_j).sqrt();
             for k in 0..3 {
@@ -151,15 +154,22 @@ mod tests {
 
     #[test]
     fn pair_update_conserves_momentum_and_energy_original() {
-        let (p, e) = check_conservation::<Original>();
+        let (p, e) = check_conservation::<Original, Arithmetic>();
         eprintln!("original: worst relative momentum error {p:.2e}, energy error {e:.2e}");
         assert!(p < 1e-15 && e < 1e-13, "momentum {p:e}, energy {e:e}");
     }
 
     #[test]
     fn pair_update_conserves_momentum_and_energy_fourier() {
-        let (p, e) = check_conservation::<Fourier>();
+        let (p, e) = check_conservation::<Fourier, Arithmetic>();
         eprintln!("fourier: worst relative momentum error {p:.2e}, energy error {e:.2e}");
+        assert!(p < 1e-15 && e < 1e-13, "momentum {p:e}, energy {e:e}");
+    }
+
+    #[test]
+    fn pair_update_conserves_momentum_and_energy_harmonic_noise() {
+        let (p, e) = check_conservation::<Original, Harmonic>();
+        eprintln!("harmonic noise: worst relative momentum error {p:.2e}, energy error {e:.2e}");
         assert!(p < 1e-15 && e < 1e-13, "momentum {p:e}, energy {e:e}");
     }
 
@@ -172,7 +182,7 @@ mod tests {
         let cold = Temps { theta: 1.0, inv_tau: 0.8 };
         let d = PairDrive { e: [1.0, 0.0, 0.0], gamma: 5.0, kappa: 1.0, ti: hot, tj: cold, xi: 0.0, xibar: 0.0 };
         let s = PairState { p_i: &mut p_i, p_j: &mut p_j, u_i: &mut u_i, u_j: &mut u_j, inv_m_i: 1.0, inv_m_j: 1.0 };
-        pair_update::<Fourier>(s, &d, 1.0, 0.01, 0.1);
+        pair_update::<Fourier, Arithmetic>(s, &d, 1.0, 0.01, 0.1);
         assert!(p_i[0] < 1.0 && p_i[0] > 0.0);
         // friction heats both equally; conduction moves heat from i (hot) to j
         assert!(u_j - u_i > 0.0);

@@ -4,6 +4,7 @@
 
 use crate::error::{lowest, StepError};
 use crate::heat::{Fourier, HeatFlow, HeatModel, NoHeat, Original};
+use crate::noise::{Arithmetic, Harmonic, Noise, NoiseForm};
 use crate::isentropic::{self, FixedEntropy};
 use crate::settings::{Motion, Settings, Work};
 use crate::species::Species;
@@ -79,6 +80,12 @@ impl<E: FixedEntropy, W: Weight> GenDpde<E, W> {
     fn heat_model(&self) -> Option<HeatModel> {
         let s = &self.settings;
         s.dissipation.as_ref().map(|d| d.heat).or(s.reservoirs.first().map(|r| r.heat))
+    }
+
+    /// The sweep's friction/noise law (the papers' eq 76 without a sweep).
+    fn noise(&self) -> NoiseForm {
+        let s = &self.settings;
+        s.dissipation.as_ref().filter(|_| s.motion != Motion::VvEuler).map_or(NoiseForm::Arithmetic, |d| d.noise)
     }
 
     /// Radii of the neighbour list and of the sweep pairs (cutoff plus skin). The pair
@@ -165,26 +172,26 @@ impl<E: FixedEntropy, W: Weight> GenDpde<E, W> {
         state
     }
 
-    fn irreversible<H: HeatFlow>(&self, sys: &mut System) -> Result<(), StepError> {
+    fn irreversible<H: HeatFlow, N: Noise>(&self, sys: &mut System) -> Result<(), StepError> {
         let dt = self.settings.dt;
         let mut outcome = Ok(());
         if let Some(d) = self.settings.dissipation.as_ref().filter(|_| self.settings.motion != Motion::VvEuler) {
-            outcome = sweep::sweep::<E, H>(&self.eos, d, sys, dt);
+            outcome = sweep::sweep::<E, H, N>(&self.eos, d, sys, dt);
         }
         for r in &self.settings.reservoirs {
-            outcome = lowest(outcome, sweep::reservoir::<E, H>(&self.eos, r, sys, dt));
+            outcome = lowest(outcome, sweep::reservoir::<E, H, N>(&self.eos, r, sys, dt));
         }
         outcome
     }
 
-    fn advance<H: HeatFlow>(&self, sys: &mut System) -> Result<(), StepError> {
+    fn advance<H: HeatFlow, N: Noise>(&self, sys: &mut System) -> Result<(), StepError> {
         let moved = match self.settings.motion {
             Motion::Fixed => Ok(()),
             Motion::Verlet(work) => self.reversible(sys, work),
             Motion::VvEuler => self.vv_euler::<H>(sys),
         };
         sys.settle(moved)?;
-        let outcome = self.irreversible::<H>(sys);
+        let outcome = self.irreversible::<H, N>(sys);
         sys.settle(outcome)?;
         sys.step += 1;
         sys.time += self.settings.dt;
@@ -220,7 +227,7 @@ impl<E: FixedEntropy, W: Weight> Physics for GenDpde<E, W> {
         if self.many_body() {
             fields = fields | Fields::DENSITY | Fields::PRESSURE;
         }
-        if self.heat_model() == Some(HeatModel::Original) {
+        if self.heat_model() == Some(HeatModel::Original) || self.noise() != NoiseForm::Arithmetic {
             fields = fields | Fields::INV_TAU;
         }
         sys.store.enable(fields);
@@ -242,12 +249,13 @@ impl<E: FixedEntropy, W: Weight> Physics for GenDpde<E, W> {
             s.dissipation.as_ref().is_some_and(|d| d.kappa > 0.0 && d.heat == model)
                 || s.reservoirs.iter().any(|r| r.heat == model)
         };
-        if heat_on(HeatModel::Original) {
-            self.advance::<Original>(sys)
-        } else if heat_on(HeatModel::Fourier) {
-            self.advance::<Fourier>(sys)
-        } else {
-            self.advance::<NoHeat>(sys)
+        match (heat_on(HeatModel::Original), heat_on(HeatModel::Fourier), self.noise()) {
+            (true, _, NoiseForm::Arithmetic) => self.advance::<Original, Arithmetic>(sys),
+            (_, true, NoiseForm::Arithmetic) => self.advance::<Fourier, Arithmetic>(sys),
+            (_, _, NoiseForm::Arithmetic) => self.advance::<NoHeat, Arithmetic>(sys),
+            (true, _, NoiseForm::Harmonic { .. }) => self.advance::<Original, Harmonic>(sys),
+            (_, true, NoiseForm::Harmonic { .. }) => self.advance::<Fourier, Harmonic>(sys),
+            (_, _, NoiseForm::Harmonic { .. }) => self.advance::<NoHeat, Harmonic>(sys),
         }
     }
 }

@@ -1,6 +1,7 @@
 //! What a scene switches on: the fixes and their parameters, as the step reads them.
 
 use crate::heat::HeatModel;
+use crate::noise::NoiseForm;
 
 /// Friction, momentum noise and pair heat flow (eqs 65-81), applied by `fix shardlow`'s
 /// sweep or by `fix vv/euler`'s pair forces.
@@ -13,6 +14,8 @@ pub struct Dissipation {
     pub kappa: f64,
     pub rc_heat: f64,
     pub heat: HeatModel,
+    /// Momentum friction and noise law of the sweep (`fix shardlow ... noise`).
+    pub noise: NoiseForm,
     pub seed: u64,
     /// Levels of halving a sweep pair update may use when a temperature would turn
     /// non-positive (0: stop at once; 4: down to dt/16).

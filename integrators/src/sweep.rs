@@ -15,6 +15,7 @@
 
 use crate::error::{lowest, StepError};
 use crate::heat::{HeatFlow, Temps};
+use crate::noise::Noise;
 use crate::pair_update::{pair_update, PairDrive, PairState};
 use crate::rng::{normal_pair, stream, Normals};
 use crate::settings::{Dissipation, Reservoir};
@@ -29,10 +30,11 @@ pub const SWEPT: Fields = Fields::MOMENTUM.union(Fields::ENERGY).union(Fields::T
 /// One full sweep over all pairs of all colours. A pair update that fails is undone:
 /// left out under `reject`, else reported after the sweep (the failure of lowest tag:
 /// the pairs after it see the same states on any rank count).
-pub fn sweep<E: Eos, H: HeatFlow>(eos: &Species<E>, d: &Dissipation, sys: &mut System, dt: f64) -> Result<(), StepError> {
+pub fn sweep<E: Eos, H: HeatFlow, N: Noise>(eos: &Species<E>, d: &Dissipation, sys: &mut System, dt: f64) -> Result<(), StepError> {
     let kb = eos.kb();
     let rc = d.cutoff();
     let (inv_rcd, inv_rch) = (1.0 / d.rc_friction, 1.0 / d.rc_heat);
+    let gamma = d.gamma * d.noise.scale();
     let (step, normals) = (sys.step, Normals::get());
     let inv_m = &mut sys.inv_mass;
     inv_m.clear();
@@ -54,17 +56,17 @@ pub fn sweep<E: Eos, H: HeatFlow>(eos: &Species<E>, d: &Dissipation, sys: &mut S
                 j,
                 e: [dr[0] * inv_r, dr[1] * inv_r, dr[2] * inv_r],
                 inv_m: (inv_m[i], inv_m[j]),
-                gamma: d.gamma * wd * wd,
+                gamma: gamma * wd * wd,
                 kappa: d.kappa * wh * wh,
                 seed: d.seed,
                 step,
                 kb,
             };
             let saved = (s.p[i], s.p[j], s.u[i], s.u[j], s.theta[i], s.theta[j]);
-            let done = pair_step::<E, H>(eos, s, &pair, xi, xibar, dt, 0, d.substeps, &mut sys.substeps);
+            let done = pair_step::<E, H, N>(eos, s, &pair, xi, xibar, dt, 0, d.substeps, &mut sys.substeps);
             if done.is_err() {
                 (s.p[i], s.p[j], s.u[i], s.u[j], s.theta[i], s.theta[j]) = saved;
-                let undone = refresh::<E, H>(eos, s, i, step).and_then(|_| refresh::<E, H>(eos, s, j, step));
+                let undone = refresh::<E, H, N>(eos, s, i, step).and_then(|_| refresh::<E, H, N>(eos, s, j, step));
                 sys.rejected += d.reject as u64;
                 outcome = lowest(outcome, if d.reject { undone } else { lowest(done, undone) });
             }
@@ -80,7 +82,7 @@ pub fn sweep<E: Eos, H: HeatFlow>(eos: &Species<E>, d: &Dissipation, sys: &mut S
 /// eq 72; the Fourier form after 2021 eq 62), then a forward exchange of the new values.
 /// The energy put in, summed exactly over all particles (the same on every rank count),
 /// is added to the reservoir's tally.
-pub fn reservoir<E: Eos, H: HeatFlow>(eos: &Species<E>, res: &Reservoir, sys: &mut System, dt: f64) -> Result<(), StepError> {
+pub fn reservoir<E: Eos, H: HeatFlow, N: Noise>(eos: &Species<E>, res: &Reservoir, sys: &mut System, dt: f64) -> Result<(), StepError> {
     let kb = eos.kb();
     let sqrt_dt = dt.sqrt();
     let step = sys.step;
@@ -91,12 +93,12 @@ pub fn reservoir<E: Eos, H: HeatFlow>(eos: &Species<E>, res: &Reservoir, sys: &m
         if !s.in_group(i, res.mask) {
             continue;
         }
-        let (q, alpha) = H::reservoir(kb, res.kappa, temps::<H>(s, i), res.temperature);
+        let (q, alpha) = H::reservoir(kb, res.kappa, temps::<H, N>(s, i), res.temperature);
         let xi = normal_pair(res.seed, step, s.tag[i], 0, stream::RESERVOIR).0;
         let du = dt * q + sqrt_dt * alpha * xi;
         s.u[i] += du;
         added.push([du]);
-        outcome = lowest(outcome, refresh::<E, H>(eos, s, i, step));
+        outcome = lowest(outcome, refresh::<E, H, N>(eos, s, i, step));
     }
     let [total] = exact_sums(sys.comm.transport(), added.iter().copied());
     *sys.reservoir_tally(&res.id) += total;
@@ -123,7 +125,7 @@ struct Pair {
 /// halves of the binary tree, `levels` how many splits remain).
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn pair_step<E: Eos, H: HeatFlow>(
+fn pair_step<E: Eos, H: HeatFlow, N: Noise>(
     eos: &Species<E>,
     s: &mut Particles,
     p: &Pair,
@@ -136,21 +138,21 @@ fn pair_step<E: Eos, H: HeatFlow>(
 ) -> Result<(), StepError> {
     let (i, j) = (p.i, p.j);
     let saved = (s.p[i], s.p[j], s.u[i], s.u[j], s.theta[i], s.theta[j]);
-    let drive = PairDrive { e: p.e, gamma: p.gamma, kappa: p.kappa, ti: temps::<H>(s, i), tj: temps::<H>(s, j), xi, xibar };
+    let drive = PairDrive { e: p.e, gamma: p.gamma, kappa: p.kappa, ti: temps::<H, N>(s, i), tj: temps::<H, N>(s, j), xi, xibar };
     let (mut p_i, mut p_j, mut u_i, mut u_j) = (s.p[i], s.p[j], s.u[i], s.u[j]);
     let state = PairState { p_i: &mut p_i, p_j: &mut p_j, u_i: &mut u_i, u_j: &mut u_j, inv_m_i: p.inv_m.0, inv_m_j: p.inv_m.1 };
-    pair_update::<H>(state, &drive, p.kb, dt, dt.sqrt());
+    pair_update::<H, N>(state, &drive, p.kb, dt, dt.sqrt());
     (s.p[i], s.p[j], s.u[i], s.u[j]) = (p_i, p_j, u_i, u_j);
-    let outcome = refresh::<E, H>(eos, s, i, p.step).and_then(|_| refresh::<E, H>(eos, s, j, p.step));
+    let outcome = refresh::<E, H, N>(eos, s, i, p.step).and_then(|_| refresh::<E, H, N>(eos, s, j, p.step));
     if outcome.is_ok() || levels == 0 {
         return outcome;
     }
-    split::<E, H>(eos, s, p, saved, (xi, xibar, dt, node, levels), splits)
+    split::<E, H, N>(eos, s, p, saved, (xi, xibar, dt, node, levels), splits)
 }
 
 /// Undoes a failed pair update and does it as two half steps.
 #[cold]
-fn split<E: Eos, H: HeatFlow>(
+fn split<E: Eos, H: HeatFlow, N: Noise>(
     eos: &Species<E>,
     s: &mut Particles,
     p: &Pair,
@@ -161,34 +163,35 @@ fn split<E: Eos, H: HeatFlow>(
     let (i, j) = (p.i, p.j);
     (s.p[i], s.p[j], s.u[i], s.u[j], s.theta[i], s.theta[j]) = saved;
     for k in [i, j] {
-        refresh::<E, H>(eos, s, k, p.step)?;
+        refresh::<E, H, N>(eos, s, k, p.step)?;
     }
     *splits += 1;
     let (eta, etabar) = normal_pair(p.seed, p.step, s.tag[i], s.tag[j], stream::SUBSTEP + node);
     let h = std::f64::consts::FRAC_1_SQRT_2;
     let first = ((xi + eta) * h, (xibar + etabar) * h);
     let second = ((xi - eta) * h, (xibar - etabar) * h);
-    pair_step::<E, H>(eos, s, p, first.0, first.1, 0.5 * dt, 2 * node + 1, levels - 1, splits)?;
-    pair_step::<E, H>(eos, s, p, second.0, second.1, 0.5 * dt, 2 * node + 2, levels - 1, splits)
+    pair_step::<E, H, N>(eos, s, p, first.0, first.1, 0.5 * dt, 2 * node + 1, levels - 1, splits)?;
+    pair_step::<E, H, N>(eos, s, p, second.0, second.1, 0.5 * dt, 2 * node + 2, levels - 1, splits)
 }
 
 #[inline(always)]
-pub(crate) fn temps<H: HeatFlow>(s: &Particles, i: usize) -> Temps {
-    Temps { theta: s.theta[i], inv_tau: if H::NEEDS_INV_TAU { s.inv_tau[i] } else { 0.0 } }
+pub(crate) fn temps<H: HeatFlow, N: Noise>(s: &Particles, i: usize) -> Temps {
+    Temps { theta: s.theta[i], inv_tau: if H::NEEDS_INV_TAU || N::NEEDS_INV_TAU { s.inv_tau[i] } else { 0.0 } }
 }
 
-/// theta(u, n) at fixed n after a pair update, and 1/tau where the heat law reads it.
+/// theta(u, n) at fixed n after a pair update, and 1/tau where the heat or noise law reads it.
 #[inline(always)]
-fn refresh<E: Eos, H: HeatFlow>(eos: &Species<E>, s: &mut Particles, i: usize, step: u64) -> Result<(), StepError> {
+fn refresh<E: Eos, H: HeatFlow, N: Noise>(eos: &Species<E>, s: &mut Particles, i: usize, step: u64) -> Result<(), StepError> {
+    let tau = H::NEEDS_INV_TAU || N::NEEDS_INV_TAU;
     let eos = eos.of(s.kind[i]);
     let n = crate::many_body::density_of(s, i).max(gendpde_potentials::ISOLATED_DENSITY);
-    let (theta, cv) = if H::NEEDS_INV_TAU { eos.theta_cv(s.u[i], n, s.theta[i]) } else { (eos.theta(s.u[i], n, s.theta[i]), 0.0) };
+    let (theta, cv) = if tau { eos.theta_cv(s.u[i], n, s.theta[i]) } else { (eos.theta(s.u[i], n, s.theta[i]), 0.0) };
     if !(theta > 0.0 && theta.is_finite()) {
         let e = gendpde_potentials::EosError::at(eos, s.u[i], n, theta);
         return Err(StepError::eos(s, i, step, e));
     }
     s.theta[i] = theta;
-    if H::NEEDS_INV_TAU {
+    if tau {
         s.inv_tau[i] = eos.inv_tau(theta, cv);
     }
     Ok(())

@@ -32,6 +32,7 @@
 use crate::error::StepError;
 use crate::heat::HeatFlow;
 use crate::many_body::{kick, velocity};
+use crate::noise::Arithmetic;
 use crate::rng::{stream, Normals};
 use crate::settings::Dissipation;
 use crate::sweep::temps;
@@ -94,7 +95,7 @@ pub fn start<H: HeatFlow>(d: Option<&Dissipation>, kb: f64, sys: &mut System, dt
             let wh = (1.0 - r / d.rc_heat).max(0.0);
             let kappa = d.kappa * wh * wh;
             if H::ACTIVE && kappa > 0.0 {
-                let (q, alpha) = H::pair(kb, kappa, temps::<H>(s, i), temps::<H>(s, j));
+                let (q, alpha) = H::pair(kb, kappa, temps::<H, Arithmetic>(s, i), temps::<H, Arithmetic>(s, j));
                 heat = dt * q + sqrt_dt * alpha * xibar;
             }
         }

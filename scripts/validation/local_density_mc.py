@@ -4,6 +4,7 @@ T = 1.5, rho = 0.5 (Fig 1, bottom right) from a Metropolis Monte Carlo of the
 configurational integral, against the GenDPDE runs of distributions.py.
 
     python3 scripts/validation/local_density_mc.py [--n 15] [--sweeps 400] [--equil 100]
+    python3 scripts/validation/local_density_mc.py --rc 3 --n 11 --sweeps 100   # pressure only
 
 Integrating eq 88 over u and momenta leaves the positions with the weight
 exp(-sum_i [Y(n_i)/(k_B T) + ln psi(n_i)]) (eq 92), Y = V for the EOS family of eqs 43-46.
@@ -16,6 +17,12 @@ even moves across the whole box three times in four, it ends larger than the box
 re-insertion; the proposal stays symmetric). All n_i are recomputed every sweep (no drift
 of the incremental updates). With the n distribution, eq 90 becomes a mixture:
 u + a n ~ Gamma(C_V, T) for each particle's n, so P(u) = <Gamma pdf(u + a n)>_n.
+
+The virial pressure of the sampled weight (issue 19, item 4): with F(n) = k_B T f(n) the
+configurational free energy per particle (V + k_B T ln psi for the linear family), the pair
+force is -(F'(n_i) + F'(n_j)) w'(r) e_ij (eq 50 with pi/n^2 = F'), and
+P = rho k_B T + <sum_{i<j} r_ij . f_ij>/(3V), recorded every sweep. With --rc other than 4
+the script records the pressure only (the GenDPDE comparison runs are at rc = 4).
 """
 import argparse
 import time
@@ -36,6 +43,22 @@ def exponent_table(grid):
         e = common.eos(EOS, T, x)
         f.append((e["u"] - CV * T) / T + CV * np.log(T) - e["s"])
     return np.array(f)
+
+
+def weight_derivative(r):
+    """d/dr of `weight`."""
+    return -2.0 * np.clip(1.0 - r / RC, 0.0, None) / RC * 15.0 / (2.0 * np.pi * RC ** 3)
+
+
+def virial(pos, n, box, dfdn):
+    """sum_{i<j} r_ij . f_ij for the weight exp(-sum f(n_i)) (f in units of k_B T)."""
+    total = 0.0
+    dfn = dfdn(n)
+    for i, x in enumerate(pos):
+        r = distances(pos, x, box)
+        r[i] = 2.0 * RC
+        total += -((dfn[i] + dfn) * weight_derivative(r) * r).sum()
+    return 0.5 * T * total
 
 
 def weight(r):
@@ -59,26 +82,38 @@ def densities(pos, box):
     return n
 
 
-def monte_carlo(cells, sweeps, equil, seed):
+def analytic_table(grid):
+    """f(n) = V/T + ln psi = -a n/T - ln(1 - b n), the vdW excess EOS below its cap
+    (n < 0.95/b = 0.672): no `gendpde eos` calls (1201 of them take minutes on a busy
+    machine); the run checks that no n_i reaches the cap."""
+    return -A * grid / T - np.log(np.clip(1.0 - B * grid, 1e-12, None))
+
+
+def monte_carlo(cells, sweeps, equil, seed, analytic=False):
     rng = np.random.default_rng(seed)
     box = cells / RHO ** (1 / 3)
     g = (np.arange(cells) + 0.5) * box / cells
     pos = np.array(np.meshgrid(g, g, g, indexing="ij")).reshape(3, -1).T.copy()
     grid = np.linspace(0.0, 1.2, 1201)
-    table = exponent_table(grid)
+    table = analytic_table(grid) if analytic else exponent_table(grid)
     f = lambda n: np.interp(n, grid, table)  # noqa: E731
+    slope = np.gradient(table, grid)
+    dfdn = lambda n: np.interp(n, grid, slope)  # noqa: E731
     N = len(pos)
     step, accepted, tried = 1.0, 0, 0
     hist_edges = np.linspace(0.0, 1.0, 201)
     hist = np.zeros(len(hist_edges) - 1)
-    means, variances, samples = [], [], []
+    means, variances, samples, pressures = [], [], [], []
     for sweep in range(equil + sweeps):
         n = densities(pos, box)
+        if analytic and n.max() >= 0.95 / B:
+            raise SystemExit(f"n_i = {n.max():.4f} reached the vdW cap: run without --analytic")
         if sweep >= equil:
             hist += np.histogram(n, hist_edges)[0]
             means.append(n.mean())
             variances.append(n.var())
             samples.append(n[rng.integers(0, N, 64)])
+            pressures.append(RHO * T + virial(pos, n, box, dfdn) / (3.0 * box ** 3))
         for k in rng.integers(0, N, N):
             new = (pos[k] + step * rng.uniform(-1.0, 1.0, 3)) % box
             w_old = weight(distances(pos, pos[k], box))
@@ -101,7 +136,7 @@ def monte_carlo(cells, sweeps, equil, seed):
             accepted = tried = 0
     return {"N": N, "box": box, "step": step, "acceptance": accepted / max(tried, 1), "edges": hist_edges,
             "hist": hist, "means": np.array(means), "vars": np.array(variances),
-            "samples": np.concatenate(samples)}
+            "samples": np.concatenate(samples), "pressures": np.array(pressures)}
 
 
 def block_sem(x, blocks=10):
@@ -116,19 +151,30 @@ def md_frames(tag):
 
 
 def main():
+    global RC
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--n", type=int, default=15, help="lattice cells per side (15: the Fig 6 runs' box)")
     ap.add_argument("--sweeps", type=int, default=400)
     ap.add_argument("--equil", type=int, default=100)
     ap.add_argument("--seed", type=int, default=92)
+    ap.add_argument("--analytic", action="store_true", help="f(n) in closed form (valid below the cap) instead of `gendpde eos`")
+    ap.add_argument("--rc", type=float, default=RC, help="density cutoff (4: the paper's, with the GenDPDE comparison)")
     args = ap.parse_args()
+    RC = args.rc
 
     start = time.time()
-    mc = monte_carlo(args.n, args.sweeps, args.equil, args.seed)
+    mc = monte_carlo(args.n, args.sweeps, args.equil, args.seed, args.analytic)
     wall = time.time() - start
     m, m_err = block_sem(mc["means"])
     v, v_err = block_sem(mc["vars"])
-    entry = {"N": mc["N"], "sweeps": args.sweeps, "equil": args.equil, "acceptance": mc["acceptance"],
+    p, p_err = block_sem(mc["pressures"])
+    pressure = {"rc": RC, "N": mc["N"], "sweeps": args.sweeps, "P": p, "P_err": p_err, "mean_n": m, "mean_n_err": m_err,
+                "std_n": v ** 0.5, "wall_s": round(wall, 1)}
+    print(pressure)
+    if RC != 4.0:
+        common.save(f"local_density_mc_pressure_rc{RC:g}", pressure)
+        return
+    entry = {"pressure": pressure, "N": mc["N"], "sweeps": args.sweeps, "equil": args.equil, "acceptance": mc["acceptance"],
              "step": mc["step"], "wall_s": round(wall, 1), "mc": {"mean": m, "mean_err": m_err, "std": v ** 0.5,
                                                                   "var": v, "var_err": v_err}}
     md = {}

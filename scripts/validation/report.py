@@ -87,14 +87,143 @@ parameter changed at a time (skewness errors treat the frames as independent):
 
 The deviation does not shrink with the time step, so it is not a discretisation error of
 the integrator; it shrinks when the heat conduction outweighs the friction (gamma / 10 or
-kappa x 10). It comes from the model's two noise terms: eq 76 scales the momentum noise
-with the arithmetic mean (theta_i + theta_j)/2 and pins the mean of theta to T_kin,
-while the heat exchange of eqs 70 and 80-81, driven by 1/theta with a constant amplitude,
-alone would make exp(s/k_B) (a Gamma of shape C_V + 1) the stationary law. Neither term
-alone gives eq 91, and their mixture depends on gamma / kappa. The paper's figures, at
-C_V = 60 and on a linear scale, cannot show a skewness difference of 0.09; the engine
-implements eqs 75-81 as printed (integrators/src/pair_update.rs), so this is the model's
-behaviour, left as found.
+kappa x 10). It comes from eq 76's momentum noise, whose stationary law is not eq 88 (the
+heat laws, original and Fourier, both have eq 88 as their stationary law: docs/DESIGN.md,
+"Choices where the papers are silent or wrong"), so the shape moves with gamma / kappa.
+The paper's figures, at C_V = 60 and on a linear scale, cannot show a skewness difference
+of 0.09. `fix shardlow ... noise harmonic T0` offers the form that reproduces eq 91 (next
+section).
+"""
+
+
+def noise_forms_section(d, rows):
+    """Issue 19: eq 76 against the harmonic noise, momentum-only and vdW scenes, flash."""
+    def table(runs):
+        out = ["| run | T_kin - <theta> | <theta> | var/<theta>^2 (eq 91) | skewness (eq 91) | wall s |", "|---|---|---|---|---|---|"]
+        for r in runs:
+            if "failed" in r:
+                out.append(f"| {r['tag']} | stopped: {r['failed'].split('run stopped: ')[-1].split(';')[0]} | | | | |")
+                continue
+            out.append(f"| {r['tag']} | {r['dT']:+.4f} +- {r['dT_err']:.4f} | {r['theta']:.4f} +- {r['theta_err']:.4f} | "
+                       f"{r['var_ratio']:.4f} +- {r['var_ratio_err']:.4f} ({r['gamma_var']:.4f}) | "
+                       f"{r['skew']:.3f} +- {r['skew_err']:.3f} ({r['gamma_skew']:.3f}) | {r['wall_s']:.0f} |")
+        return "\n".join(out)
+    mom = d.get("noise_forms_momentum", {}).get("runs", [])
+    vdw = d.get("noise_forms_vdw", {}).get("runs", [])
+    flash = [r for k in ("noise_forms_flash_arithmetic", "noise_forms_flash_harmonic") for r in d.get(k, {}).get("runs", [])]
+    key = {r["tag"].split("_n10")[0]: r for r in mom if "failed" not in r}
+    a, h = key.get("arithmetic_cv10_dt0.01_m1"), key.get("harmonic_cv10_dt0.01_m1")
+    if a and h:
+        rows.append(f"| Issue 19: momentum noise alone, C_V = 10 | eq 91: var/T^2 0.100, skewness 0.632 | "
+                    f"eq 76: {a['var_ratio']:.4f} / {a['skew']:.3f} +- {a['skew_err']:.3f}; harmonic: "
+                    f"{h['var_ratio']:.4f} / {h['skew']:.3f} +- {h['skew_err']:.3f} (var / skewness) | N = {a['N']}, {d['noise_forms_momentum']['time']:g} time units each |")
+    flash_text = "\n".join(f"| {r['law']} | {r['T_kin']:.4f} | {r['T_int']:.4f} | {100 * r['rel_diff']:+.3f} +- {100 * r['rel_diff_err']:.3f} % | "
+                            f"{r['max_rel_energy_drift']:.1e} | {r['wall_s']:.0f} |" for r in flash)
+    for r in flash:
+        rows.append(f"| Fig 7 with `noise {r['law']}` | T_kin = T_int within 0.01 % | T_kin/T_int - 1 = {100 * r['rel_diff']:+.3f} +- "
+                    f"{100 * r['rel_diff_err']:.3f} % | N = {r['N']}, {r['steps']} steps |")
+    return f"""### Momentum noise and the shape of eq 91 (`noise_forms.py`, issue 19)
+
+`fix shardlow` offers two momentum friction/noise laws: the papers' eq 76 (`noise
+arithmetic`, the default: constant gamma_ij, sigma_ij^2 = k_B (theta_i + theta_j) gamma_ij)
+and the classic DPDE form (`noise harmonic T0`: constant sigma_ij^2 = 2 k_B gamma omega^2 T0,
+gamma_ij = sigma_ij^2 / (2 k_B Theta_ij), 1/Theta_ij = (1/tau_i + 1/tau_j)/2). A Fokker-Planck
+argument along the line one pair update moves on (docs/DESIGN.md, "Choices where the
+papers are silent or wrong") shows that only the harmonic form has eq 88 as its stationary
+law, for any EOS and unequal masses; eq 76 misses it by k_B/(2 C_V) at equal temperatures,
+which vanishes in the isothermal limit.
+
+**Momentum-only scene** (examples/momentum-noise: u = C_V theta, no conservative force,
+kappa = 0, so the heat model does not enter; N = 1000 at rho = 0.5, gamma = 4.5, rc = 2,
+T = 1.5, T0 = 1.5). Means over all frames (every 0.5 time units) after 10 time units;
+errors from 5 blocks of consecutive frames. A particle's theta decorrelates in about 7
+time units at C_V = 10 and proportionally more slowly at larger C_V, so the C_V = 60 rows
+hold only a few independent samples per particle and their errors are rough. In
+parentheses eq 91 (Gamma of shape C_V/k_B). Eq 76 drives single particles to theta <= 0
+(a particle's momentum noise follows its partner's theta): those pair updates are left out
+(`reject yes`, counted in results.json); the harmonic form runs without.
+
+{table(mom)}
+
+**vdW scene** (examples/distributions, excess vdW, T = 1.5, rho = 0.5, reduced to N = 1000
+and rc = 2.5; kappa = 1 for the original heat law, 1/T^2 for the Fourier one; runs of
+{vdw[0].get('steps', '-') if vdw else '-'} steps after a quarter as many). With heat conduction both forms come closer to
+eq 91 (the heat laws alone have it as their stationary law), but eq 76 still leaves theta
+less skewed; at C_V = 5 it stops (a particle's theta turns negative in the reversible step
+after its momentum noise, even with the sweep's rejection), the harmonic form does not.
+
+{table(vdw)}
+
+**Flash heating** (Fig 7, examples/flash-heating, LJ C_V = 60, reduced to N = 2744 at
+rc = 4, 500 steps at T = 1.5, then {flash[0]['steps'] if flash else '-'} steps after the slab is heated to T = 5;
+means over the second half, errors from 5 blocks). T0 = 1.5, so the harmonic friction at
+theta ~ 3.2 is about half eq 76's.
+
+| noise | <T_kin> | <T_int> | T_kin/T_int - 1 | max |dE/E| | wall s |
+|---|---|---|---|---|---|
+{flash_text}
+
+**Which form reproduces the papers' equilibrium.** Eq 76 gives eq 91's mean and variance
+but about half its skewness at every C_V, independent of dt (0.005-0.02) and of the masses
+(C_V = 5: 0.47 against 0.89; 10: 0.30-0.32 against 0.63, issue 19's exact pair-OU check:
+0.306; 20: 0.17 against 0.45): issue 19's first row is reproduced by the engine. The
+harmonic form comes close to eq 91 in all three moments (C_V = 5: var 0.200, skewness 0.91
+against 0.89; 10: skewness 0.55-0.64 against 0.632, issue 19's check: 0.628; 20: 0.41
+against 0.45), its fourth row within the spread of the runs, but not cleanly within the
+errors: at C_V = 10 with equal masses at dt 0.005 and 0.01 it leaves T_kin - <theta> =
++0.010 and var/<theta>^2 = 0.096 (4 and 3 standard errors), at dt 0.02 and with masses 1
+and 3 it matches eq 91 (and the test's 200-time-unit run at dt 0.02 gives 0.1016 +- 0.0011,
+0.657 +- 0.021). The deviation does not shrink with dt, so it is no discretisation error;
+the block means of T_kin - T_int scatter by +-0.02 over 10 time units, more than the
+errors of 5 blocks assume, so runs of 100 time units at N = 1000 do not settle whether it
+is real (longer runs are left open). At C_V = 60, 100 time units do not relax theta's shape
+from the lattice start (variance 12-20 % low for both forms), so those rows do not compare
+the laws. In the vdW scene the runs are 20 time units, long enough for the shape at
+C_V = 5 and 10 only: there the harmonic form matches eq 91 (C_V = 10: skewness 0.58 and
+0.63 with the original and Fourier heat laws; C_V = 5: 0.92 and 0.88 against 0.89), eq 76
+stays below (0.46 and 0.50 at C_V = 10) and stops at C_V = 5. In the flash heating
+(N = 2744, 30 time units) neither form reaches the paper's 0.01 %; the harmonic one, whose
+friction at theta ~ 3.2 is half of eq 76's with T0 = 1.5, is further from steady state
+(-1.0 +- 0.25 % against -0.2 +- 0.2 %): a rerun with T0 = 3.2 and longer runs are needed
+to compare the forms there. **Recommendation**: `noise harmonic T0` (T0 near the run's
+temperature, so that the friction matches gamma of `pair_coeff`) when the distribution of
+theta matters or C_V is small: it roughly doubles the skewness to eq 91's and never needed
+the rejection of pair updates that eq 76 needs at C_V <= 10 (nor stops the vdW fluid at
+C_V = 5). The default stays eq 76, to reproduce the papers as printed.
+"""
+
+
+def mc_pressure_section(d, rows):
+    """Issue 19 item 4: the virial pressure of eq 92's configurational weight by MC against
+    the engine's, vdW excess at T = 1.5, rho = 0.5."""
+    runs = [(k, v) for k, v in d.items() if k.startswith("local_density_mc_pressure_rc")]
+    e = d.get("pressure_mc_engine")
+    lines = []
+    for _, m in sorted(runs, key=lambda kv: kv[1]["rc"]):
+        eng = f"{e['engine']['P']:.4f} +- {e['engine']['P_err']:.4f} (T_int {e['engine']['T_int']:.4f}; at T = 1.5 {e['engine']['P_at_T']:.4f})" if e and e["rc"] == m["rc"] else "-"
+        lines.append(f"| {m['rc']:g} | {m['N']} | {m['sweeps']} | {m['P']:.4f} +- {m['P_err']:.4f} | {m['mean_n']:.5f} / {m['std_n']:.4f} | {eng} | "
+                     f"{100 * (m['P'] / e['eos'] - 1):+.2f} % |" if e else "")
+    if not lines:
+        return ""
+    return f"""### vdW pressure: the engine against a Monte Carlo of eq 92 (`local_density_mc.py`, issue 19)
+
+The Monte Carlo of eq 92's weight exp(-sum_i [V(n_i)/T + ln psi(n_i)]) also gives the virial
+pressure of the model: with F = V + k_B T ln psi per particle the pair force is
+-(F'(n_i) + F'(n_j)) w'(r) e_ij, P = rho k_B T + <sum r . f>/(3V). Excess vdW at T = 1.5,
+rho = 0.5 (vdW EOS: {e['eos']:.4f}). The engine row is the default scene (examples/distributions,
+C_V = 60, eq 76) with its virial pressure moved to T = 1.5 along the mean-field slope
+dP/dT = rho/(1 - b rho) (kinetic part with T_kin, configurational with T_int); its error
+counts 30 thermo samples in 5 blocks.
+
+| rc | N (MC) | sweeps | P (MC) | <n> / sd(n) (MC) | P (engine) | MC - EOS |
+|---|---|---|---|---|---|---|
+{chr(10).join(lines)}
+
+At rc = 3 the engine lies {100 * (e['engine']['P_at_T'] / runs[0][1]['P'] - 1):+.1f} % above the MC (1.5 standard errors, the engine's
+error dominating), as issue 19 found at rc = 4 (+0.2-0.5 %); both lie about 9 % below the
+vdW EOS, the model's finite-rc deviation (issue 19: -8.9 %, -4.2 %, -2.2 % at rc = 3, 4, 5).
+Runs at rc = 4 and 5 and for the LJ model, and longer engine runs to resolve the 0.5 %, are
+left open.
 """
 
 
@@ -214,8 +343,12 @@ chi^2 p-values of theta and u are the shape of the theta distribution (below).
 """)
     if "theta_shape" in d:
         parts.append(theta_shape_section(d["theta_shape"], rows))
+    if "noise_forms_momentum" in d:
+        parts.append(noise_forms_section(d, rows))
     if "local_density" in d:
         parts.append(local_density_section(d["local_density"], rows))
+    if "pressure_mc_engine" in d:
+        parts.append(mc_pressure_section(d, rows))
 
     if "pressure" in d:
         parts.append(pressure_section(d, rows))

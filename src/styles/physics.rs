@@ -8,7 +8,8 @@ use crate::styles::pair::gendpde::{PairCoeff, PairGendpde};
 use crate::styles::pair::pairwise::{Kind, Pairwise};
 use crate::styles::pair::PairStyle;
 use gendpde_integrators::{
-    ClassicDpd, Dissipation, Edpd, HeatSource, SourceShape, FixedEntropy, GenDpde, HeatModel, Integration, Motion, PairForce, Physics, RebuildPolicy, Reservoir, Settings, ShardlowDpd, Species,
+    ClassicDpd, Dissipation, Edpd, FixedEntropy, GenDpde, HeatModel, HeatSource, Integration, Motion, NoiseForm, PairForce, Physics, RebuildPolicy, Reservoir, Settings, ShardlowDpd,
+    SourceShape, Species,
 };
 use gendpde_io::{Command, ScriptError};
 use gendpde_potentials::volume::PartitionVolume;
@@ -61,12 +62,13 @@ pub fn build_physics(
     let coeff = |name: &str| {
         pair.coeff.as_ref().ok_or_else(|| err(format!("fix {name} needs the pair coefficients (pair_coeff * * GAMMA KAPPA)")))
     };
-    let dissipation_of = |c: &PairCoeff, heat: HeatModel, substeps: u32, reject: bool| Dissipation {
+    let dissipation_of = |c: &PairCoeff, heat: HeatModel, noise: NoiseForm, substeps: u32, reject: bool| Dissipation {
         gamma: c.gamma,
         rc_friction: c.rc_friction,
         kappa: c.kappa,
         rc_heat: c.rc_heat,
         heat,
+        noise,
         seed: pair.seed,
         substeps,
         reject,
@@ -81,7 +83,7 @@ pub fn build_physics(
                 return Err(err(format!("fix {} (vv/euler) applies friction, noise and heat flow itself: unfix {} (shardlow)", e.id, f.id)));
             }
             let FixStyle::VvEuler { heat } = e.style else { unreachable!("matched above") };
-            (Motion::VvEuler, Some(dissipation_of(coeff("vv/euler")?, heat, 0, false)))
+            (Motion::VvEuler, Some(dissipation_of(coeff("vv/euler")?, heat, NoiseForm::Arithmetic, 0, false)))
         }
         (verlet, _) => {
             let motion = match verlet {
@@ -89,7 +91,9 @@ pub fn build_physics(
                 _ => Motion::Fixed,
             };
             let dissipation = match shardlow {
-                Some(Fix { style: FixStyle::Shardlow { heat, substeps, reject }, .. }) => Some(dissipation_of(coeff("shardlow")?, *heat, *substeps, *reject)),
+                Some(Fix { style: FixStyle::Shardlow { heat, noise, substeps, reject }, .. }) => {
+                    Some(dissipation_of(coeff("shardlow")?, *heat, *noise, *substeps, *reject))
+                }
                 _ => None,
             };
             (motion, dissipation)
@@ -146,6 +150,9 @@ fn pairwise(cmd: &Command, p: &Pairwise, fixes: &[Fix], settings: Settings, kb: 
     let c = p.coeff.as_ref().ok_or_else(|| err("the pair style has no coefficients (pair_coeff)"))?;
     let has = |pred: fn(&FixStyle) -> bool| fixes.iter().any(|f| pred(&f.style));
     let shardlow = has(|s| matches!(s, FixStyle::Shardlow { .. }));
+    if has(|s| matches!(s, FixStyle::Shardlow { noise: NoiseForm::Harmonic { .. }, .. })) {
+        return Err(err("fix shardlow: 'noise' belongs to pair gendpde (dpd/fdt/energy's noise is already the harmonic form on theta)"));
+    }
     let nve = has(|s| matches!(s, FixStyle::Nve));
     let mvv = fixes.iter().find_map(|f| if let FixStyle::Mvv { lambda } = f.style { Some(lambda) } else { None });
     let cv = fixes.iter().find_map(|f| match &f.style {

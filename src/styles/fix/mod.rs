@@ -9,7 +9,7 @@ use crate::base::args::Args;
 use crate::base::region::Region;
 use crate::base::script::echo;
 use crate::styles::FIX_STYLES;
-use gendpde_integrators::{HeatModel, Work};
+use gendpde_integrators::{HeatModel, NoiseForm, Work};
 use gendpde_io::{Command, ScriptError};
 use std::collections::HashMap;
 
@@ -22,8 +22,9 @@ pub enum FixStyle {
     /// `fix vv/euler [heat original|fourier]`: velocity Verlet with all pair forces, Euler
     /// for u (argon paper, sec 4.1).
     VvEuler { heat: HeatModel },
-    /// `fix shardlow [heat original|fourier] [substeps N] [reject yes|no]`.
-    Shardlow { heat: HeatModel, substeps: u32, reject: bool },
+    /// `fix shardlow [heat original|fourier] [noise arithmetic|harmonic T0] [substeps N]
+    /// [reject yes|no]`.
+    Shardlow { heat: HeatModel, noise: NoiseForm, substeps: u32, reject: bool },
     /// `fix ID GROUP heat/reservoir T KAPPA SEED [heat original|fourier]`; `mask` is the
     /// group's bit (`u32::MAX` for all).
     Reservoir { temperature: f64, kappa: f64, seed: u64, heat: Option<HeatModel>, mask: u32 },
@@ -104,9 +105,18 @@ pub fn parse_fix_in(cmd: &Command, kb: f64, groups: &[String], regions: &HashMap
         "edpd/source" => edpd_source(&mut a, mask, regions)?,
         "shardlow" => {
             let (mut heat, mut substeps, mut reject) = (HeatModel::Original, DEFAULT_SUBSTEPS, false);
+            let mut noise = NoiseForm::Arithmetic;
             while let Some(k) = a.peek() {
                 match k {
                     "heat" => heat = heat_keyword(&mut a)?.unwrap_or(heat),
+                    "noise" => {
+                        a.word("noise")?;
+                        noise = match a.word("a noise form (arithmetic or harmonic T0)")? {
+                            "arithmetic" => NoiseForm::Arithmetic,
+                            "harmonic" => NoiseForm::Harmonic { temperature: a.positive("the harmonic noise's temperature T0")? },
+                            w => return Err(a.err(format!("unknown noise form '{w}'; known: arithmetic, harmonic"))),
+                        }
+                    }
                     "substeps" => {
                         a.word("substeps")?;
                         substeps = a.u64("the number of halving levels")?.min(MAX_SUBSTEPS as u64) as u32;
@@ -115,10 +125,10 @@ pub fn parse_fix_in(cmd: &Command, kb: f64, groups: &[String], regions: &HashMap
                         a.word("reject")?;
                         reject = a.yes_no("reject")?;
                     }
-                    _ => return Err(a.err(format!("unknown keyword '{k}'; known: heat, substeps, reject"))),
+                    _ => return Err(a.err(format!("unknown keyword '{k}'; known: heat, noise, substeps, reject"))),
                 }
             }
-            FixStyle::Shardlow { heat, substeps, reject }
+            FixStyle::Shardlow { heat, noise, substeps, reject }
         }
         "heat/reservoir" => {
             let temperature = a.positive("the reservoir temperature")?;
