@@ -36,7 +36,7 @@
 //! C_V from 0.01 to 1e4 recovered theta to 3e-14 relative). The public formulas
 //! ([`LennardJones::f_res`] etc.) are evaluated without domain checks (NaN once eta >= 1).
 
-use super::Eos;
+use super::{AtDensity, Eos, FixedDensity};
 use std::f64::consts::PI;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
@@ -128,13 +128,6 @@ impl LennardJones {
         n * theta + n * n * Self::eval(theta, n).fn_
     }
 
-    /// u(theta, n) and C_V(theta, n) = du/dtheta from one evaluation.
-    #[inline]
-    fn u_and_cv(&self, theta: f64, n: f64) -> (f64, f64) {
-        let r = Self::eval(theta, n);
-        (self.cv * theta + r.f - theta * r.ft, self.cv - theta * r.ftt)
-    }
-
     /// f_res over a jet seeded with d/dtheta and d/dn.
     #[inline]
     fn eval(theta: f64, n: f64) -> Fres {
@@ -174,34 +167,101 @@ impl LennardJones {
         let sum = n2 * (poly(&C[0]) + s * poly(&C[1]) + s2 * (poly(&C[2]) + s2 * poly(&C[3])));
         t * (a_hs + virial) + sum
     }
+}
+
+/// The Kolafa-Nezbeda model at one density: the n-only factors of f_res (eq 107's
+/// exp(-gamma n^2) and C_ij n^j rows, eq 104's (pi/6) n) taken once, so each theta(u)
+/// solve evaluates only the theta-dependent parts (bit for bit as [`LennardJones`]'s own
+/// evaluation).
+#[derive(Clone, Copy, Debug)]
+pub struct LjAt {
+    cv: f64,
+    n: f64,
+    n2: f64,
+    /// (pi/6) n.
+    eta_n: f64,
+    /// exp(-gamma_BH n^2).
+    damping: f64,
+    /// sum_j C_ij n^(j-2) for each row i = 0, -1, -2, -4.
+    rows: [f64; 4],
+}
+
+impl LjAt {
+    fn new(cv: f64, n: f64) -> Self {
+        let row = |r: &[f64; 5]| r[..4].iter().rev().fold(r[4], |q, &c| q * n + c);
+        let n2 = n * n;
+        Self {
+            cv,
+            n,
+            n2,
+            eta_n: n * (PI / 6.0),
+            damping: (-GAMMA_BH * n2).exp(),
+            rows: [row(&C[0]), row(&C[1]), row(&C[2]), row(&C[3])],
+        }
+    }
+
+    /// f_res over a jet in theta at this n (the theta part of [`LennardJones::f_res_jet`]).
+    #[inline(always)]
+    fn f_res_t(&self, t: Jet) -> Jet {
+        let sq = t.sqrt();
+        let s = sq.recip();
+        let s2 = s * s;
+        let d = D_LN * t.ln() + D_M1 * s2 + D_MH * s + D_0 + D_H * sq;
+        let eta = self.eta_n * d * d * d;
+        let om = 1.0 - eta;
+        let a_hs =
+            (5.0 / 3.0) * om.ln() + eta * (34.0 + eta * (-33.0 + 4.0 * eta)) / (6.0 * om * om);
+        let mut p = Jet::cst(DB2[5]);
+        for &c in DB2[..5].iter().rev() {
+            p = p * s + c;
+        }
+        let db2 = p * s2 + DB2_0;
+        let virial = db2 * self.n * self.damping;
+        let [c0, c1, c2, c3] = self.rows;
+        let sum = (s * c1 + c0 + s2 * (s2 * c3 + c2)) * self.n2;
+        t * (a_hs + virial) + sum
+    }
+
+    /// u(theta) and C_V(theta) = du/dtheta from one evaluation.
+    #[inline(always)]
+    fn u_and_cv(&self, theta: f64) -> (f64, f64) {
+        let r = self.f_res_t(Jet::var_t(theta));
+        (self.cv * theta + r.v - theta * r.t, self.cv - theta * r.tt)
+    }
 
     /// Bracketed Newton solve of u(theta, n) = u on [THETA_MIN, THETA_MAX] (see module doc);
     /// with theta, C_V at the last Newton iterate (within TOL of theta; NaN when the
     /// solve ended otherwise).
-    fn solve_theta(&self, u: f64, n: f64, guess: f64) -> (f64, f64) {
+    fn solve(&self, u: f64, guess: f64) -> (f64, f64) {
+        let n = self.n;
         if !(u.is_finite() && n.is_finite() && n >= 0.0) {
             return (f64::NAN, f64::NAN);
         }
-        let (mut lo, mut hi) = (Self::THETA_MIN, Self::THETA_MAX);
+        let (lo0, hi0) = (LennardJones::THETA_MIN, LennardJones::THETA_MAX);
+        let (mut lo, mut hi) = (lo0, hi0);
         // whether an in-domain point with u(x) < u (resp. > u) has been seen
         let (mut lo_hit, mut hi_hit) = (false, false);
         let mut x = if guess > 0.0 && guess.is_finite() {
             guess
         } else {
             let t1 = 1.0;
-            let x0 =
-                if Self::in_domain(t1, n) { (u - self.u_res(t1, n)) / self.cv } else { f64::NAN };
+            let x0 = if LennardJones::in_domain(t1, n) {
+                let r = self.f_res_t(Jet::var_t(t1));
+                (u - (r.v - t1 * r.t)) / self.cv
+            } else {
+                f64::NAN
+            };
             if x0.is_finite() {
-                x0.max(Self::THETA_MIN)
+                x0.max(lo0)
             } else {
                 (lo * hi).sqrt()
             }
         };
         x = x.clamp(lo, hi);
-        for _ in 0..Self::MAX_ITER {
+        for _ in 0..LennardJones::MAX_ITER {
             let mut next = f64::NAN;
-            if Self::in_domain(x, n) {
-                let (ux, cvx) = self.u_and_cv(x, n);
+            if LennardJones::in_domain(x, n) {
+                let (ux, cvx) = self.u_and_cv(x);
                 let r = ux - u;
                 if r == 0.0 {
                     return (x, cvx);
@@ -214,7 +274,7 @@ impl LennardJones {
                     hi_hit = true;
                 }
                 next = x - r / cvx;
-                if (next - x).abs() <= Self::TOL * x && next > 0.0 {
+                if (next - x).abs() <= LennardJones::TOL * x && next > 0.0 {
                     return (next, cvx);
                 }
             } else {
@@ -222,7 +282,7 @@ impl LennardJones {
                 // below the floor at this density, so the root lies above
                 lo = x;
             }
-            if hi - lo <= Self::TOL * lo {
+            if hi - lo <= LennardJones::TOL * lo {
                 break;
             }
             if !(next > lo && next < hi) {
@@ -240,6 +300,30 @@ impl LennardJones {
     }
 }
 
+impl AtDensity for LjAt {
+    #[inline]
+    fn theta(&self, u: f64, guess: f64) -> f64 {
+        self.solve(u, guess).0
+    }
+    /// C_V from the solve's last Newton evaluation: one evaluation of f_res saved.
+    #[inline]
+    fn theta_inv_tau(&self, u: f64, guess: f64) -> (f64, f64) {
+        let (theta, cv) = match self.solve(u, guess) {
+            (theta, cv) if cv.is_finite() => (theta, cv),
+            (theta, _) => (theta, self.u_and_cv(theta).1),
+        };
+        (theta, (1.0 - 1.0 / cv) / theta)
+    }
+}
+
+impl FixedDensity for LennardJones {
+    type At<'a> = LjAt;
+    #[inline]
+    fn at_density(&self, n: f64) -> LjAt {
+        LjAt::new(self.cv, n)
+    }
+}
+
 impl Eos for LennardJones {
     fn kb(&self) -> f64 {
         1.0
@@ -249,14 +333,15 @@ impl Eos for LennardJones {
     }
     #[inline]
     fn theta(&self, u: f64, n: f64, guess: f64) -> f64 {
-        self.solve_theta(u, n, guess).0
+        self.at_density(n).solve(u, guess).0
     }
     /// C_V from the solve's last Newton evaluation: one evaluation of f_res saved.
     #[inline]
     fn theta_cv(&self, u: f64, n: f64, guess: f64) -> (f64, f64) {
-        match self.solve_theta(u, n, guess) {
+        let at = self.at_density(n);
+        match at.solve(u, guess) {
             (theta, cv) if cv.is_finite() => (theta, cv),
-            (theta, _) => (theta, self.cv(theta, n)),
+            (theta, _) => (theta, at.u_and_cv(theta).1),
         }
     }
     #[inline]
@@ -272,7 +357,7 @@ impl Eos for LennardJones {
         self.cv - theta * Self::eval(theta, n).ftt
     }
     fn entropy(&self, u: f64, n: f64) -> Option<f64> {
-        let theta = self.solve_theta(u, n, f64::NAN).0;
+        let theta = self.at_density(n).solve(u, f64::NAN).0;
         (theta > 0.0 && theta.is_finite()).then(|| self.cv * theta.ln() - Self::eval(theta, n).ft)
     }
     /// 1.5: above it the fit loses thermodynamic stability (see the module doc).
