@@ -87,8 +87,11 @@ impl LennardJones {
     pub const ETA_MAX: f64 = 0.9;
     /// Iteration cap of the theta(u, n) solve (pure bisection needs about 50).
     const MAX_ITER: usize = 200;
-    /// Relative tolerance of the theta(u, n) solve.
+    /// Relative tolerance of the theta(u, n) solve on the last Newton step.
     const TOL: f64 = 1e-14;
+    /// Relative tolerance of the theta(u, n) solve on the error predicted to remain after
+    /// the last Newton step (quadratic convergence): usually met after two evaluations.
+    const PREDICTED_TOL: f64 = 1e-15;
 
     pub fn new(cv: f64) -> Self {
         Self { cv }
@@ -230,8 +233,9 @@ impl LjAt {
     }
 
     /// Bracketed Newton solve of u(theta, n) = u on [THETA_MIN, THETA_MAX] (see module doc);
-    /// with theta, C_V at the last Newton iterate (within TOL of theta; NaN when the
-    /// solve ended otherwise).
+    /// with theta and C_V there (theta within TOL of the last Newton iterate, or within
+    /// PREDICTED_TOL of the root by the predicted error; C_V NaN when the solve ended
+    /// otherwise).
     fn solve(&self, u: f64, guess: f64) -> (f64, f64) {
         let n = self.n;
         if !(u.is_finite() && n.is_finite() && n >= 0.0) {
@@ -258,6 +262,8 @@ impl LjAt {
             }
         };
         x = x.clamp(lo, hi);
+        // (x, C_V) of the previous evaluation when x is its Newton step
+        let mut prev: Option<(f64, f64)> = None;
         for _ in 0..LennardJones::MAX_ITER {
             let mut next = f64::NAN;
             if LennardJones::in_domain(x, n) {
@@ -273,10 +279,22 @@ impl LjAt {
                     hi = x;
                     hi_hit = true;
                 }
-                next = x - r / cvx;
-                if (next - x).abs() <= LennardJones::TOL * x && next > 0.0 {
+                let step = r / cvx;
+                next = x - step;
+                if step.abs() <= LennardJones::TOL * x && next > 0.0 {
                     return (next, cvx);
                 }
+                if let Some((xp, cvp)) = prev.filter(|&(xp, _)| (x - xp).abs() <= 0.01 * x) {
+                    // Newton converges quadratically: the error left after this step is
+                    // |u''/(2 u')| step^2, u'' = dC_V/dtheta from the last two evaluations
+                    // (close enough for a local slope); C_V carried to `next` along it
+                    let slope = (cvx - cvp) / (x - xp);
+                    let left = (slope / (2.0 * cvx)).abs() * step * step;
+                    if left <= LennardJones::PREDICTED_TOL * x && next > lo && next < hi {
+                        return (next, cvx - slope * step);
+                    }
+                }
+                prev = Some((x, cvx));
             } else {
                 // x in [THETA_MIN, THETA_MAX] is out of the domain only by eta > ETA_MAX:
                 // below the floor at this density, so the root lies above
@@ -287,6 +305,7 @@ impl LjAt {
             }
             if !(next > lo && next < hi) {
                 next = (lo * hi).sqrt(); // bisection in ln theta: the bracket spans decades
+                prev = None;
             }
             x = next;
         }
@@ -535,6 +554,54 @@ mod tests {
         // independent evaluation quoted in SPEC
         assert!((m.u_res(1.3, 0.2) + 1.5371513).abs() < 1e-7);
         assert!((m.pressure(1.3, 0.4) - 0.1125328).abs() < 1e-7);
+    }
+
+    /// The theta-only evaluation at a fixed density gives the bits of the full jet.
+    #[test]
+    fn fixed_density_evaluation_is_the_full_one() {
+        let m = LennardJones::new(60.0);
+        for (theta, n) in grid() {
+            let r = LennardJones::eval(theta, n);
+            let (u, cv) = m.at_density(n).u_and_cv(theta);
+            assert_eq!(u, m.cv * theta + r.f - theta * r.ft, "u at ({theta}, {n})");
+            assert_eq!(cv, m.cv - theta * r.ftt, "C_V at ({theta}, {n})");
+        }
+    }
+
+    /// theta, C_V and 1/tau after the stop on the predicted error, against Newton run until
+    /// its step is below 1e-16 relative, over refreshes like the sweep's: u moved from a
+    /// state at theta by up to 3 % of C_V theta, the old theta as the guess.
+    #[test]
+    fn predicted_stop_agrees_with_the_converged_solve() {
+        let mut worst = [0.0f64; 3];
+        for cv in [1.5, 60.0] {
+            let m = LennardJones::new(cv);
+            for (theta, n) in grid() {
+                let at = m.at_density(n);
+                for k in 0..=16 {
+                    let du = 0.03 * cv * theta * (if k % 2 == 0 { 1.0 } else { -1.0 }) * 10f64.powi(-(k / 2));
+                    let u = m.u(theta, n) + du;
+                    let (t, c) = at.solve(u, theta);
+                    let (mut x, mut cx) = (t, c);
+                    for _ in 0..20 {
+                        let (ux, cvx) = at.u_and_cv(x);
+                        let step = (ux - u) / cvx;
+                        (x, cx) = (x - step, cvx);
+                        if step.abs() <= 1e-16 * x {
+                            break;
+                        }
+                    }
+                    let inv_tau = |t: f64, c: f64| (1.0 - 1.0 / c) / t;
+                    for (w, e) in worst.iter_mut().zip([rel(t, x), rel(c, cx), rel(inv_tau(t, c), inv_tau(x, cx))]) {
+                        *w = w.max(e);
+                    }
+                }
+            }
+        }
+        eprintln!("worst relative deviation of theta, C_V, 1/tau from the converged solve: {:.2e} {:.2e} {:.2e}", worst[0], worst[1], worst[2]);
+        // theta to round-off; C_V (so 1/tau) carried along the secant slope of C_V, whose
+        // error is ~ C_V'' (x - x_prev) step / 2
+        assert!(worst[0] < 1e-14 && worst[1] < 1e-9 && worst[2] < 1e-9, "{worst:?}");
     }
 
     /// Central five-point first derivative, error O(h^4).
