@@ -141,22 +141,8 @@ impl LennardJones {
     /// f_res(theta, n) evaluated over jets (eqs 104-107 in the form of SPEC.md sec 3).
     #[inline]
     fn f_res_jet(t: Jet, n: Jet) -> Jet {
-        let sq = t.sqrt();
-        let s = sq.recip(); // theta^-1/2
-        let s2 = s * s;
-        // d(theta) and eta
-        let d = D_LN * t.ln() + D_M1 * s2 + D_MH * s + D_0 + D_H * sq;
-        let eta = (PI / 6.0) * n * d * d * d;
-        // A_HS(eta), eq 106
-        let om = 1.0 - eta;
-        let a_hs =
-            (5.0 / 3.0) * om.ln() + eta * (34.0 + eta * (-33.0 + 4.0 * eta)) / (6.0 * om * om);
-        // dB2(theta) in powers of s = theta^-1/2, Horner
-        let mut p = Jet::cst(DB2[5]);
-        for &c in DB2[..5].iter().rev() {
-            p = p * s + c;
-        }
-        let db2 = p * s2 + DB2_0;
+        let Theta { s, s2, d, db2 } = Theta::of(t);
+        let a_hs = a_hs((PI / 6.0) * n * d * d * d);
         let n2 = n * n;
         let virial = n * db2 * (-GAMMA_BH * n2).exp();
         // sum_ij C_ij theta^{i/2} n^j = n^2 [P_0(n) + s P_-1(n) + s^2 P_-2(n) + s^4 P_-4(n)]
@@ -170,6 +156,38 @@ impl LennardJones {
         let sum = n2 * (poly(&C[0]) + s * poly(&C[1]) + s2 * (poly(&C[2]) + s2 * poly(&C[3])));
         t * (a_hs + virial) + sum
     }
+}
+
+/// The theta-only factors of f_res: s = theta^-1/2, s^2, the diameter d(theta) (eq 105)
+/// and dB2(theta) (eq 108).
+struct Theta {
+    s: Jet,
+    s2: Jet,
+    d: Jet,
+    db2: Jet,
+}
+
+impl Theta {
+    #[inline(always)]
+    fn of(t: Jet) -> Self {
+        let sq = t.sqrt();
+        let s = sq.recip();
+        let s2 = s * s;
+        let d = D_LN * t.ln() + D_M1 * s2 + D_MH * s + D_0 + D_H * sq;
+        // dB2 in powers of s, Horner
+        let mut p = Jet::cst(DB2[5]);
+        for &c in DB2[..5].iter().rev() {
+            p = p * s + c;
+        }
+        Self { s, s2, d, db2: p * s2 + DB2_0 }
+    }
+}
+
+/// A_HS(eta), eq 106.
+#[inline(always)]
+fn a_hs(eta: Jet) -> Jet {
+    let om = 1.0 - eta;
+    (5.0 / 3.0) * om.ln() + eta * (34.0 + eta * (-33.0 + 4.0 * eta)) / (6.0 * om * om)
 }
 
 /// The Kolafa-Nezbeda model at one density: the n-only factors of f_res (eq 107's
@@ -206,19 +224,8 @@ impl LjAt {
     /// f_res over a jet in theta at this n (the theta part of [`LennardJones::f_res_jet`]).
     #[inline(always)]
     fn f_res_t(&self, t: Jet) -> Jet {
-        let sq = t.sqrt();
-        let s = sq.recip();
-        let s2 = s * s;
-        let d = D_LN * t.ln() + D_M1 * s2 + D_MH * s + D_0 + D_H * sq;
-        let eta = self.eta_n * d * d * d;
-        let om = 1.0 - eta;
-        let a_hs =
-            (5.0 / 3.0) * om.ln() + eta * (34.0 + eta * (-33.0 + 4.0 * eta)) / (6.0 * om * om);
-        let mut p = Jet::cst(DB2[5]);
-        for &c in DB2[..5].iter().rev() {
-            p = p * s + c;
-        }
-        let db2 = p * s2 + DB2_0;
+        let Theta { s, s2, d, db2 } = Theta::of(t);
+        let a_hs = a_hs(self.eta_n * d * d * d);
         let virial = db2 * self.n * self.damping;
         let [c0, c1, c2, c3] = self.rows;
         let sum = (s * c1 + c0 + s2 * (s2 * c3 + c2)) * self.n2;
