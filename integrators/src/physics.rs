@@ -12,7 +12,7 @@ use crate::system::System;
 use crate::{many_body, sweep, verlet, vv_euler};
 use gendpde_engine::Fields;
 use gendpde_potentials::volume::PartitionVolume;
-use gendpde_potentials::{Eos, Weight};
+use gendpde_potentials::{Eos, FixedDensity, Weight};
 
 /// A scene's dynamics, monomorphised over its EOS and weight function.
 pub trait Physics {
@@ -72,7 +72,7 @@ pub struct GenDpde<E: Eos, W: Weight> {
     pub settings: Settings,
 }
 
-impl<E: FixedEntropy, W: Weight> GenDpde<E, W> {
+impl<E: FixedEntropy + FixedDensity, W: Weight> GenDpde<E, W> {
     fn many_body(&self) -> bool {
         self.eos.density_dependent()
     }
@@ -199,7 +199,7 @@ impl<E: FixedEntropy, W: Weight> GenDpde<E, W> {
     }
 }
 
-impl<E: FixedEntropy, W: Weight> Physics for GenDpde<E, W> {
+impl<E: FixedEntropy + FixedDensity, W: Weight> Physics for GenDpde<E, W> {
     fn settings(&self) -> &Settings {
         &self.settings
     }

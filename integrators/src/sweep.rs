@@ -21,8 +21,9 @@ use crate::rng::{normal_pair, stream, Normals};
 use crate::settings::{Dissipation, Reservoir};
 use crate::species::Species;
 use crate::system::System;
-use gendpde_engine::{dot, exact_sums, sub, Fields, Particles};
-use gendpde_potentials::Eos;
+use crate::many_body::density_of;
+use gendpde_engine::{dot, exact_sums, sub, Fields, Particles, Vec3};
+use gendpde_potentials::{AtDensity, Eos, EosError, FixedDensity, ISOLATED_DENSITY};
 
 /// Fields the sweep writes, exchanged between colours.
 pub const SWEPT: Fields = Fields::MOMENTUM.union(Fields::ENERGY).union(Fields::THETA).union(Fields::INV_TAU);
@@ -30,7 +31,7 @@ pub const SWEPT: Fields = Fields::MOMENTUM.union(Fields::ENERGY).union(Fields::T
 /// One full sweep over all pairs of all colours. A pair update that fails is undone:
 /// left out under `reject`, else reported after the sweep (the failure of lowest tag:
 /// the pairs after it see the same states on any rank count).
-pub fn sweep<E: Eos, H: HeatFlow, N: Noise>(eos: &Species<E>, d: &Dissipation, sys: &mut System, dt: f64) -> Result<(), StepError> {
+pub fn sweep<E: FixedDensity, H: HeatFlow, N: Noise>(eos: &Species<E>, d: &Dissipation, sys: &mut System, dt: f64) -> Result<(), StepError> {
     let kb = eos.kb();
     let rc = d.cutoff();
     let (inv_rcd, inv_rch) = (1.0 / d.rc_friction, 1.0 / d.rc_heat);
@@ -39,37 +40,43 @@ pub fn sweep<E: Eos, H: HeatFlow, N: Noise>(eos: &Species<E>, d: &Dissipation, s
     let inv_m = &mut sys.inv_mass;
     inv_m.clear();
     inv_m.extend(sys.store.mass.iter().map(|m| 1.0 / m));
+    // each particle's EOS at its density, which the sweep does not change
+    let at: Vec<E::At<'_>> = (0..sys.store.mass.len()).map(|i| at_density(eos, &sys.store, i)).collect();
     let mut outcome = Ok(());
+    let mut failures = Vec::new();
     for colour in 0..8 {
         let pairs = sys.sweep.within(colour, &sys.store, rc);
-        let s = &mut sys.store;
+        let mut v = Swept::new::<H, N>(&mut sys.store, &at, inv_m);
         for &[i, j] in pairs {
             let (i, j) = (i as usize, j as usize);
-            let dr = sub(s.r[i], s.r[j]);
+            // the one range check of the pair: every slice of `v` has length `v.len`
+            assert!(i < v.len && j < v.len, "sweep pair outside the store");
+            let dr = sub(v.r[i], v.r[j]);
             let r = dot(dr, dr).sqrt();
             let wd = (1.0 - r * inv_rcd).max(0.0);
             let wh = (1.0 - r * inv_rch).max(0.0);
-            let (xi, xibar) = normals.pair(d.seed, step, s.tag[i], s.tag[j], stream::PAIR);
+            let (xi, xibar) = normals.pair(d.seed, step, v.tag[i], v.tag[j], stream::PAIR);
             let inv_r = 1.0 / r;
             let pair = Pair {
                 i,
                 j,
                 e: [dr[0] * inv_r, dr[1] * inv_r, dr[2] * inv_r],
-                inv_m: (inv_m[i], inv_m[j]),
+                inv_m: (v.inv_m[i], v.inv_m[j]),
                 gamma: gamma * wd * wd,
                 kappa: d.kappa * wh * wh,
                 seed: d.seed,
                 step,
                 kb,
             };
-            let saved = (s.p[i], s.p[j], s.u[i], s.u[j], s.theta[i], s.theta[j]);
-            let done = pair_step::<E, H, N>(eos, s, &pair, xi, xibar, dt, 0, d.substeps, &mut sys.substeps);
-            if done.is_err() {
-                (s.p[i], s.p[j], s.u[i], s.u[j], s.theta[i], s.theta[j]) = saved;
-                let undone = refresh::<E, H, N>(eos, s, i, step).and_then(|_| refresh::<E, H, N>(eos, s, j, step));
+            if let Err(failed) = pair_step::<_, H, N>(&mut v, &pair, xi, xibar, dt, 0, d.substeps, &mut sys.substeps) {
                 sys.rejected += d.reject as u64;
-                outcome = lowest(outcome, if d.reject { undone } else { lowest(done, undone) });
+                if !d.reject {
+                    failures.push(failed);
+                }
             }
+        }
+        for failed in failures.drain(..) {
+            outcome = lowest(outcome, Err(failed.error(eos, &sys.store, step)));
         }
         let ghosts = &sys.sweep.ghost_writes[colour];
         sys.comm.reverse(&mut sys.store, ghosts, SWEPT);
@@ -78,11 +85,17 @@ pub fn sweep<E: Eos, H: HeatFlow, N: Noise>(eos: &Species<E>, d: &Dissipation, s
     outcome
 }
 
+/// The EOS of particle `i` at its density (raised to the isolated floor).
+#[inline]
+fn at_density<'a, E: FixedDensity>(eos: &'a Species<E>, s: &Particles, i: usize) -> E::At<'a> {
+    eos.of(s.kind[i]).at_density(density_of(s, i).max(ISOLATED_DENSITY))
+}
+
 /// Heat exchange of the owned particles of the reservoir's group with the bath (2019
 /// eq 72; the Fourier form after 2021 eq 62), then a forward exchange of the new values.
 /// The energy put in, summed exactly over all particles (the same on every rank count),
 /// is added to the reservoir's tally.
-pub fn reservoir<E: Eos, H: HeatFlow, N: Noise>(eos: &Species<E>, res: &Reservoir, sys: &mut System, dt: f64) -> Result<(), StepError> {
+pub fn reservoir<E: FixedDensity, H: HeatFlow, N: Noise>(eos: &Species<E>, res: &Reservoir, sys: &mut System, dt: f64) -> Result<(), StepError> {
     let kb = eos.kb();
     let sqrt_dt = dt.sqrt();
     let step = sys.step;
@@ -98,7 +111,15 @@ pub fn reservoir<E: Eos, H: HeatFlow, N: Noise>(eos: &Species<E>, res: &Reservoi
         let du = dt * q + sqrt_dt * alpha * xi;
         s.u[i] += du;
         added.push([du]);
-        outcome = lowest(outcome, refresh::<E, H, N>(eos, s, i, step));
+        match refresh::<_, H, N>(&at_density(eos, s, i), i, s.p[i], s.u[i], s.theta[i]) {
+            Ok(end) => {
+                s.theta[i] = end.theta;
+                if H::NEEDS_INV_TAU || N::NEEDS_INV_TAU {
+                    s.inv_tau[i] = end.inv_tau;
+                }
+            }
+            Err(failed) => outcome = lowest(outcome, Err(failed.error(eos, s, step))),
+        }
     }
     let [total] = exact_sums(sys.comm.transport(), added.iter().copied());
     *sys.reservoir_tally(&res.id) += total;
@@ -120,14 +141,93 @@ struct Pair {
     kb: f64,
 }
 
-/// Updates one pair over `dt` with Wiener increments `xi sqrt(dt)`, `xibar sqrt(dt)`;
+/// The fields a pair update reads and writes, owned and ghost particles, as slices of one
+/// length `len` (`inv_tau` empty where the heat law does not read it): after one range
+/// check of i and j the hot loop indexes them without further checks.
+struct Swept<'a, A> {
+    len: usize,
+    r: &'a [Vec3],
+    tag: &'a [u64],
+    inv_m: &'a [f64],
+    at: &'a [A],
+    p: &'a mut [Vec3],
+    u: &'a mut [f64],
+    theta: &'a mut [f64],
+    inv_tau: &'a mut [f64],
+}
+
+impl<'a, A: AtDensity> Swept<'a, A> {
+    #[inline(always)]
+    fn new<H: HeatFlow, N: Noise>(s: &'a mut Particles, at: &'a [A], inv_m: &'a [f64]) -> Self {
+        let len = at.len();
+        Self {
+            len,
+            r: &s.r[..len],
+            tag: &s.tag[..len],
+            inv_m: &inv_m[..len],
+            at,
+            p: &mut s.p[..len],
+            u: &mut s.u[..len],
+            theta: &mut s.theta[..len],
+            inv_tau: if H::NEEDS_INV_TAU || N::NEEDS_INV_TAU { &mut s.inv_tau[..len] } else { &mut [] },
+        }
+    }
+
+    #[inline(always)]
+    fn load<H: HeatFlow, N: Noise>(&self, i: usize) -> End {
+        End { p: self.p[i], u: self.u[i], theta: self.theta[i], inv_tau: if H::NEEDS_INV_TAU || N::NEEDS_INV_TAU { self.inv_tau[i] } else { 0.0 } }
+    }
+
+    #[inline(always)]
+    fn store<H: HeatFlow, N: Noise>(&mut self, i: usize, e: End) {
+        (self.p[i], self.u[i], self.theta[i]) = (e.p, e.u, e.theta);
+        if H::NEEDS_INV_TAU || N::NEEDS_INV_TAU {
+            self.inv_tau[i] = e.inv_tau;
+        }
+    }
+}
+
+/// One particle's swept state.
+#[derive(Clone, Copy)]
+struct End {
+    p: Vec3,
+    u: f64,
+    theta: f64,
+    inv_tau: f64,
+}
+
+impl End {
+    #[inline(always)]
+    fn temps(&self) -> Temps {
+        Temps { theta: self.theta, inv_tau: self.inv_tau }
+    }
+}
+
+/// A refresh that gave no valid temperature: particle `k`, its new u and the theta found.
+#[derive(Clone, Copy, Debug)]
+struct Failed {
+    k: usize,
+    u: f64,
+    theta: f64,
+}
+
+impl Failed {
+    #[cold]
+    fn error<E: Eos>(self, eos: &Species<E>, s: &Particles, step: u64) -> StepError {
+        let n = density_of(s, self.k).max(ISOLATED_DENSITY);
+        let e = EosError::at(eos.of(s.kind[self.k]), self.u, n, self.theta);
+        StepError::eos(s, self.k, step, e)
+    }
+}
+
+/// Updates one pair over `dt` with Wiener increments `xi sqrt(dt)`, `xibar sqrt(dt)`, and
+/// stores the new states only when both temperatures are valid (else nothing is written);
 /// splits the step by a Brownian bridge when a temperature fails (`node` numbers the
 /// halves of the binary tree, `levels` how many splits remain).
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn pair_step<E: Eos, H: HeatFlow, N: Noise>(
-    eos: &Species<E>,
-    s: &mut Particles,
+fn pair_step<A: AtDensity, H: HeatFlow, N: Noise>(
+    v: &mut Swept<'_, A>,
     p: &Pair,
     xi: f64,
     xibar: f64,
@@ -135,43 +235,47 @@ fn pair_step<E: Eos, H: HeatFlow, N: Noise>(
     node: u32,
     levels: u32,
     splits: &mut u64,
-) -> Result<(), StepError> {
+) -> Result<(), Failed> {
     let (i, j) = (p.i, p.j);
-    let saved = (s.p[i], s.p[j], s.u[i], s.u[j], s.theta[i], s.theta[j]);
-    let drive = PairDrive { e: p.e, gamma: p.gamma, kappa: p.kappa, ti: temps::<H, N>(s, i), tj: temps::<H, N>(s, j), xi, xibar };
-    let (mut p_i, mut p_j, mut u_i, mut u_j) = (s.p[i], s.p[j], s.u[i], s.u[j]);
+    let (a, b) = (v.load::<H, N>(i), v.load::<H, N>(j));
+    let drive = PairDrive { e: p.e, gamma: p.gamma, kappa: p.kappa, ti: a.temps(), tj: b.temps(), xi, xibar };
+    let (mut p_i, mut p_j, mut u_i, mut u_j) = (a.p, b.p, a.u, b.u);
     let state = PairState { p_i: &mut p_i, p_j: &mut p_j, u_i: &mut u_i, u_j: &mut u_j, inv_m_i: p.inv_m.0, inv_m_j: p.inv_m.1 };
     pair_update::<H, N>(state, &drive, p.kb, dt, dt.sqrt());
-    (s.p[i], s.p[j], s.u[i], s.u[j]) = (p_i, p_j, u_i, u_j);
-    let outcome = refresh::<E, H, N>(eos, s, i, p.step).and_then(|_| refresh::<E, H, N>(eos, s, j, p.step));
-    if outcome.is_ok() || levels == 0 {
-        return outcome;
+    let refreshed = refresh::<A, H, N>(&v.at[i], i, p_i, u_i, a.theta).and_then(|a| Ok((a, refresh::<A, H, N>(&v.at[j], j, p_j, u_j, b.theta)?)));
+    match refreshed {
+        Ok((a, b)) => {
+            v.store::<H, N>(i, a);
+            v.store::<H, N>(j, b);
+            Ok(())
+        }
+        Err(failed) if levels == 0 => Err(failed),
+        Err(_) => split::<A, H, N>(v, p, (xi, xibar, dt, node, levels), splits),
     }
-    split::<E, H, N>(eos, s, p, saved, (xi, xibar, dt, node, levels), splits)
 }
 
-/// Undoes a failed pair update and does it as two half steps.
+/// Does a failed pair update as two half steps; restores the pair when they fail too.
 #[cold]
-fn split<E: Eos, H: HeatFlow, N: Noise>(
-    eos: &Species<E>,
-    s: &mut Particles,
+fn split<A: AtDensity, H: HeatFlow, N: Noise>(
+    v: &mut Swept<'_, A>,
     p: &Pair,
-    saved: ([f64; 3], [f64; 3], f64, f64, f64, f64),
     (xi, xibar, dt, node, levels): (f64, f64, f64, u32, u32),
     splits: &mut u64,
-) -> Result<(), StepError> {
+) -> Result<(), Failed> {
     let (i, j) = (p.i, p.j);
-    (s.p[i], s.p[j], s.u[i], s.u[j], s.theta[i], s.theta[j]) = saved;
-    for k in [i, j] {
-        refresh::<E, H, N>(eos, s, k, p.step)?;
-    }
+    let saved = (v.load::<H, N>(i), v.load::<H, N>(j));
     *splits += 1;
-    let (eta, etabar) = normal_pair(p.seed, p.step, s.tag[i], s.tag[j], stream::SUBSTEP + node);
+    let (eta, etabar) = normal_pair(p.seed, p.step, v.tag[i], v.tag[j], stream::SUBSTEP + node);
     let h = std::f64::consts::FRAC_1_SQRT_2;
     let first = ((xi + eta) * h, (xibar + etabar) * h);
     let second = ((xi - eta) * h, (xibar - etabar) * h);
-    pair_step::<E, H, N>(eos, s, p, first.0, first.1, 0.5 * dt, 2 * node + 1, levels - 1, splits)?;
-    pair_step::<E, H, N>(eos, s, p, second.0, second.1, 0.5 * dt, 2 * node + 2, levels - 1, splits)
+    let halves = pair_step::<A, H, N>(v, p, first.0, first.1, 0.5 * dt, 2 * node + 1, levels - 1, splits)
+        .and_then(|_| pair_step::<A, H, N>(v, p, second.0, second.1, 0.5 * dt, 2 * node + 2, levels - 1, splits));
+    if halves.is_err() {
+        v.store::<H, N>(i, saved.0);
+        v.store::<H, N>(j, saved.1);
+    }
+    halves
 }
 
 #[inline(always)]
@@ -179,20 +283,13 @@ pub(crate) fn temps<H: HeatFlow, N: Noise>(s: &Particles, i: usize) -> Temps {
     Temps { theta: s.theta[i], inv_tau: if H::NEEDS_INV_TAU || N::NEEDS_INV_TAU { s.inv_tau[i] } else { 0.0 } }
 }
 
-/// theta(u, n) at fixed n after a pair update, and 1/tau where the heat or noise law reads it.
+/// theta(u) at the particle's fixed density after a pair update, and 1/tau where the heat
+/// or noise law reads it: the particle's new state, or why it has none.
 #[inline(always)]
-fn refresh<E: Eos, H: HeatFlow, N: Noise>(eos: &Species<E>, s: &mut Particles, i: usize, step: u64) -> Result<(), StepError> {
-    let tau = H::NEEDS_INV_TAU || N::NEEDS_INV_TAU;
-    let eos = eos.of(s.kind[i]);
-    let n = crate::many_body::density_of(s, i).max(gendpde_potentials::ISOLATED_DENSITY);
-    let (theta, cv) = if tau { eos.theta_cv(s.u[i], n, s.theta[i]) } else { (eos.theta(s.u[i], n, s.theta[i]), 0.0) };
+fn refresh<A: AtDensity, H: HeatFlow, N: Noise>(at: &A, k: usize, p: Vec3, u: f64, guess: f64) -> Result<End, Failed> {
+    let (theta, inv_tau) = if H::NEEDS_INV_TAU || N::NEEDS_INV_TAU { at.theta_inv_tau(u, guess) } else { (at.theta(u, guess), 0.0) };
     if !(theta > 0.0 && theta.is_finite()) {
-        let e = gendpde_potentials::EosError::at(eos, s.u[i], n, theta);
-        return Err(StepError::eos(s, i, step, e));
+        return Err(Failed { k, u, theta });
     }
-    s.theta[i] = theta;
-    if tau {
-        s.inv_tau[i] = eos.inv_tau(theta, cv);
-    }
-    Ok(())
+    Ok(End { p, u, theta, inv_tau })
 }

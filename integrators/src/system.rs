@@ -20,12 +20,15 @@ pub struct System {
     pub sweep: SweepPairs,
     /// F_ij of each pair of the neighbour list (f_ij = F_ij r_ij).
     pub pair_force: Vec<f64>,
-    /// w'(r_ij)/([w] r_ij) of each pair of the neighbour list, from the last force pass.
+    /// w'(r_ij)/([w] r_ij) of the pairs of the neighbour list inside the density cutoff (those
+    /// in `active`), from the last density pass.
     pub pair_geometry: Vec<f64>,
     /// Indices of the neighbour pairs closer than the density cutoff at the last density
     /// pass, in list order: the pairs the force and work passes visit (the others, in the
     /// skin, contribute exact zeros).
     pub active: Vec<u32>,
+    /// r_ij^2 of the pairs in `active` (scratch of the density pass).
+    pub active_r2: Vec<f64>,
     /// Per-particle sums of the pair passes (scratch).
     pub pair_sums: Vec<f64>,
     /// zeta_i = dn_i/dn^b_i of the owned particles at the last density pass (corrected
@@ -80,6 +83,7 @@ impl System {
             pair_force: Vec::new(),
             pair_geometry: Vec::new(),
             active: Vec::new(),
+            active_r2: Vec::new(),
             pair_sums: Vec::new(),
             zeta: Vec::new(),
             friction: Vec::new(),

@@ -10,7 +10,7 @@ pub mod volume;
 pub mod weight;
 
 pub use eos::{
-    Eos, EosError, EosState, ErrorAt, LennardJones, LinearTheta, TableError, TableErrors, TableGrid,
+    AffineAt, AtDensity, AtN, Eos, EosError, EosState, FixedDensity, ErrorAt, LennardJones, LinearTheta, TableError, TableErrors, TableGrid,
     Tabulated, ISOLATED_DENSITY,
 };
 pub use weight::{CubicSpline, Linear, Lucy, Quadratic, Weight, WeightKind};

@@ -13,7 +13,7 @@ use gendpde_integrators::{
 };
 use gendpde_io::{Command, ScriptError};
 use gendpde_potentials::volume::PartitionVolume;
-use gendpde_potentials::{CubicSpline, Linear, Lucy, Quadratic, WeightKind};
+use gendpde_potentials::{CubicSpline, FixedDensity, Linear, Lucy, Quadratic, WeightKind};
 
 /// Assembles the dynamics of a `run` from the pair style and the fixes.
 pub fn build_physics(
@@ -132,7 +132,7 @@ pub fn build_physics(
 
 /// Monomorphises the dynamics over the weight function; `per_type` holds one EOS for
 /// all types or one per type.
-fn with_weight<E: FixedEntropy + 'static>(per_type: Vec<E>, pair: &PairGendpde, settings: Settings) -> Box<dyn Physics> {
+fn with_weight<E: FixedEntropy + FixedDensity + 'static>(per_type: Vec<E>, pair: &PairGendpde, settings: Settings) -> Box<dyn Physics> {
     let Some(eos) = Species::new(per_type) else { unreachable!("an EOS model holds at least one EOS") };
     let rc = pair.cutoff;
     let volume = pair.volume.map(|fcut| PartitionVolume::new(rc, fcut));

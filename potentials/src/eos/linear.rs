@@ -11,7 +11,7 @@
 //! continued by its second-order Taylor polynomial at n_s, so the model stays smooth
 //! (C^2), finite and strongly repulsive at any density; below n_s it is exact.
 
-use super::Eos;
+use super::{AffineAt, Eos, FixedDensity};
 
 /// The linear-in-theta family with constant C_V (theta0 = 1).
 #[derive(Clone, Debug, PartialEq)]
@@ -127,6 +127,14 @@ impl Eos for LinearTheta {
     }
     fn max_density(&self) -> Option<f64> {
         (self.r != 0.0 && self.b > 0.0).then(|| 1.0 / self.b)
+    }
+}
+
+impl FixedDensity for LinearTheta {
+    type At<'a> = AffineAt;
+    #[inline]
+    fn at_density(&self, n: f64) -> AffineAt {
+        AffineAt::new(self.v(n).0, self.cv, self.kb)
     }
 }
 

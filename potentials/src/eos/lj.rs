@@ -36,7 +36,7 @@
 //! C_V from 0.01 to 1e4 recovered theta to 3e-14 relative). The public formulas
 //! ([`LennardJones::f_res`] etc.) are evaluated without domain checks (NaN once eta >= 1).
 
-use super::Eos;
+use super::{AtDensity, Eos, FixedDensity};
 use std::f64::consts::PI;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
@@ -87,8 +87,11 @@ impl LennardJones {
     pub const ETA_MAX: f64 = 0.9;
     /// Iteration cap of the theta(u, n) solve (pure bisection needs about 50).
     const MAX_ITER: usize = 200;
-    /// Relative tolerance of the theta(u, n) solve.
+    /// Relative tolerance of the theta(u, n) solve on the last Newton step.
     const TOL: f64 = 1e-14;
+    /// Relative tolerance of the theta(u, n) solve on the error predicted to remain after
+    /// the last Newton step (quadratic convergence): usually met after two evaluations.
+    const PREDICTED_TOL: f64 = 1e-15;
 
     pub fn new(cv: f64) -> Self {
         Self { cv }
@@ -128,13 +131,6 @@ impl LennardJones {
         n * theta + n * n * Self::eval(theta, n).fn_
     }
 
-    /// u(theta, n) and C_V(theta, n) = du/dtheta from one evaluation.
-    #[inline]
-    fn u_and_cv(&self, theta: f64, n: f64) -> (f64, f64) {
-        let r = Self::eval(theta, n);
-        (self.cv * theta + r.f - theta * r.ft, self.cv - theta * r.ftt)
-    }
-
     /// f_res over a jet seeded with d/dtheta and d/dn.
     #[inline]
     fn eval(theta: f64, n: f64) -> Fres {
@@ -145,22 +141,8 @@ impl LennardJones {
     /// f_res(theta, n) evaluated over jets (eqs 104-107 in the form of SPEC.md sec 3).
     #[inline]
     fn f_res_jet(t: Jet, n: Jet) -> Jet {
-        let sq = t.sqrt();
-        let s = sq.recip(); // theta^-1/2
-        let s2 = s * s;
-        // d(theta) and eta
-        let d = D_LN * t.ln() + D_M1 * s2 + D_MH * s + D_0 + D_H * sq;
-        let eta = (PI / 6.0) * n * d * d * d;
-        // A_HS(eta), eq 106
-        let om = 1.0 - eta;
-        let a_hs =
-            (5.0 / 3.0) * om.ln() + eta * (34.0 + eta * (-33.0 + 4.0 * eta)) / (6.0 * om * om);
-        // dB2(theta) in powers of s = theta^-1/2, Horner
-        let mut p = Jet::cst(DB2[5]);
-        for &c in DB2[..5].iter().rev() {
-            p = p * s + c;
-        }
-        let db2 = p * s2 + DB2_0;
+        let Theta { s, s2, d, db2 } = Theta::of(t);
+        let a_hs = a_hs((PI / 6.0) * n * d * d * d);
         let n2 = n * n;
         let virial = n * db2 * (-GAMMA_BH * n2).exp();
         // sum_ij C_ij theta^{i/2} n^j = n^2 [P_0(n) + s P_-1(n) + s^2 P_-2(n) + s^4 P_-4(n)]
@@ -174,34 +156,125 @@ impl LennardJones {
         let sum = n2 * (poly(&C[0]) + s * poly(&C[1]) + s2 * (poly(&C[2]) + s2 * poly(&C[3])));
         t * (a_hs + virial) + sum
     }
+}
+
+/// The theta-only factors of f_res: s = theta^-1/2, s^2, the diameter d(theta) (eq 105)
+/// and dB2(theta) (eq 108).
+struct Theta {
+    s: Jet,
+    s2: Jet,
+    d: Jet,
+    db2: Jet,
+}
+
+impl Theta {
+    #[inline(always)]
+    fn of(t: Jet) -> Self {
+        let sq = t.sqrt();
+        let s = sq.recip();
+        let s2 = s * s;
+        let d = D_LN * t.ln() + D_M1 * s2 + D_MH * s + D_0 + D_H * sq;
+        // dB2 in powers of s, Horner
+        let mut p = Jet::cst(DB2[5]);
+        for &c in DB2[..5].iter().rev() {
+            p = p * s + c;
+        }
+        Self { s, s2, d, db2: p * s2 + DB2_0 }
+    }
+}
+
+/// A_HS(eta), eq 106.
+#[inline(always)]
+fn a_hs(eta: Jet) -> Jet {
+    let om = 1.0 - eta;
+    (5.0 / 3.0) * om.ln() + eta * (34.0 + eta * (-33.0 + 4.0 * eta)) / (6.0 * om * om)
+}
+
+/// The Kolafa-Nezbeda model at one density: the n-only factors of f_res (eq 107's
+/// exp(-gamma n^2) and C_ij n^j rows, eq 104's (pi/6) n) taken once, so each theta(u)
+/// solve evaluates only the theta-dependent parts (bit for bit as [`LennardJones`]'s own
+/// evaluation).
+#[derive(Clone, Copy, Debug)]
+pub struct LjAt {
+    cv: f64,
+    n: f64,
+    n2: f64,
+    /// (pi/6) n.
+    eta_n: f64,
+    /// exp(-gamma_BH n^2).
+    damping: f64,
+    /// sum_j C_ij n^(j-2) for each row i = 0, -1, -2, -4.
+    rows: [f64; 4],
+}
+
+impl LjAt {
+    fn new(cv: f64, n: f64) -> Self {
+        let row = |r: &[f64; 5]| r[..4].iter().rev().fold(r[4], |q, &c| q * n + c);
+        let n2 = n * n;
+        Self {
+            cv,
+            n,
+            n2,
+            eta_n: n * (PI / 6.0),
+            damping: (-GAMMA_BH * n2).exp(),
+            rows: [row(&C[0]), row(&C[1]), row(&C[2]), row(&C[3])],
+        }
+    }
+
+    /// f_res over a jet in theta at this n (the theta part of [`LennardJones::f_res_jet`]).
+    #[inline(always)]
+    fn f_res_t(&self, t: Jet) -> Jet {
+        let Theta { s, s2, d, db2 } = Theta::of(t);
+        let a_hs = a_hs(self.eta_n * d * d * d);
+        let virial = db2 * self.n * self.damping;
+        let [c0, c1, c2, c3] = self.rows;
+        let sum = (s * c1 + c0 + s2 * (s2 * c3 + c2)) * self.n2;
+        t * (a_hs + virial) + sum
+    }
+
+    /// u(theta) and C_V(theta) = du/dtheta from one evaluation.
+    #[inline(always)]
+    fn u_and_cv(&self, theta: f64) -> (f64, f64) {
+        let r = self.f_res_t(Jet::var_t(theta));
+        (self.cv * theta + r.v - theta * r.t, self.cv - theta * r.tt)
+    }
 
     /// Bracketed Newton solve of u(theta, n) = u on [THETA_MIN, THETA_MAX] (see module doc);
-    /// with theta, C_V at the last Newton iterate (within TOL of theta; NaN when the
-    /// solve ended otherwise).
-    fn solve_theta(&self, u: f64, n: f64, guess: f64) -> (f64, f64) {
+    /// with theta and C_V there (theta within TOL of the last Newton iterate, or within
+    /// PREDICTED_TOL of the root by the predicted error; C_V NaN when the solve ended
+    /// otherwise).
+    fn solve(&self, u: f64, guess: f64) -> (f64, f64) {
+        let n = self.n;
         if !(u.is_finite() && n.is_finite() && n >= 0.0) {
             return (f64::NAN, f64::NAN);
         }
-        let (mut lo, mut hi) = (Self::THETA_MIN, Self::THETA_MAX);
+        let (lo0, hi0) = (LennardJones::THETA_MIN, LennardJones::THETA_MAX);
+        let (mut lo, mut hi) = (lo0, hi0);
         // whether an in-domain point with u(x) < u (resp. > u) has been seen
         let (mut lo_hit, mut hi_hit) = (false, false);
         let mut x = if guess > 0.0 && guess.is_finite() {
             guess
         } else {
             let t1 = 1.0;
-            let x0 =
-                if Self::in_domain(t1, n) { (u - self.u_res(t1, n)) / self.cv } else { f64::NAN };
+            let x0 = if LennardJones::in_domain(t1, n) {
+                let r = self.f_res_t(Jet::var_t(t1));
+                (u - (r.v - t1 * r.t)) / self.cv
+            } else {
+                f64::NAN
+            };
             if x0.is_finite() {
-                x0.max(Self::THETA_MIN)
+                x0.max(lo0)
             } else {
                 (lo * hi).sqrt()
             }
         };
         x = x.clamp(lo, hi);
-        for _ in 0..Self::MAX_ITER {
+        // (x, C_V) of the previous evaluation when x is its Newton step
+        let mut prev: Option<(f64, f64)> = None;
+        for _ in 0..LennardJones::MAX_ITER {
             let mut next = f64::NAN;
-            if Self::in_domain(x, n) {
-                let (ux, cvx) = self.u_and_cv(x, n);
+            if LennardJones::in_domain(x, n) {
+                let (ux, cvx) = self.u_and_cv(x);
                 let r = ux - u;
                 if r == 0.0 {
                     return (x, cvx);
@@ -213,20 +286,33 @@ impl LennardJones {
                     hi = x;
                     hi_hit = true;
                 }
-                next = x - r / cvx;
-                if (next - x).abs() <= Self::TOL * x && next > 0.0 {
+                let step = r / cvx;
+                next = x - step;
+                if step.abs() <= LennardJones::TOL * x && next > 0.0 {
                     return (next, cvx);
                 }
+                if let Some((xp, cvp)) = prev.filter(|&(xp, _)| (x - xp).abs() <= 0.01 * x) {
+                    // Newton converges quadratically: the error left after this step is
+                    // |u''/(2 u')| step^2, u'' = dC_V/dtheta from the last two evaluations
+                    // (close enough for a local slope); C_V carried to `next` along it
+                    let slope = (cvx - cvp) / (x - xp);
+                    let left = (slope / (2.0 * cvx)).abs() * step * step;
+                    if left <= LennardJones::PREDICTED_TOL * x && next > lo && next < hi {
+                        return (next, cvx - slope * step);
+                    }
+                }
+                prev = Some((x, cvx));
             } else {
                 // x in [THETA_MIN, THETA_MAX] is out of the domain only by eta > ETA_MAX:
                 // below the floor at this density, so the root lies above
                 lo = x;
             }
-            if hi - lo <= Self::TOL * lo {
+            if hi - lo <= LennardJones::TOL * lo {
                 break;
             }
             if !(next > lo && next < hi) {
                 next = (lo * hi).sqrt(); // bisection in ln theta: the bracket spans decades
+                prev = None;
             }
             x = next;
         }
@@ -240,6 +326,30 @@ impl LennardJones {
     }
 }
 
+impl AtDensity for LjAt {
+    #[inline]
+    fn theta(&self, u: f64, guess: f64) -> f64 {
+        self.solve(u, guess).0
+    }
+    /// C_V from the solve's last Newton evaluation: one evaluation of f_res saved.
+    #[inline]
+    fn theta_inv_tau(&self, u: f64, guess: f64) -> (f64, f64) {
+        let (theta, cv) = match self.solve(u, guess) {
+            (theta, cv) if cv.is_finite() => (theta, cv),
+            (theta, _) => (theta, self.u_and_cv(theta).1),
+        };
+        (theta, (1.0 - 1.0 / cv) / theta)
+    }
+}
+
+impl FixedDensity for LennardJones {
+    type At<'a> = LjAt;
+    #[inline]
+    fn at_density(&self, n: f64) -> LjAt {
+        LjAt::new(self.cv, n)
+    }
+}
+
 impl Eos for LennardJones {
     fn kb(&self) -> f64 {
         1.0
@@ -249,14 +359,15 @@ impl Eos for LennardJones {
     }
     #[inline]
     fn theta(&self, u: f64, n: f64, guess: f64) -> f64 {
-        self.solve_theta(u, n, guess).0
+        self.at_density(n).solve(u, guess).0
     }
     /// C_V from the solve's last Newton evaluation: one evaluation of f_res saved.
     #[inline]
     fn theta_cv(&self, u: f64, n: f64, guess: f64) -> (f64, f64) {
-        match self.solve_theta(u, n, guess) {
+        let at = self.at_density(n);
+        match at.solve(u, guess) {
             (theta, cv) if cv.is_finite() => (theta, cv),
-            (theta, _) => (theta, self.cv(theta, n)),
+            (theta, _) => (theta, at.u_and_cv(theta).1),
         }
     }
     #[inline]
@@ -272,7 +383,7 @@ impl Eos for LennardJones {
         self.cv - theta * Self::eval(theta, n).ftt
     }
     fn entropy(&self, u: f64, n: f64) -> Option<f64> {
-        let theta = self.solve_theta(u, n, f64::NAN).0;
+        let theta = self.at_density(n).solve(u, f64::NAN).0;
         (theta > 0.0 && theta.is_finite()).then(|| self.cv * theta.ln() - Self::eval(theta, n).ft)
     }
     /// 1.5: above it the fit loses thermodynamic stability (see the module doc).
@@ -450,6 +561,54 @@ mod tests {
         // independent evaluation quoted in SPEC
         assert!((m.u_res(1.3, 0.2) + 1.5371513).abs() < 1e-7);
         assert!((m.pressure(1.3, 0.4) - 0.1125328).abs() < 1e-7);
+    }
+
+    /// The theta-only evaluation at a fixed density gives the bits of the full jet.
+    #[test]
+    fn fixed_density_evaluation_is_the_full_one() {
+        let m = LennardJones::new(60.0);
+        for (theta, n) in grid() {
+            let r = LennardJones::eval(theta, n);
+            let (u, cv) = m.at_density(n).u_and_cv(theta);
+            assert_eq!(u, m.cv * theta + r.f - theta * r.ft, "u at ({theta}, {n})");
+            assert_eq!(cv, m.cv - theta * r.ftt, "C_V at ({theta}, {n})");
+        }
+    }
+
+    /// theta, C_V and 1/tau after the stop on the predicted error, against Newton run until
+    /// its step is below 1e-16 relative, over refreshes like the sweep's: u moved from a
+    /// state at theta by up to 3 % of C_V theta, the old theta as the guess.
+    #[test]
+    fn predicted_stop_agrees_with_the_converged_solve() {
+        let mut worst = [0.0f64; 3];
+        for cv in [1.5, 60.0] {
+            let m = LennardJones::new(cv);
+            for (theta, n) in grid() {
+                let at = m.at_density(n);
+                for k in 0..=16 {
+                    let du = 0.03 * cv * theta * (if k % 2 == 0 { 1.0 } else { -1.0 }) * 10f64.powi(-(k / 2));
+                    let u = m.u(theta, n) + du;
+                    let (t, c) = at.solve(u, theta);
+                    let (mut x, mut cx) = (t, c);
+                    for _ in 0..20 {
+                        let (ux, cvx) = at.u_and_cv(x);
+                        let step = (ux - u) / cvx;
+                        (x, cx) = (x - step, cvx);
+                        if step.abs() <= 1e-16 * x {
+                            break;
+                        }
+                    }
+                    let inv_tau = |t: f64, c: f64| (1.0 - 1.0 / c) / t;
+                    for (w, e) in worst.iter_mut().zip([rel(t, x), rel(c, cx), rel(inv_tau(t, c), inv_tau(x, cx))]) {
+                        *w = w.max(e);
+                    }
+                }
+            }
+        }
+        eprintln!("worst relative deviation of theta, C_V, 1/tau from the converged solve: {:.2e} {:.2e} {:.2e}", worst[0], worst[1], worst[2]);
+        // theta to round-off; C_V (so 1/tau) carried along the secant slope of C_V, whose
+        // error is ~ C_V'' (x - x_prev) step / 2
+        assert!(worst[0] < 1e-14 && worst[1] < 1e-9 && worst[2] < 1e-9, "{worst:?}");
     }
 
     /// Central five-point first derivative, error O(h^4).

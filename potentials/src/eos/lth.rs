@@ -18,7 +18,7 @@
 //! (eqs 114-117) have k_B = 1; any consistent units work, theta being k_B times a
 //! temperature.
 
-use super::Eos;
+use super::{AffineAt, Eos, FixedDensity};
 
 /// The LTh particle EOS, high-temperature form (eqs 41, 52-58).
 #[derive(Clone, Debug, PartialEq)]
@@ -91,6 +91,14 @@ impl Eos for Lth {
     }
     fn max_density(&self) -> Option<f64> {
         None
+    }
+}
+
+impl FixedDensity for Lth {
+    type At<'a> = AffineAt;
+    #[inline]
+    fn at_density(&self, n: f64) -> AffineAt {
+        AffineAt::new(self.potential(n), self.cv, self.kb)
     }
 }
 

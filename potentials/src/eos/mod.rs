@@ -13,6 +13,7 @@ mod table;
 pub use linear::LinearTheta;
 pub use lj::LennardJones;
 pub use lth::Lth;
+pub use lj::LjAt;
 pub use table::{ErrorAt, TableError, TableErrors, TableGrid, Tabulated};
 
 use std::fmt;
@@ -123,5 +124,83 @@ pub trait Eos: Send + Sync {
     #[inline]
     fn inv_tau(&self, theta: f64, cv: f64) -> f64 {
         (1.0 - self.kb() / cv) / theta
+    }
+}
+
+/// A model at one fixed density: theta(u) and 1/tau(u) as the Shardlow sweep refreshes
+/// them after each pair update (the sweep does not move particles, so n stays fixed; eqs
+/// 82, 87). What depends on n only (V(n), n-polynomials) is evaluated once per particle
+/// and sweep in [`FixedDensity::at_density`], not in every refresh.
+pub trait AtDensity: Copy {
+    /// theta(u) at this density; `guess` seeds iterative models.
+    fn theta(&self, u: f64, guess: f64) -> f64;
+    /// theta(u) and 1/tau = (1 - k_B/C_V)/theta there (eqs 19, 23).
+    fn theta_inv_tau(&self, u: f64, guess: f64) -> (f64, f64);
+}
+
+/// Models that can precompute their density-only parts ([`AtDensity`]).
+pub trait FixedDensity: Eos {
+    type At<'a>: AtDensity
+    where
+        Self: 'a;
+    /// The model at density `n` (already raised to [`ISOLATED_DENSITY`] by the caller);
+    /// its theta and 1/tau equal [`Eos::theta`] and [`Eos::theta_cv`] with
+    /// [`Eos::inv_tau`] at `n`, bit for bit.
+    fn at_density(&self, n: f64) -> Self::At<'_>;
+}
+
+/// The generic [`AtDensity`]: the model and n, through [`Eos::theta`] and [`Eos::theta_cv`].
+#[derive(Debug)]
+pub struct AtN<'a, E> {
+    pub eos: &'a E,
+    pub n: f64,
+}
+
+impl<E> Clone for AtN<'_, E> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<E> Copy for AtN<'_, E> {}
+
+impl<E: Eos> AtDensity for AtN<'_, E> {
+    #[inline(always)]
+    fn theta(&self, u: f64, guess: f64) -> f64 {
+        self.eos.theta(u, self.n, guess)
+    }
+    #[inline(always)]
+    fn theta_inv_tau(&self, u: f64, guess: f64) -> (f64, f64) {
+        let (theta, cv) = self.eos.theta_cv(u, self.n, guess);
+        (theta, self.eos.inv_tau(theta, cv))
+    }
+}
+
+/// theta = (u - V(n))/C_V with constant C_V, the form of the linear family (eq 44) and of
+/// the argon LTH model (eq 53): V(n) and 1 - k_B/C_V taken once.
+#[derive(Clone, Copy, Debug)]
+pub struct AffineAt {
+    /// V(n).
+    pub v: f64,
+    pub cv: f64,
+    /// 1 - k_B/C_V.
+    pub dressing: f64,
+}
+
+impl AffineAt {
+    pub fn new(v: f64, cv: f64, kb: f64) -> Self {
+        Self { v, cv, dressing: 1.0 - kb / cv }
+    }
+}
+
+impl AtDensity for AffineAt {
+    #[inline(always)]
+    fn theta(&self, u: f64, _guess: f64) -> f64 {
+        (u - self.v) / self.cv
+    }
+    #[inline(always)]
+    fn theta_inv_tau(&self, u: f64, guess: f64) -> (f64, f64) {
+        let theta = self.theta(u, guess);
+        (theta, self.dressing / theta)
     }
 }

@@ -59,7 +59,7 @@
 //! | 61 x 65   | 1.3e-7  | 7.5e-6  | 6.5e-6  | 8.8e-8   |
 //! | 121 x 129 | 8.4e-9  | 5.7e-7  | 8.4e-7  | 5.6e-9   |
 
-use super::{Eos, EosError, EosState, ISOLATED_DENSITY};
+use super::{AtN, Eos, EosError, EosState, FixedDensity, ISOLATED_DENSITY};
 use std::fmt;
 
 /// Table grid: (min, max, node count) in theta (nodes uniform in ln theta) and in n
@@ -778,6 +778,14 @@ impl<E: Eos> Eos for Tabulated<E> {
         let pn2 =
             if isolated { 0.0 } else { value(&cubic(&self.pp[self.cell(l.i, l.j)], l.s), l.t) };
         Ok(EosState { theta, pn2, cv: slope(&c, l.t) * self.inv_h[l.i] })
+    }
+}
+
+impl<E: Eos> FixedDensity for Tabulated<E> {
+    type At<'a> = AtN<'a, Self> where E: 'a;
+    #[inline]
+    fn at_density(&self, n: f64) -> AtN<'_, Self> {
+        AtN { eos: self, n }
     }
 }
 
