@@ -1,22 +1,25 @@
-//! The global cell grid: cells of side >= cutoff + skin, an even count >= 4 per
+//! The global cell grid: cells of side >= cutoff + skin, an even count >= 2 per
 //! dimension, so that the 8-colour block ownership of ARCHITECTURE.md is well defined.
 //!
 //! A pair of particles in cells A and B (adjacent or equal, periodic) is owned by the
 //! cell C = componentwise min(A, B); C's pairs touch only the block C + {0,1}^3, and the
-//! colour of C is the parity of its index, so blocks of one colour are disjoint.
+//! colour of C is the parity of its index, so blocks of one colour are disjoint (with
+//! 2 cells along a dimension a colour has one block along it, which covers both cells
+//! once). A box of length >= 2 (cutoff + skin) holds at most one periodic image of a
+//! particle within the cutoff of another, so every (pair, image) lies in one block.
 
 use crate::{Domain, Vec3};
 use std::fmt;
 
 /// Smallest number of cells per dimension the colouring accepts.
-pub const MIN_CELLS: usize = 4;
+pub const MIN_CELLS: usize = 2;
 
 /// Cells a grid may have however few particles it holds (16^3).
 pub const FEW_CELLS: usize = 4096;
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct CellGrid {
-    /// Cells per dimension (even, >= 4).
+    /// Cells per dimension (even, >= 2).
     pub count: [usize; 3],
     /// Cell side per dimension.
     pub side: Vec3,
@@ -37,8 +40,9 @@ impl fmt::Display for GridError {
         let axis = ["x", "y", "z"][self.dim];
         write!(
             f,
-            "box length {:.6} along {axis} holds fewer than {MIN_CELLS} cells of side cutoff + skin = {:.6}; \
-             the smallest valid length is {:.6} (enlarge the box, or reduce the cutoff or the skin)",
+            "box length {:.6} along {axis} holds fewer than {MIN_CELLS} cells of side cutoff + skin = {:.6} \
+             (a periodic image of a particle would interact twice); the smallest valid length is {:.6} \
+             (enlarge the box, or reduce the cutoff or the skin)",
             self.length,
             self.cut,
             MIN_CELLS as f64 * self.cut
@@ -49,7 +53,7 @@ impl fmt::Display for GridError {
 impl std::error::Error for GridError {}
 
 impl CellGrid {
-    /// The finest grid with an even number (>= 4) of cells of side >= `cut`.
+    /// The finest grid with an even number (>= 2) of cells of side >= `cut`.
     pub fn new(domain: &Domain, cut: f64) -> Result<Self, GridError> {
         let len = domain.len();
         let mut count = [0; 3];
@@ -67,14 +71,14 @@ impl CellGrid {
     }
 
     /// The grid with at most max(`particles`, [`FEW_CELLS`]) cells, coarsened two cells
-    /// at a time along the finest dimension: a dilute box needs no more cells than
-    /// particles (LAMMPS caps its bins too), and the bins of a finer grid could outgrow
-    /// memory. Dense boxes keep their grid.
+    /// at a time along the finest dimension (to no fewer than 4): a dilute box needs no
+    /// more cells than particles (LAMMPS caps its bins too), and the bins of a finer grid
+    /// could outgrow memory. Dense boxes keep their grid.
     pub fn at_most(mut self, particles: usize) -> Self {
         let limit = particles.max(FEW_CELLS);
         while self.len() > limit {
             let d = (0..3).rev().max_by_key(|&d| self.count[d]).unwrap_or(0);
-            if self.count[d] <= MIN_CELLS {
+            if self.count[d] <= 4 {
                 break;
             }
             self.count[d] -= 2;
@@ -125,10 +129,18 @@ mod tests {
 
     #[test]
     fn too_small_box_names_the_smallest_valid_length() {
-        let d = Domain::new([0.0; 3], [10.0, 20.0, 20.0]);
+        let d = Domain::new([0.0; 3], [8.0, 20.0, 20.0]);
         let e = CellGrid::new(&d, 4.4).unwrap_err();
         assert_eq!(e.dim, 0);
-        assert!(e.to_string().contains("17.6"), "{e}");
+        assert!(e.to_string().contains("8.8"), "{e}");
+    }
+
+    #[test]
+    fn a_box_between_two_and_four_cuts_gets_two_cells() {
+        // LAMMPS's DPD-BASIC in.dpd: a 5.5 box, cutoff 1.22 + skin 0.3
+        let d = Domain::new([0.0; 3], [5.5, 5.5, 40.0]);
+        let g = CellGrid::new(&d, 1.52).unwrap();
+        assert_eq!(g.count, [2, 2, 26]);
     }
 
     #[test]

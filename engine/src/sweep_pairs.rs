@@ -52,9 +52,10 @@ mod tests {
     use crate::{CellGrid, Comm, Domain, NeighborList, Particles};
     use std::collections::{HashMap, HashSet};
 
-    /// A random gas in a 4x4x6 cell box, with its ghosts and bins.
-    fn gas() -> (Particles, CellBins, CellGrid, Domain) {
-        let domain = Domain::new([0.0; 3], [9.0, 9.5, 13.0]);
+    /// A random gas in a 4x4x6 cell box, or with `thin` a 2x4x2 cell box, with its
+    /// ghosts and bins.
+    fn gas(thin: bool) -> (Particles, CellBins, CellGrid, Domain) {
+        let domain = Domain::new([0.0; 3], if thin { [4.5, 9.5, 5.0] } else { [9.0, 9.5, 13.0] });
         let grid = CellGrid::new(&domain, 2.1).unwrap();
         let mut s = Particles::default();
         let mut x: u64 = 12345;
@@ -62,8 +63,9 @@ mod tests {
             x = x.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
             (x >> 11) as f64 / (1u64 << 53) as f64
         };
+        let l = domain.len();
         for tag in 1..=700u64 {
-            let r = [9.0 * next(), 9.5 * next(), 13.0 * next()];
+            let r = [l[0] * next(), l[1] * next(), l[2] * next()];
             s.push(tag * 7 % 701, 1, 1.0, r);
         }
         let mut comm = Comm::serial();
@@ -76,7 +78,13 @@ mod tests {
 
     #[test]
     fn every_pair_within_range_appears_once() {
-        let (s, bins, grid, domain) = gas();
+        for thin in [false, true] {
+            every_pair_within_range_appears_once_in(thin);
+        }
+    }
+
+    fn every_pair_within_range_appears_once_in(thin: bool) {
+        let (s, bins, grid, domain) = gas(thin);
         let (lo, hi) = ([0; 3], grid.count.map(|c| c as i32));
         let mut sp = SweepPairs::default();
         build_lists(&s, &bins, lo, hi, ListRequest { nlist: None, sweep: Some((&mut sp, 2.0)) });
@@ -104,7 +112,13 @@ mod tests {
 
     #[test]
     fn within_a_colour_every_particle_has_one_writer() {
-        let (s, bins, grid, _) = gas();
+        for thin in [false, true] {
+            within_a_colour_every_particle_has_one_writer_in(thin);
+        }
+    }
+
+    fn within_a_colour_every_particle_has_one_writer_in(thin: bool) {
+        let (s, bins, grid, _) = gas(thin);
         let mut sp = SweepPairs::default();
         let hi = grid.count.map(|c| c as i32);
         build_lists(&s, &bins, [0; 3], hi, ListRequest { nlist: None, sweep: Some((&mut sp, 2.0)) });
@@ -148,7 +162,13 @@ mod tests {
 
     #[test]
     fn neighbour_pairs_give_every_owned_particle_each_neighbour_once() {
-        let (s, bins, grid, domain) = gas();
+        for thin in [false, true] {
+            neighbour_pairs_give_every_owned_particle_each_neighbour_once_in(thin);
+        }
+    }
+
+    fn neighbour_pairs_give_every_owned_particle_each_neighbour_once_in(thin: bool) {
+        let (s, bins, grid, domain) = gas(thin);
         let (mut sp, mut nl) = (SweepPairs::default(), NeighborList::default());
         let hi = grid.count.map(|c| c as i32);
         // the sweep on a shorter radius than the lists: each filtered on its own

@@ -131,7 +131,7 @@ impl System {
                     procs[d],
                     grid.count[d],
                     grid.count[d],
-                    (procs[d].div_ceil(2) * 2).max(4) as f64 * cut
+                    (procs[d].div_ceil(2) * 2) as f64 * cut
                 ));
             }
         }
