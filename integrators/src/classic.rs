@@ -12,6 +12,8 @@
 //! Shardlow DPDE pair update: gamma = sigma^2 / (2 k_B theta_ij), 1/theta_ij the mean of
 //! 1/theta_i and 1/theta_j; heat kappa w^2 (1/theta_i - 1/theta_j) dt + sqrt(2 k_B kappa)
 //! w xibar sqrt(dt) into i (uCond); -dK/2 into each u (uMech).
+//! Every coefficient and cutoff is per type pair ([`TypeTable`], LAMMPS's `a0[itype][jtype]`);
+//! the lists reach the largest cutoff and each pair is cut at its own.
 
 use crate::error::{lowest, StepError};
 use crate::heat::{Original, Temps};
@@ -21,36 +23,78 @@ use crate::rng::{normal_pair, stream, Normals};
 use crate::settings::Settings;
 use crate::sweep::SWEPT;
 use crate::system::System;
+use crate::type_table::TypeTable;
 use crate::verlet;
 use gendpde_engine::{dot, sub, Fields, Particles, Vec3};
 use gendpde_potentials::{Lucy, Weight};
 
+/// `pair dpd` coefficients of one type pair: a0 w(rc) with in-force friction `gamma`
+/// and noise `sigma` (both 0 under Shardlow).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DpdCoeff {
+    pub a0: f64,
+    pub rc: f64,
+    pub gamma: f64,
+    pub sigma: f64,
+    inv_rc: f64,
+}
+
+impl DpdCoeff {
+    pub fn new(a0: f64, rc: f64, gamma: f64, sigma: f64) -> Self {
+        Self { a0, rc, gamma, sigma, inv_rc: 1.0 / rc }
+    }
+}
+
+/// `pair mdpd` (with `mdpd/rhosum`) coefficients of one type pair.
+#[derive(Clone, Copy, Debug)]
+pub struct MdpdCoeff {
+    pub a: f64,
+    pub b: f64,
+    pub rc: f64,
+    pub rd: f64,
+    pub gamma: f64,
+    pub sigma: f64,
+    /// The Lucy kernel of `mdpd/rhosum` (support h) this pair adds to rho.
+    pub kernel: Lucy,
+}
+
 /// The pair force computed in the force pass.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 pub enum PairForce {
-    /// a0 w(rc) with in-force friction `gamma` and noise `sigma` (both 0 under Shardlow).
-    Dpd { a0: f64, rc: f64, gamma: f64, sigma: f64 },
-    /// Warren's many-body DPD; rho from the Lucy kernel of support `h`.
-    Mdpd { a: f64, b: f64, rc: f64, rd: f64, gamma: f64, sigma: f64, h: f64 },
+    Dpd(TypeTable<DpdCoeff>),
+    /// Warren's many-body DPD; rho from the Lucy kernels.
+    Mdpd(TypeTable<MdpdCoeff>),
 }
 
 impl PairForce {
     fn cutoff(&self) -> f64 {
         match self {
-            Self::Dpd { rc, .. } => *rc,
-            Self::Mdpd { rc, rd, h, .. } => rc.max(*rd).max(*h),
+            Self::Dpd(t) => t.max_of(|c| c.rc),
+            Self::Mdpd(t) => t.max_of(|c| c.rc.max(c.rd).max(c.kernel.cutoff())),
         }
     }
+}
+
+/// Shardlow coefficients of one type pair.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ShardlowCoeff {
+    pub sigma: f64,
+    pub kappa: f64,
+    pub rc: f64,
 }
 
 /// `fix shardlow` with `pair dpd/fdt` (fixed T) or `dpd/fdt/energy` (per-particle theta).
 #[derive(Clone, Debug, PartialEq)]
 pub struct ShardlowDpd {
-    pub sigma: f64,
-    pub kappa: f64,
-    pub rc: f64,
+    pub coeff: TypeTable<ShardlowCoeff>,
     /// `dpd/fdt`: the temperature of the friction; None: theta of the particles.
     pub temperature: Option<f64>,
+}
+
+impl ShardlowDpd {
+    fn cutoff(&self) -> f64 {
+        self.coeff.max_of(|c| c.rc)
+    }
 }
 
 /// How positions and momenta advance.
@@ -76,7 +120,7 @@ pub struct ClassicDpd {
 
 impl ClassicDpd {
     fn radius(&self) -> f64 {
-        self.force.cutoff().max(self.shardlow.as_ref().map_or(0.0, |s| s.rc)) + self.settings.skin
+        self.force.cutoff().max(self.shardlow.as_ref().map_or(0.0, ShardlowDpd::cutoff)) + self.settings.skin
     }
 
     /// theta = u / C_V for owned particles (fix eos/cv), and 1/theta, which the sweep
@@ -100,11 +144,10 @@ impl ClassicDpd {
         outcome
     }
 
-    /// MDPD density: rho_i = sum_{j != i} m_j W(r_ij), without a self term, as the
+    /// MDPD density: rho_i = sum_{j != i} m_j W(r_ij; h_ij), without a self term, as the
     /// reference LAMMPS (22 Jul 2025) sums it. One pass over the half list (see
     /// [`gendpde_engine::NeighborList::pairs`]).
-    fn rho(&self, sys: &mut System, h: f64) {
-        let w = Lucy::new(h);
+    fn rho(&self, sys: &mut System, table: &TypeTable<MdpdCoeff>) {
         let s = &mut sys.store;
         let n = s.nlocal;
         s.rho[..n].fill(0.0);
@@ -112,6 +155,8 @@ impl ClassicDpd {
             let (i, j) = (i as usize, j as usize);
             let d = sub(s.r[i], s.r[j]);
             let r2 = dot(d, d);
+            let w = &table.get(s.kind[i], s.kind[j]).kernel;
+            let h = w.cutoff();
             if r2 < h * h {
                 let wij = w.eval(r2.sqrt()).0;
                 if i < n {
@@ -128,23 +173,23 @@ impl ClassicDpd {
     fn forces(&self, sys: &mut System, step: u64) {
         let inv_sqrt_dt = 1.0 / self.settings.dt.sqrt();
         let (seed, pairs, s) = (self.seed, &sys.nlist.pairs, &mut sys.store);
-        let inv_rc = match self.force {
-            PairForce::Dpd { rc, .. } | PairForce::Mdpd { rc, .. } => 1.0 / rc,
-        };
         let noise = |s: &Particles, i: usize, j: usize| normal_pair(seed, step, s.tag[i].min(s.tag[j]), s.tag[i].max(s.tag[j]), stream::FORCE).0;
-        match self.force {
+        match &self.force {
             // w = 0 beyond rc: no branch to mispredict on the skin's pairs
-            PairForce::Dpd { a0, rc, gamma: 0.0, sigma: 0.0 } => tally::<true>(s, pairs, rc, |_, _, _, _, r| {
+            PairForce::Dpd(t) if t.iter().all(|c| c.gamma == 0.0 && c.sigma == 0.0) => tally::<true>(s, pairs, |_, _| f64::INFINITY, |s, i, j, _, r| {
+                let DpdCoeff { a0, rc, inv_rc, .. } = *t.get(s.kind[i], s.kind[j]);
                 let w = (1.0 - r * inv_rc).max(0.0);
                 (a0 * w, 0.25 * a0 * rc * w * w)
             }),
-            PairForce::Dpd { a0, rc, gamma, sigma } => tally::<false>(s, pairs, rc, |s, i, j, d, r| {
+            PairForce::Dpd(t) => tally::<false>(s, pairs, |s, k| t.get(s.kind[k[0]], s.kind[k[1]]).rc, |s, i, j, d, r| {
+                let DpdCoeff { a0, rc, gamma, sigma, inv_rc } = *t.get(s.kind[i], s.kind[j]);
                 let w = 1.0 - r * inv_rc;
                 let fp = a0 * w - gamma * w * w * dot(d, sub(velocity(s, i), velocity(s, j))) / r + sigma * w * noise(s, i, j) * inv_sqrt_dt;
                 (fp, 0.25 * a0 * rc * w * w)
             }),
-            PairForce::Mdpd { a, b, rc, rd, gamma, sigma, .. } => tally::<false>(s, pairs, rc, |s, i, j, d, r| {
-                let wc = 1.0 - r * inv_rc;
+            PairForce::Mdpd(t) => tally::<false>(s, pairs, |s, k| t.get(s.kind[k[0]], s.kind[k[1]]).rc, |s, i, j, d, r| {
+                let MdpdCoeff { a, b, rc, rd, gamma, sigma, .. } = *t.get(s.kind[i], s.kind[j]);
+                let wc = 1.0 - r * (1.0 / rc);
                 let wd = (1.0 - r / rd).max(0.0);
                 let rho = s.rho[i] + s.rho[j];
                 let mut fp = a * wc + b * rho * wd;
@@ -160,16 +205,21 @@ impl ClassicDpd {
     fn sweep(&self, sys: &mut System, p: &ShardlowDpd) {
         let (dt, kb) = (self.settings.dt, self.kb);
         let sqrt_dt = dt.sqrt();
-        let (step, normals, inv_rc) = (sys.step, Normals::get(), 1.0 / p.rc);
+        let (step, normals, reach) = (sys.step, Normals::get(), p.cutoff());
         for colour in 0..8 {
-            let pairs = sys.sweep.within(colour, &sys.store, p.rc);
+            let pairs = sys.sweep.within(colour, &sys.store, reach);
             let s = &mut sys.store;
             for &[i, j] in pairs {
                 let (i, j) = (i as usize, j as usize);
+                let c = *p.coeff.get(s.kind[i], s.kind[j]);
                 let dr = sub(s.r[i], s.r[j]);
-                let r = dot(dr, dr).sqrt();
+                let r2 = dot(dr, dr);
+                if r2 >= c.rc * c.rc {
+                    continue;
+                }
+                let r = r2.sqrt();
                 let inv_r = 1.0 / r;
-                let w = 1.0 - r * inv_rc;
+                let w = 1.0 - r * (1.0 / c.rc);
                 let (theta_ij, inv_i, inv_j) = match p.temperature {
                     Some(t) => (t, 0.0, 0.0),
                     None => (2.0 / (s.inv_tau[i] + s.inv_tau[j]), s.inv_tau[i], s.inv_tau[j]),
@@ -179,8 +229,8 @@ impl ClassicDpd {
                 // `inv_tau`, here set to 1/theta as LAMMPS's dpd/fdt/energy does)
                 let drive = PairDrive {
                     e: [dr[0] * inv_r, dr[1] * inv_r, dr[2] * inv_r],
-                    gamma: p.sigma * p.sigma * w * w / (2.0 * kb * theta_ij),
-                    kappa: if p.temperature.is_none() { p.kappa * w * w } else { 0.0 },
+                    gamma: c.sigma * c.sigma * w * w / (2.0 * kb * theta_ij),
+                    kappa: if p.temperature.is_none() { c.kappa * w * w } else { 0.0 },
                     ti: Temps { theta: theta_ij, inv_tau: inv_i },
                     tj: Temps { theta: theta_ij, inv_tau: inv_j },
                     xi,
@@ -208,8 +258,8 @@ impl ClassicDpd {
         sys.settle(drifted)?;
         self.relist(sys);
         sys.comm.forward(&mut sys.store, Fields::MOMENTUM);
-        if let PairForce::Mdpd { h, .. } = self.force {
-            self.rho(sys, h);
+        if let PairForce::Mdpd(t) = &self.force {
+            self.rho(sys, t);
             sys.comm.forward(&mut sys.store, Fields::RHO);
         }
         self.forces(sys, sys.step + 1);
@@ -245,7 +295,7 @@ impl Physics for ClassicDpd {
         if self.shardlow.as_ref().is_some_and(|s| s.temperature.is_none()) {
             fields = fields | Fields::U_COND | Fields::INV_TAU;
         }
-        if matches!(self.force, PairForce::Mdpd { .. }) {
+        if matches!(self.force, PairForce::Mdpd(_)) {
             fields = fields | Fields::RHO;
         }
         sys.store.enable(fields);
@@ -265,8 +315,8 @@ impl Physics for ClassicDpd {
         }
         let state = self.eos(sys);
         sys.comm.forward(&mut sys.store, SWEPT | Fields::U_COND);
-        if let PairForce::Mdpd { h, .. } = self.force {
-            self.rho(sys, h);
+        if let PairForce::Mdpd(t) = &self.force {
+            self.rho(sys, t);
             sys.comm.forward(&mut sys.store, Fields::RHO);
         }
         self.forces(sys, sys.step);
@@ -324,10 +374,16 @@ fn velocity(s: &gendpde_engine::Particles, i: usize) -> [f64; 3] {
 
 /// Sums pair forces, energies and virials over the half list into the owned particles
 /// (see [`gendpde_engine::NeighborList::pairs`]). `pair(s, i, j, r_ij, r)` gives the
-/// scalar force F (f_ij = F e_ij) and the pair energy of a pair closer than `rc`; with
-/// `CLAMPED` it is called for every pair of the list and must give zeros beyond `rc`.
+/// scalar force F (f_ij = F e_ij) and the pair energy of a pair closer than its cutoff
+/// `rc(s, [i, j])`; with `CLAMPED` it is called for every pair of the list and must give
+/// zeros beyond the cutoff.
 #[inline(always)]
-fn tally<const CLAMPED: bool>(s: &mut Particles, pairs: &[[u32; 2]], rc: f64, pair: impl Fn(&Particles, usize, usize, Vec3, f64) -> (f64, f64)) {
+fn tally<const CLAMPED: bool>(
+    s: &mut Particles,
+    pairs: &[[u32; 2]],
+    rc: impl Fn(&Particles, [usize; 2]) -> f64,
+    pair: impl Fn(&Particles, usize, usize, Vec3, f64) -> (f64, f64),
+) {
     let n = s.nlocal;
     s.f[..n].fill([0.0; 3]);
     s.epair[..n].fill(0.0);
@@ -336,7 +392,7 @@ fn tally<const CLAMPED: bool>(s: &mut Particles, pairs: &[[u32; 2]], rc: f64, pa
         let (i, j) = (i as usize, j as usize);
         let d = sub(s.r[i], s.r[j]);
         let r2 = dot(d, d);
-        if (!CLAMPED && r2 >= rc * rc) || r2 < 1e-20 {
+        if r2 < 1e-20 || (!CLAMPED && r2 >= rc(s, [i, j]).powi(2)) {
             continue;
         }
         let r = r2.sqrt();

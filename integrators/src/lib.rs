@@ -15,10 +15,11 @@ pub mod settings;
 pub mod species;
 pub mod sweep;
 pub mod system;
+pub mod type_table;
 pub mod verlet;
 pub mod vv_euler;
 
-pub use classic::{ClassicDpd, Integration, PairForce, ShardlowDpd};
+pub use classic::{ClassicDpd, DpdCoeff, Integration, MdpdCoeff, PairForce, ShardlowCoeff, ShardlowDpd};
 pub use error::StepError;
 pub use heat::HeatModel;
 pub use physics::{GenDpde, Physics, SetupError};
@@ -26,3 +27,4 @@ pub use isentropic::FixedEntropy;
 pub use settings::{Dissipation, Motion, RebuildPolicy, Reservoir, Settings, Work};
 pub use species::Species;
 pub use system::{Snapshot, System};
+pub use type_table::TypeTable;
