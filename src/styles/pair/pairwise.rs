@@ -104,7 +104,7 @@ impl<T: Clone> TypePairs<T> {
 /// A pairwise `pair_style` line (the words after the style name in `a`).
 pub fn parse_style(style: &str, a: &mut Args) -> Result<Pairwise, ScriptError> {
     let kind = match style {
-        "dpd" => Kind::Dpd { temperature: a.positive("the temperature T")? },
+        "dpd" => Kind::Dpd { temperature: a.non_negative("the temperature T")? },
         "dpd/fdt" => Kind::DpdFdt { temperature: a.positive("the temperature T")? },
         "dpd/fdt/energy" => Kind::DpdFdtEnergy,
         "hybrid/overlay" => {
