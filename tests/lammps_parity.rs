@@ -7,11 +7,12 @@
 //! 3. speed: atom-steps/s of both on the same script, reported (not asserted);
 //! 4. LAMMPS's own DPDE example in metal units runs unchanged and conserves energy;
 //! 5. two-type mixtures with coefficients and cutoffs per type pair (dpd, mdpd): forces
-//!    at step 0 to round-off, particles after 100 (dpd) or 50 (mdpd) steps as in 1.
+//!    at step 0 to round-off, particles after 100 (dpd) or 50 (mdpd) steps as in 1.;
+//!    the mixture's `write_data pair ij` file of each code read by the other.
 
 mod common;
 
-use common::lammps::{agree_within, block_average, expect_success, parse_thermo_blocks, read_dump_snapshot, run_lammps, stage_inputs, ThermoBlock};
+use common::lammps::{agree_within, parse_thermo, block_average, expect_success, parse_thermo_blocks, read_dump_snapshot, run_lammps, stage_inputs, ThermoBlock};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
@@ -124,6 +125,34 @@ fn dpd_mixture_with_per_pair_coefficients_and_cutoffs_matches_lammps() {
 #[test]
 fn mdpd_mixture_with_per_pair_coefficients_cutoffs_and_kernels_matches_lammps() {
     mixture_matches_lammps("mdpd", "50");
+}
+
+/// `write_data pair ij` of either code, read by the other with only `pair_style` in the
+/// script (in.mix-dpd-data), gives the step-0 row of the script that set the coefficients.
+#[test]
+fn pairij_data_files_round_trip_between_gendpde_and_lammps() {
+    let ((dl, l), (dg, g)) = both("mix-data", "in.mix-dpd", &[("steps", "0")]);
+    let first = |out: &str| parse_thermo(out, "Step")[0].clone();
+    let expect = first(&l);
+    assert!(agree(&expect, &first(&g)), "in.mix-dpd step 0: LAMMPS {expect:?}, gendpde {:?}", first(&g));
+    let text = std::fs::read_to_string(dg.join("mix-dpd-ij.data")).unwrap();
+    assert!(text.contains("PairIJ Coeffs # dpd\n\n1 1 25.0 4.5 1.2\n1 2 30.0 3.0 1.3\n2 2 20.0 6.0 1.0\n"), "{text}");
+    // each code reads the other's file
+    std::fs::copy(dg.join("mix-dpd-ij.data"), dl.join("from-gendpde.data")).unwrap();
+    std::fs::copy(dl.join("mix-dpd-ij.data"), dg.join("from-lammps.data")).unwrap();
+    stage_inputs(&dl, "in.mix-dpd-data");
+    stage_inputs(&dg, "in.mix-dpd-data");
+    let l2 = expect_success("LAMMPS", &run_lammps(&dl, "in.mix-dpd-data", &[("data", "from-gendpde.data")]));
+    let out = gendpde(&dg, "in.mix-dpd-data", &[("data", "from-lammps.data")]);
+    assert!(out.status.success(), "gendpde failed:\n{}", String::from_utf8_lossy(&out.stderr));
+    let g2 = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(agree(&expect, &first(&l2)), "LAMMPS reading gendpde's file: {:?}", first(&l2));
+    assert!(agree(&expect, &first(&g2)), "gendpde reading LAMMPS's file: {:?}", first(&g2));
+}
+
+/// Thermo rows equal to 1e-12 relative.
+fn agree(a: &[f64], b: &[f64]) -> bool {
+    a.len() == b.len() && a.iter().zip(b).all(|(x, y)| (x - y).abs() <= 1e-12 * x.abs().max(1.0))
 }
 
 /// The production block (the last thermo block) of a run.

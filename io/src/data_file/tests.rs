@@ -220,6 +220,7 @@ fn empty_system_round_trip() {
         lo: [0.0; 3],
         hi: [1.0, 2.0, 3.0],
         masses: vec![Some(1.0), Some(2.0)],
+        pair_coeffs: None,
         atoms: vec![],
         velocities: Some(vec![]),
     };

@@ -16,7 +16,7 @@
 
 use crate::base::args::Args;
 use crate::styles::PAIR_STYLES;
-use gendpde_io::{Command, ScriptError};
+use gendpde_io::{Command, PairCoeffs, ScriptError};
 
 #[derive(Clone, Debug, PartialEq)]
 pub enum Kind {
@@ -98,6 +98,36 @@ impl<T: Clone> TypePairs<T> {
             *self = Self { n, set: vec![None; n * n] };
         }
         self.set[(i - 1) * n + j - 1] = Some(v);
+    }
+}
+
+impl Pairwise {
+    /// The `Pair Coeffs` (`i a0 gamma`, LAMMPS's `write_data` default) or `PairIJ Coeffs`
+    /// (`i j a0 gamma cutoff`) section of `write_data`: `pair dpd` only, as in LAMMPS
+    /// (its other DPD styles write none). Values print in round-trip form, where LAMMPS
+    /// prints 6 digits. Err like LAMMPS's set-up when a pair is unset.
+    pub fn data_section(&self, ntypes: usize, ij: bool) -> Result<Option<PairCoeffs>, String> {
+        if !matches!(self.kind, Kind::Dpd { .. }) {
+            return Ok(None);
+        }
+        let c = self.coeff.complete(ntypes).map_err(|(i, j)| format!("All pair coeffs are not set: no pair_coeff for types {i} {j}"))?;
+        let mut rows = Vec::new();
+        for i in 1..=ntypes {
+            for j in if ij { i..=ntypes } else { i..=i } {
+                let p = &c[(i - 1) * ntypes + j - 1];
+                let mut row = vec![i.to_string()];
+                if ij {
+                    row.push(j.to_string());
+                }
+                row.extend([format!("{:?}", p.a), format!("{:?}", p.gamma)]);
+                if ij {
+                    row.push(format!("{:?}", p.rc));
+                }
+                rows.push(row);
+            }
+        }
+        let lines = vec![0; rows.len()];
+        Ok(Some(PairCoeffs { ij, style: Some("dpd".into()), rows, lines }))
     }
 }
 
