@@ -165,8 +165,9 @@ fn every_style_is_bit_identical_on_1_2_3_4_ranks_and_an_uneven_grid() {
 }
 
 /// A two-type fluid of 8 x 8 x 16 sc sites at rho 3 (5.55 x 5.55 x 11.1) with half the
-/// particles of type 2, and `rest`: cutoffs up to 1.2 + skin 0.3 leave 2 cells across x
-/// and y (a box under 4 cells, as LAMMPS's in.dpd) and 7 along z.
+/// particles of type 2, and `rest`: cutoffs up to 1.2 + skin 0.3 fit 3 lengths across x
+/// and y (a box under 4 cells, as LAMMPS's in.dpd), so the grid has 6 x 6 x 12 cells of
+/// half that length.
 fn thin_mixture(atom_style: &str, rest: &str) -> String {
     format!(
         "units lj\natom_style {atom_style}\ncomm_modify vel yes\nlattice sc 3.0\nregion box block 0 8 0 8 0 16\n\
@@ -175,9 +176,9 @@ fn thin_mixture(atom_style: &str, rest: &str) -> String {
     )
 }
 
-/// Mixtures with coefficients and cutoffs per type pair in a box of 2 cells across two
-/// dimensions: the same rows and particles on 1-4 ranks and on the grids 1 1 3 and
-/// 2 1 2 (3 ranks across a 2-cell dimension are refused, see below).
+/// Mixtures with coefficients and cutoffs per type pair in a box under 4 (cutoff + skin)
+/// across two dimensions: the same rows and particles on 1-4 ranks and on the grids
+/// 3 1 1 and 2 1 2 (sub-domains shorter than cutoff + skin are refused, see below).
 #[test]
 fn thin_box_mixtures_are_bit_identical_on_1_2_3_4_ranks() {
     let dpd_thermo = "compute dpdU all dpd\nthermo_style custom step temp press pe ke c_dpdU[1] c_dpdU[2]\n";
@@ -205,22 +206,22 @@ fn thin_box_mixtures_are_bit_identical_on_1_2_3_4_ranks() {
             ) + "thermo_style custom step temp press pe ke\n",
         ),
     ];
-    let layouts = [(1, None), (2, None), (3, None), (4, None), (3, Some("1 1 3")), (4, Some("2 1 2"))];
+    let layouts = [(1, None), (2, None), (3, None), (4, None), (3, Some("3 1 1")), (4, Some("2 1 2"))];
     for (name, scene) in &scenes {
         let start = std::time::Instant::now();
         assert_rank_independent(&tempdir(name), name, scene, 30, &layouts);
-        eprintln!("{name}: identical on 1, 2, 3, 4 ranks and processors 1 1 3, 2 1 2 ({:.1} s)", start.elapsed().as_secs_f64());
+        eprintln!("{name}: identical on 1, 2, 3, 4 ranks and processors 3 1 1, 2 1 2 ({:.1} s)", start.elapsed().as_secs_f64());
     }
-    // more ranks across x than cells: a clear refusal before any step
+    // sub-domains shorter than cutoff + skin: a clear refusal before any step
     let dir = tempdir("thin-refused");
     let script = thin_mixture("atomic", "pair_style dpd 1.0 1.0 3854262\npair_coeff * * 25.0 4.5 1.2\nfix 1 all nve\n")
-        .replacen("create_box", "processors 3 1 1\ncreate_box", 1)
+        .replacen("create_box", "processors 4 1 1\ncreate_box", 1)
         + "run 1\n";
     std::fs::write(dir.join("in.scene"), script).unwrap();
-    let out = mpirun(3, &dir, &["run", "in.scene", "-log", "none"]);
+    let out = mpirun(4, &dir, &["run", "in.scene", "-log", "none"]);
     assert!(!out.status.success());
     let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(stderr.contains("3 ranks along x need at least 3 cells of side cutoff + skin = 1.500000, the box holds 2"), "{stderr}");
+    assert!(stderr.contains("4 ranks along x need at least 8 cells of side cutoff + skin = 1.500000 / 2, the box holds 6"), "{stderr}");
 }
 
 /// Finding 1: `pair dpd/fdt/energy` changed with the rank count from the first list

@@ -36,9 +36,10 @@ const CASES: &[Case] = &[
     Case { script: "scripts/lammps/in.mdpd-liquid", vars: &[("equil", "5")], every: 5, k: 10 },
     Case { script: "scripts/lammps/in.dpd-isothermal", vars: &[], every: 5, k: 10 },
     Case { script: "scripts/lammps/in.dpd-fdt", vars: &[], every: 5, k: 10 },
-    // per-pair coefficients, cutoffs and kernels (the thin-box in.mix-dpd and in.dpd-basic,
-    // 2 cells across, cannot run on the 3 ranks of the last test)
+    // per-pair coefficients, cutoffs and kernels, boxes under 4 (cutoff + skin)
+    Case { script: "scripts/lammps/in.mix-dpd", vars: &[("T", "1.0")], every: 5, k: 10 },
     Case { script: "scripts/lammps/in.mix-mdpd", vars: &[], every: 5, k: 10 },
+    Case { script: "scripts/lammps/in.dpd-basic", vars: &[], every: 5, k: 10 },
 ];
 
 /// Commands of the original script a continuation repeats: the output settings (the

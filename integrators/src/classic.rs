@@ -206,7 +206,7 @@ impl ClassicDpd {
         let (dt, kb) = (self.settings.dt, self.kb);
         let sqrt_dt = dt.sqrt();
         let (step, normals, reach) = (sys.step, Normals::get(), p.cutoff());
-        for colour in 0..8 {
+        for colour in 0..sys.sweep.colours() {
             let pairs = sys.sweep.within(colour, &sys.store, reach);
             let s = &mut sys.store;
             for &[i, j] in pairs {

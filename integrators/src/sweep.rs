@@ -38,7 +38,7 @@ pub fn sweep<E: Eos, H: HeatFlow>(eos: &Species<E>, d: &Dissipation, sys: &mut S
     inv_m.clear();
     inv_m.extend(sys.store.mass.iter().map(|m| 1.0 / m));
     let mut outcome = Ok(());
-    for colour in 0..8 {
+    for colour in 0..sys.sweep.colours() {
         let pairs = sys.sweep.within(colour, &sys.store, rc);
         let s = &mut sys.store;
         for &[i, j] in pairs {
