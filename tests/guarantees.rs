@@ -208,6 +208,66 @@ fn every_style_is_bit_identical_on_1_2_3_4_ranks_and_an_uneven_grid() {
     }
 }
 
+/// A two-type fluid of 8 x 8 x 16 sc sites at rho 3 (5.55 x 5.55 x 11.1) with half the
+/// particles of type 2, and `rest`: cutoffs up to 1.2 + skin 0.3 fit 3 lengths across x
+/// and y (a box under 4 cells, as LAMMPS's in.dpd), so the grid has 6 x 6 x 12 cells of
+/// half that length.
+fn thin_mixture(atom_style: &str, rest: &str) -> String {
+    format!(
+        "units lj\natom_style {atom_style}\ncomm_modify vel yes\nlattice sc 3.0\nregion box block 0 8 0 8 0 16\n\
+         create_box 2 box\ncreate_atoms 1 box\nset group all type/fraction 2 0.5 4242\nmass 1 1.0\nmass 2 2.0\n\
+         velocity all create 1.0 4928 loop geom\n{rest}neighbor 0.3 bin\nneigh_modify every 1 delay 0 check yes\ntimestep 0.01\n"
+    )
+}
+
+/// Mixtures with coefficients and cutoffs per type pair in a box under 4 (cutoff + skin)
+/// across two dimensions: the same rows and particles on 1-4 ranks and on the grids
+/// 3 1 1 and 2 1 2 (sub-domains shorter than cutoff + skin are refused, see below).
+#[test]
+fn thin_box_mixtures_are_bit_identical_on_1_2_3_4_ranks() {
+    let dpd_thermo = "compute dpdU all dpd\nthermo_style custom step temp press pe ke c_dpdU[1] c_dpdU[2]\n";
+    let scenes = [
+        (
+            "thin-dpd-mixture",
+            thin_mixture("atomic", "pair_style dpd 1.0 1.0 3854262\npair_coeff 1 1 25.0 4.5 1.2\npair_coeff 1 2 25.1 4.51 1.21\npair_coeff 2 2 25.2 4.52\nfix 1 all nve\n")
+                + "thermo_style custom step temp press pe ke\n",
+        ),
+        (
+            "thin-dpd-fdt-energy-mixture",
+            thin_mixture(
+                "dpd",
+                "set group all dpd/theta 1.0\npair_style dpd/fdt/energy 1.0 4928\npair_coeff * * 25.0 3.0 1.0 1.2\n\
+                 pair_coeff 1 2 20.0 4.0 2.0 1.1\npair_coeff 2 2 30.0 2.0 0.5\nfix 1 all shardlow\nfix 2 all nve\nfix 3 all eos/cv 10.0\n",
+            ) + dpd_thermo,
+        ),
+        (
+            "thin-mdpd-mixture",
+            thin_mixture(
+                "mdpd",
+                "pair_style hybrid/overlay mdpd/rhosum mdpd 1.0 1.0 9872598\npair_coeff * * mdpd/rhosum 0.75\npair_coeff 1 2 mdpd/rhosum 0.8\n\
+                 pair_coeff 1 1 mdpd -40.0 25.0 4.5 1.0 0.75\npair_coeff 1 2 mdpd -35.0 27.0 4.0 1.2 0.8\npair_coeff 2 2 mdpd -45.0 22.0 5.0 0.9 0.7\n\
+                 fix 1 all mvv/dpd\n",
+            ) + "thermo_style custom step temp press pe ke\n",
+        ),
+    ];
+    let layouts = [(1, None), (2, None), (3, None), (4, None), (3, Some("3 1 1")), (4, Some("2 1 2"))];
+    for (name, scene) in &scenes {
+        let start = std::time::Instant::now();
+        assert_rank_independent(&tempdir(name), name, scene, 30, &layouts);
+        eprintln!("{name}: identical on 1, 2, 3, 4 ranks and processors 3 1 1, 2 1 2 ({:.1} s)", start.elapsed().as_secs_f64());
+    }
+    // sub-domains shorter than cutoff + skin: a clear refusal before any step
+    let dir = tempdir("thin-refused");
+    let script = thin_mixture("atomic", "pair_style dpd 1.0 1.0 3854262\npair_coeff * * 25.0 4.5 1.2\nfix 1 all nve\n")
+        .replacen("create_box", "processors 4 1 1\ncreate_box", 1)
+        + "run 1\n";
+    std::fs::write(dir.join("in.scene"), script).unwrap();
+    let out = mpirun(4, &dir, &["run", "in.scene", "-log", "none"]);
+    assert!(!out.status.success());
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("4 ranks along x need at least 8 cells of side cutoff + skin = 1.500000 / 2, the box holds 6"), "{stderr}");
+}
+
 /// Finding 1: `pair dpd/fdt/energy` changed with the rank count from the first list
 /// rebuild (1/theta, which migration does not carry, was read stale).
 #[test]

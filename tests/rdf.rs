@@ -238,7 +238,7 @@ fn bad_input_names_the_line() {
     }
     // a cutoff whose cells do not fit the box
     let scene = "mass 1 1.0\nlattice sc 1.0\ncreate_atoms 1 box\npair_style dpd 1.0 1.0 1\npair_coeff * * 25 4.5\nfix n all nve\n";
-    let e = error_of(&format!("{head}{scene}compute g all rdf 10 cutoff 3\nfix f all ave/time 1 1 1 c_g[*] file x mode vector\nrun 0\n"));
+    let e = error_of(&format!("{head}{scene}compute g all rdf 10 cutoff 4.5\nfix f all ave/time 1 1 1 c_g[*] file x mode vector\nrun 0\n"));
     assert!(e.contains("in.bad:12:") && e.contains("compute g rdf: cutoff + skin"), "{e}");
 }
 

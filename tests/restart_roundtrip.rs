@@ -40,6 +40,10 @@ const CASES: &[Case] = &[
     Case { script: "scripts/lammps/in.dpde-vv-lj", vars: &[("equil", "5")], every: 5, k: 10 },
     Case { script: "scripts/lammps/in.dpd-vv", vars: &[], every: 5, k: 10 },
     Case { script: "scripts/lammps/in.edpd-gradient", vars: &[], every: 5, k: 10 },
+    // per-pair coefficients, cutoffs and kernels, boxes under 4 (cutoff + skin)
+    Case { script: "scripts/lammps/in.mix-dpd", vars: &[("T", "1.0")], every: 5, k: 10 },
+    Case { script: "scripts/lammps/in.mix-mdpd", vars: &[], every: 5, k: 10 },
+    Case { script: "scripts/lammps/in.dpd-basic", vars: &[], every: 5, k: 10 },
 ];
 
 /// Commands of the original script a continuation repeats: the output settings (the

@@ -1,25 +1,40 @@
-//! The global cell grid: cells of side >= cutoff + skin, an even count >= 4 per
-//! dimension, so that the 8-colour block ownership of ARCHITECTURE.md is well defined.
+//! The global cell grid: cells of side >= (cutoff + skin) / k, so that a pair spans at
+//! most k cells per dimension (the grid's `reach`), with a count per dimension that is a
+//! multiple of k + 1, so that the block-colour ownership of ARCHITECTURE.md (8 colours
+//! for k = 1) is well defined.
 //!
-//! A pair of particles in cells A and B (adjacent or equal, periodic) is owned by the
-//! cell C = componentwise min(A, B); C's pairs touch only the block C + {0,1}^3, and the
-//! colour of C is the parity of its index, so blocks of one colour are disjoint.
+//! A pair of particles in cells A and B (at most k apart per dimension, periodic) is
+//! owned by the cell C = componentwise min(A, B); C's pairs touch only the block
+//! C + {0..k}^3, and the colour of C is its index modulo k + 1, so blocks of one colour
+//! are disjoint (with k + 1 cells along a dimension a colour has one block along it,
+//! which covers each cell once). A box of length >= 2 (cutoff + skin) holds at most one
+//! periodic image of a particle within the cutoff of another, so every (pair, image)
+//! lies in one block.
+//!
+//! The grid depends on the box and the cutoff only (never on the ranks): k = 1 with an
+//! even count >= 4 per dimension where the box allows it (every box of at least
+//! 4 (cutoff + skin)); else k = 2 with >= 6 cells of side >= (cutoff + skin) / 2 (boxes
+//! from 3 (cutoff + skin), LAMMPS's in.dpd), which leaves cells for up to 3 ranks per
+//! dimension; else k = 1 with 2 cells (boxes from 2 (cutoff + skin), one rank across).
 
 use crate::{Domain, Vec3};
 use std::fmt;
 
-/// Smallest number of cells per dimension the colouring accepts.
-pub const MIN_CELLS: usize = 4;
+/// Smallest number of cells of side cutoff + skin per dimension a box must hold.
+pub const MIN_CELLS: usize = 2;
 
 /// Cells a grid may have however few particles it holds (16^3).
 pub const FEW_CELLS: usize = 4096;
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct CellGrid {
-    /// Cells per dimension (even, >= 4).
+    /// Cells per dimension (a multiple of `reach` + 1).
     pub count: [usize; 3],
     /// Cell side per dimension.
     pub side: Vec3,
+    /// Cells a pair may span per dimension (k): blocks of (k + 1)^3 cells, (k + 1)^3
+    /// colours, ghost layers k cells deep.
+    pub reach: usize,
     lo: Vec3,
     len: Vec3,
 }
@@ -37,8 +52,9 @@ impl fmt::Display for GridError {
         let axis = ["x", "y", "z"][self.dim];
         write!(
             f,
-            "box length {:.6} along {axis} holds fewer than {MIN_CELLS} cells of side cutoff + skin = {:.6}; \
-             the smallest valid length is {:.6} (enlarge the box, or reduce the cutoff or the skin)",
+            "box length {:.6} along {axis} holds fewer than {MIN_CELLS} cells of side cutoff + skin = {:.6} \
+             (a periodic image of a particle would interact twice); the smallest valid length is {:.6} \
+             (enlarge the box, or reduce the cutoff or the skin)",
             self.length,
             self.cut,
             MIN_CELLS as f64 * self.cut
@@ -49,35 +65,43 @@ impl fmt::Display for GridError {
 impl std::error::Error for GridError {}
 
 impl CellGrid {
-    /// The finest grid with an even number (>= 4) of cells of side >= `cut`.
+    /// The grid for pairs up to `cut` apart (see the module's rule for the reach k): the
+    /// finest with a multiple of k + 1 cells of side >= `cut` / k per dimension.
     pub fn new(domain: &Domain, cut: f64) -> Result<Self, GridError> {
         let len = domain.len();
-        let mut count = [0; 3];
-        let mut side = [0.0; 3];
-        for d in 0..3 {
-            let fit = if cut > 0.0 { (len[d] / cut).floor() as usize } else { usize::MAX };
-            let n = fit.min(1 << 10) & !1;
-            if n < MIN_CELLS {
-                return Err(GridError { dim: d, length: len[d], cut });
-            }
-            count[d] = n;
-            side[d] = len[d] / n as f64;
+        // cells of side >= cut / k along each dimension, a multiple of k + 1 of them
+        let counts = |k: usize| {
+            [0, 1, 2].map(|d| {
+                let fit = if cut > 0.0 { (len[d] * k as f64 / cut).floor() as usize } else { usize::MAX };
+                let n = fit.min(1 << 10);
+                n - n % (k + 1)
+            })
+        };
+        let (reach, count) = match (counts(1), counts(2)) {
+            (c, _) if c.iter().all(|&n| n >= 4) => (1, c),
+            (_, c) if c.iter().all(|&n| n >= 6) => (2, c),
+            (c, _) => (1, c),
+        };
+        if let Some(d) = (0..3).find(|&d| count[d] < MIN_CELLS) {
+            return Err(GridError { dim: d, length: len[d], cut });
         }
-        Ok(Self { count, side, lo: domain.lo, len })
+        let side = [0, 1, 2].map(|d| len[d] / count[d] as f64);
+        Ok(Self { count, side, reach, lo: domain.lo, len })
     }
 
-    /// The grid with at most max(`particles`, [`FEW_CELLS`]) cells, coarsened two cells
-    /// at a time along the finest dimension: a dilute box needs no more cells than
-    /// particles (LAMMPS caps its bins too), and the bins of a finer grid could outgrow
-    /// memory. Dense boxes keep their grid.
+    /// The grid with at most max(`particles`, [`FEW_CELLS`]) cells, coarsened k + 1 cells
+    /// at a time along the finest dimension (to no fewer than 2 (k + 1)): a dilute box
+    /// needs no more cells than particles (LAMMPS caps its bins too), and the bins of a
+    /// finer grid could outgrow memory. Dense boxes keep their grid.
     pub fn at_most(mut self, particles: usize) -> Self {
         let limit = particles.max(FEW_CELLS);
+        let step = self.reach + 1;
         while self.len() > limit {
             let d = (0..3).rev().max_by_key(|&d| self.count[d]).unwrap_or(0);
-            if self.count[d] <= MIN_CELLS {
+            if self.count[d] <= 2 * step {
                 break;
             }
-            self.count[d] -= 2;
+            self.count[d] -= step;
             self.side[d] = self.len[d] / self.count[d] as f64;
         }
         self
@@ -103,10 +127,17 @@ impl CellGrid {
         self.len() == 0
     }
 
-    /// Colour 0..8 of a cell: the parity of its coordinates.
+    /// The number of colours, (k + 1)^3.
+    pub fn colours(&self) -> usize {
+        (self.reach + 1).pow(3)
+    }
+
+    /// Colour of a cell on a grid of reach k: its coordinates modulo k + 1, x fastest
+    /// (for k = 1 the parity of its coordinates, 0..8).
     #[inline]
-    pub fn colour(c: [i32; 3]) -> usize {
-        ((c[0] & 1) | ((c[1] & 1) << 1) | ((c[2] & 1) << 2)) as usize
+    pub fn colour(c: [i32; 3], reach: usize) -> usize {
+        let m = reach as i32 + 1;
+        (c[0].rem_euclid(m) + m * (c[1].rem_euclid(m) + m * c[2].rem_euclid(m))) as usize
     }
 }
 
@@ -125,10 +156,23 @@ mod tests {
 
     #[test]
     fn too_small_box_names_the_smallest_valid_length() {
-        let d = Domain::new([0.0; 3], [10.0, 20.0, 20.0]);
+        let d = Domain::new([0.0; 3], [8.0, 20.0, 20.0]);
         let e = CellGrid::new(&d, 4.4).unwrap_err();
         assert_eq!(e.dim, 0);
-        assert!(e.to_string().contains("17.6"), "{e}");
+        assert!(e.to_string().contains("8.8"), "{e}");
+    }
+
+    #[test]
+    fn a_box_under_four_cuts_gets_finer_cells() {
+        // LAMMPS's DPD-BASIC in.dpd: a 5.5 box, cutoff 1.22 + skin 0.3: cells of half the
+        // cut, a multiple of 3 per dimension
+        let d = Domain::new([0.0; 3], [5.5, 5.5, 40.0]);
+        let g = CellGrid::new(&d, 1.52).unwrap();
+        assert_eq!((g.reach, g.count, g.colours()), (2, [6, 6, 51], 27));
+        assert!(g.side.iter().all(|&s| s >= 0.76));
+        // under 3 cuts: 2 cells of the cut
+        let g = CellGrid::new(&Domain::new([0.0; 3], [4.0, 5.5, 40.0]), 1.52).unwrap();
+        assert_eq!((g.reach, g.count), (1, [2, 2, 26]));
     }
 
     #[test]
@@ -138,7 +182,7 @@ mod tests {
         assert_eq!(g.count, [1024; 3]);
         let g = g.at_most(100_000);
         assert!(g.len() <= 100_000 && g.len() > 90_000, "{:?}", g.count);
-        assert!(g.count.iter().all(|&n| n % 2 == 0) && g.side.iter().all(|&s| s >= 4.4));
+        assert!(g.reach == 1 && g.count.iter().all(|&n| n % 2 == 0) && g.side.iter().all(|&s| s >= 4.4));
         assert_eq!(CellGrid::new(&d, 4.4).unwrap().at_most(10).count, [16; 3]);
         // a dense box keeps its grid
         let dense = Domain::new([0.0; 3], [18.9, 20.0, 40.0]);
@@ -147,18 +191,21 @@ mod tests {
 
     #[test]
     fn colours_alternate() {
-        assert_eq!(CellGrid::colour([0, 0, 0]), 0);
-        assert_eq!(CellGrid::colour([3, 2, 5]), 5);
-        assert_eq!(CellGrid::colour([-1, 4, 4]), 1);
+        assert_eq!(CellGrid::colour([0, 0, 0], 1), 0);
+        assert_eq!(CellGrid::colour([3, 2, 5], 1), 5);
+        assert_eq!(CellGrid::colour([-1, 4, 4], 1), 1);
+        assert_eq!(CellGrid::colour([-1, 4, 5], 2), 2 + 3 * (1 + 3 * 2));
     }
 }
 
-/// Particles (owned and ghost) sorted by cell over the owned range plus one ghost
-/// cell on every side, and by tag within each cell. Walking cells in a fixed stencil
+/// Particles (owned and ghost) sorted by cell over the owned range plus the ghost
+/// cells (k on every side), and by tag within each cell. Walking cells in a fixed stencil
 /// order and particles in tag order gives every list an order that no decomposition can
 /// change (the lists need no sorting of their own).
 #[derive(Clone, Debug, Default)]
 pub struct CellBins {
+    /// The grid's reach k: the bins hold k ghost cells on every side.
+    pub reach: usize,
     lo: [i32; 3],
     dims: [usize; 3],
     start: Vec<u32>,
@@ -167,11 +214,13 @@ pub struct CellBins {
 }
 
 impl CellBins {
-    /// Bins particles by their `cell` for the owned range [lo, hi), ordered by `tag`
-    /// within each cell.
-    pub fn build(&mut self, cells: &[[i32; 3]], tags: &[u64], lo: [i32; 3], hi: [i32; 3]) {
-        self.lo = [lo[0] - 1, lo[1] - 1, lo[2] - 1];
-        self.dims = [0, 1, 2].map(|d| (hi[d] - lo[d] + 2) as usize);
+    /// Bins particles by their `cell` for the owned range [lo, hi) and `reach` ghost
+    /// cells on every side, ordered by `tag` within each cell.
+    pub fn build(&mut self, cells: &[[i32; 3]], tags: &[u64], lo: [i32; 3], hi: [i32; 3], reach: usize) {
+        let k = reach as i32;
+        self.reach = reach;
+        self.lo = [lo[0] - k, lo[1] - k, lo[2] - k];
+        self.dims = [0, 1, 2].map(|d| (hi[d] - lo[d] + 2 * k) as usize);
         let ncell = self.dims.iter().product::<usize>();
         self.start.clear();
         self.start.resize(ncell + 1, 0);

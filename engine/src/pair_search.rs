@@ -1,12 +1,12 @@
 //! One half pass over the cell pairs that builds both the neighbour list and the
 //! coloured Shardlow pairs.
 //!
-//! Every unordered pair of adjacent (or equal) cells A, B lies in exactly one block
-//! C + {0,1}^3 with C = min(A, B) componentwise, as the pair of offsets (a, b) with
-//! a & b == 0. The pass walks the blocks of C in [lo - 1, hi) colour by colour, in
-//! lexicographic order within a colour, then the 14 cell pairs of a block, then the
-//! particles by tag (the bins hold each cell in tag order), and tests each particle pair
-//! once. A cell A lies in exactly one block per colour, so the order in which a particle
+//! Every unordered pair of cells A, B at most k apart per dimension (the grid's reach)
+//! lies in exactly one block C + {0..k}^3 with C = min(A, B) componentwise, as the pair
+//! of offsets (a, b) with min(a_d, b_d) = 0 in every dimension. The pass walks the
+//! blocks of C in [lo - k, hi) colour by colour, in lexicographic order within a colour,
+//! then the cell pairs of a block (14 for k = 1, 63 for k = 2), then the particles by
+//! tag (the bins hold each cell in tag order), and tests each particle pair once. A cell A lies in exactly one block per colour, so the order in which a particle
 //! meets its neighbours depends only on the parity of its cell and the tags: no
 //! decomposition can change it. Pairs of owned blocks (C in [lo, hi)) are the sweep's;
 //! every pair with an owned particle enters the neighbour list, in pass order.
@@ -14,25 +14,23 @@
 use crate::cells::CellBins;
 use crate::{dot, sub, CellGrid, NeighborList, Particles, SweepPairs};
 
-/// Cell offsets (a, b) within a block whose componentwise min is the block's own cell:
-/// the 3-bit masks a, b with a & b == 0 and a <= b (14 pairs of cells).
-const CELL_PAIRS: [(u8, u8); 14] = {
-    let mut out = [(0u8, 0u8); 14];
-    let mut k = 0;
-    let mut a = 0u8;
-    while a < 8 {
-        let mut b = a;
-        while b < 8 {
-            if a & b == 0 {
-                out[k] = (a, b);
-                k += 1;
+/// Cell offsets (a, b) in {0..k}^3 within a block whose componentwise min is the
+/// block's own cell, a <= b by index a_x + (k+1) (a_y + (k+1) a_z): for k = 1 the
+/// 3-bit masks a, b with a & b == 0 (14 pairs of cells).
+fn cell_pairs(reach: usize) -> Vec<([i32; 3], [i32; 3])> {
+    let m = reach + 1;
+    let offset = |i: usize| [(i % m) as i32, ((i / m) % m) as i32, (i / (m * m)) as i32];
+    let mut out = Vec::new();
+    for a in 0..m * m * m {
+        for b in a..m * m * m {
+            let (oa, ob) = (offset(a), offset(b));
+            if (0..3).all(|d| oa[d].min(ob[d]) == 0) {
+                out.push((oa, ob));
             }
-            b += 1;
         }
-        a += 1;
     }
     out
-};
+}
 
 /// The lists wanted from a pass, each with its radius (cutoff plus skin).
 pub struct ListRequest<'a> {
@@ -41,7 +39,7 @@ pub struct ListRequest<'a> {
 }
 
 /// Builds the requested lists for the owned cells [lo, hi) from the bins (which hold
-/// [lo - 1, hi] with the ghosts).
+/// [lo - k, hi + k) with the ghosts, k their reach).
 pub fn build_lists(store: &Particles, bins: &CellBins, lo: [i32; 3], hi: [i32; 3], req: ListRequest<'_>) {
     let ListRequest { mut nlist, mut sweep } = req;
     let rn2 = nlist.as_ref().map_or(-1.0, |(_, r)| r * r);
@@ -49,7 +47,11 @@ pub fn build_lists(store: &Particles, bins: &CellBins, lo: [i32; 3], hi: [i32; 3
     let r2max = rn2.max(rs2);
     let nlocal = store.nlocal as u32;
     let owned = |c: [i32; 3]| (0..3).all(|d| c[d] >= lo[d] && c[d] < hi[d]);
-    let offset = |c: [i32; 3], m: u8| [c[0] + (m & 1) as i32, c[1] + ((m >> 1) & 1) as i32, c[2] + ((m >> 2) & 1) as i32];
+    let reach = bins.reach;
+    let k = reach as i32;
+    let offset = |c: [i32; 3], o: [i32; 3]| [c[0] + o[0], c[1] + o[1], c[2] + o[2]];
+    let colours = (reach + 1).pow(3);
+    let cell_pairs = cell_pairs(reach);
     // reuse the memory of the previous lists
     let mut half = match nlist.as_mut() {
         Some((nl, _)) => std::mem::take(&mut nl.pairs),
@@ -61,26 +63,32 @@ pub fn build_lists(store: &Particles, bins: &CellBins, lo: [i32; 3], hi: [i32; 3
         None => Default::default(),
     };
     sweep_pairs.clear();
+    ghost_writes.resize_with(colours, Vec::new);
     ghost_writes.iter_mut().for_each(Vec::clear);
-    let mut colour_start = [0usize; 9];
-    for colour in 0..8 {
+    let mut colour_start = vec![0usize; colours + 1];
+    for colour in 0..colours {
         colour_start[colour] = sweep_pairs.len();
-        for z in lo[2] - 1..hi[2] {
-            for y in lo[1] - 1..hi[1] {
-                for x in lo[0] - 1..hi[0] {
+        // the blocks of this colour: every (k + 1)-th cell from the first of the colour
+        let m = reach + 1;
+        let first = |d: usize, r: usize| lo[d] - k + ((r as i32 - (lo[d] - k)).rem_euclid(m as i32));
+        let (fx, fy, fz) = (first(0, colour % m), first(1, (colour / m) % m), first(2, colour / (m * m)));
+        for z in (fz..hi[2]).step_by(m) {
+            for y in (fy..hi[1]).step_by(m) {
+                for x in (fx..hi[0]).step_by(m) {
                     let c = [x, y, z];
-                    if CellGrid::colour(c) != colour {
-                        continue;
-                    }
+                    debug_assert_eq!(CellGrid::colour(c, reach), colour);
                     let block_owned = owned(c) && rs2 > 0.0;
                     let block_start = sweep_pairs.len();
-                    for &(a, b) in &CELL_PAIRS {
+                    for &(a, b) in &cell_pairs {
                         let (cell_a, cell_b) = (offset(c, a), offset(c, b));
                         let listed = rn2 > 0.0 && (owned(cell_a) || owned(cell_b));
                         if !(block_owned || listed) {
                             continue;
                         }
                         let (ca, cb) = (bins.cell(cell_a), bins.cell(cell_b));
+                        if ca.is_empty() || cb.is_empty() {
+                            continue;
+                        }
                         for (k, &i) in ca.iter().enumerate() {
                             let ri = store.r[i as usize];
                             let partners = if a == b { &ca[k + 1..] } else { cb };
@@ -108,7 +116,7 @@ pub fn build_lists(store: &Particles, bins: &CellBins, lo: [i32; 3], hi: [i32; 3
         ghost_writes[colour].sort_unstable();
         ghost_writes[colour].dedup();
     }
-    colour_start[8] = sweep_pairs.len();
+    colour_start[colours] = sweep_pairs.len();
     if let Some((sp, radius)) = sweep {
         sp.radius = radius;
         sp.pairs = sweep_pairs;

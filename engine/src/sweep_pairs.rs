@@ -1,7 +1,7 @@
 //! The pairs of the Shardlow sweep, grouped by colour and block.
 //!
-//! Pairs of colour c live in blocks C + {0,1}^3 of cells C with colour c; blocks of
-//! one colour are disjoint, so they commute. Within a block, pairs run by pair of cells
+//! Pairs of colour c live in blocks C + {0..k}^3 of cells C with colour c (k the
+//! grid's reach); blocks of one colour are disjoint, so they commute. Within a block, pairs run by pair of cells
 //! in a fixed order, then by the tags of the two particles (the bins hold each cell in
 //! tag order): an order no decomposition can change. Built by [`crate::pair_search`].
 
@@ -14,14 +14,19 @@ pub struct SweepPairs {
     /// Pairs (i, j) with tag[i] < tag[j].
     pub pairs: Vec<[u32; 2]>,
     /// Pairs of colour c: `pairs[colour_start[c]..colour_start[c + 1]]`.
-    pub colour_start: [usize; 9],
-    /// Ghosts written by the pairs of colour c (sorted, unique).
-    pub ghost_writes: [Vec<u32>; 8],
+    pub colour_start: Vec<usize>,
+    /// Ghosts written by the pairs of colour c (sorted, unique); one entry per colour.
+    pub ghost_writes: Vec<Vec<u32>>,
     /// Scratch of [`SweepPairs::within`].
     active: Vec<[u32; 2]>,
 }
 
 impl SweepPairs {
+    /// The number of colours ((k + 1)^3 for a grid of reach k).
+    pub fn colours(&self) -> usize {
+        self.ghost_writes.len()
+    }
+
     /// Pairs of one colour.
     pub fn colour(&self, c: usize) -> &[[u32; 2]] {
         &self.pairs[self.colour_start[c]..self.colour_start[c + 1]]
@@ -52,9 +57,13 @@ mod tests {
     use crate::{CellGrid, Comm, Domain, NeighborList, Particles};
     use std::collections::{HashMap, HashSet};
 
-    /// A random gas in a 4x4x6 cell box, with its ghosts and bins.
-    fn gas() -> (Particles, CellBins, CellGrid, Domain) {
-        let domain = Domain::new([0.0; 3], [9.0, 9.5, 13.0]);
+    /// Boxes for a cut of 2.1: 4x4x6 cells (reach 1), 2x4x2 cells (reach 1, 2 cells
+    /// across), 6x9x6 cells (reach 2).
+    const BOXES: [[f64; 3]; 3] = [[9.0, 9.5, 13.0], [4.5, 9.5, 5.0], [7.0, 9.5, 6.5]];
+
+    /// A random gas in a box of `lengths`, with its ghosts and bins.
+    fn gas(lengths: [f64; 3]) -> (Particles, CellBins, CellGrid, Domain) {
+        let domain = Domain::new([0.0; 3], lengths);
         let grid = CellGrid::new(&domain, 2.1).unwrap();
         let mut s = Particles::default();
         let mut x: u64 = 12345;
@@ -62,21 +71,28 @@ mod tests {
             x = x.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
             (x >> 11) as f64 / (1u64 << 53) as f64
         };
+        let l = domain.len();
         for tag in 1..=700u64 {
-            let r = [9.0 * next(), 9.5 * next(), 13.0 * next()];
+            let r = [l[0] * next(), l[1] * next(), l[2] * next()];
             s.push(tag * 7 % 701, 1, 1.0, r);
         }
         let mut comm = Comm::serial();
         comm.exchange(&mut s, &domain, &grid, false);
         let mut bins = CellBins::default();
         let (lo, hi) = comm.owned_cells(&grid);
-        bins.build(&s.cell, &s.tag, lo, hi);
+        bins.build(&s.cell, &s.tag, lo, hi, grid.reach);
         (s, bins, grid, domain)
     }
 
     #[test]
     fn every_pair_within_range_appears_once() {
-        let (s, bins, grid, domain) = gas();
+        for thin in BOXES {
+            every_pair_within_range_appears_once_in(thin);
+        }
+    }
+
+    fn every_pair_within_range_appears_once_in(thin: [f64; 3]) {
+        let (s, bins, grid, domain) = gas(thin);
         let (lo, hi) = ([0; 3], grid.count.map(|c| c as i32));
         let mut sp = SweepPairs::default();
         build_lists(&s, &bins, lo, hi, ListRequest { nlist: None, sweep: Some((&mut sp, 2.0)) });
@@ -104,11 +120,18 @@ mod tests {
 
     #[test]
     fn within_a_colour_every_particle_has_one_writer() {
-        let (s, bins, grid, _) = gas();
+        for thin in BOXES {
+            within_a_colour_every_particle_has_one_writer_in(thin);
+        }
+    }
+
+    fn within_a_colour_every_particle_has_one_writer_in(thin: [f64; 3]) {
+        let (s, bins, grid, _) = gas(thin);
         let mut sp = SweepPairs::default();
         let hi = grid.count.map(|c| c as i32);
         build_lists(&s, &bins, [0; 3], hi, ListRequest { nlist: None, sweep: Some((&mut sp, 2.0)) });
-        for c in 0..8 {
+        assert_eq!(sp.colours(), grid.colours());
+        for c in 0..sp.colours() {
             // tag -> the local index (owned or ghost copy) written in this colour
             let mut writer: HashMap<u64, u32> = HashMap::new();
             for &[i, j] in sp.colour(c) {
@@ -148,7 +171,13 @@ mod tests {
 
     #[test]
     fn neighbour_pairs_give_every_owned_particle_each_neighbour_once() {
-        let (s, bins, grid, domain) = gas();
+        for thin in BOXES {
+            neighbour_pairs_give_every_owned_particle_each_neighbour_once_in(thin);
+        }
+    }
+
+    fn neighbour_pairs_give_every_owned_particle_each_neighbour_once_in(thin: [f64; 3]) {
+        let (s, bins, grid, domain) = gas(thin);
         let (mut sp, mut nl) = (SweepPairs::default(), NeighborList::default());
         let hi = grid.count.map(|c| c as i32);
         // the sweep on a shorter radius than the lists: each filtered on its own

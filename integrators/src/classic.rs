@@ -21,6 +21,8 @@
 //! - 1/theta_j) + sqrt(2 k_B kappa) w xibar / sqrt(dt); fix dpd/energy: u += dt/2 du
 //! before the first and before the second half kick (fix_dpd_energy.cpp), eos/cv after
 //! the drift and at the end of the step.
+//! Every coefficient and cutoff is per type pair ([`TypeTable`], LAMMPS's `a0[itype][jtype]`);
+//! the lists reach the largest cutoff and each pair is cut at its own.
 
 use crate::error::{lowest, StepError};
 use crate::heat::{Original, Temps};
@@ -31,38 +33,91 @@ use crate::rng::{stream, Normals};
 use crate::settings::Settings;
 use crate::sweep::SWEPT;
 use crate::system::System;
+use crate::type_table::TypeTable;
 use crate::verlet;
 use gendpde_engine::{dot, sub, Fields, Particles, Vec3};
 use gendpde_potentials::{Lucy, Weight};
 
+/// `pair dpd` coefficients of one type pair: a0 w(rc) with in-force friction `gamma`
+/// and noise `sigma` (both 0 under Shardlow).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DpdCoeff {
+    pub a0: f64,
+    pub rc: f64,
+    pub gamma: f64,
+    pub sigma: f64,
+    inv_rc: f64,
+}
+
+impl DpdCoeff {
+    pub fn new(a0: f64, rc: f64, gamma: f64, sigma: f64) -> Self {
+        Self { a0, rc, gamma, sigma, inv_rc: 1.0 / rc }
+    }
+}
+
+/// Velocity-Verlet `pair dpd/fdt/energy` coefficients of one type pair: a0 w(rc),
+/// friction from `sigma` and theta_ij, heat `kappa`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DpdEnergyCoeff {
+    pub a0: f64,
+    pub rc: f64,
+    pub sigma: f64,
+    pub kappa: f64,
+}
+
+/// `pair mdpd` (with `mdpd/rhosum`) coefficients of one type pair.
+#[derive(Clone, Copy, Debug)]
+pub struct MdpdCoeff {
+    pub a: f64,
+    pub b: f64,
+    pub rc: f64,
+    pub rd: f64,
+    pub gamma: f64,
+    pub sigma: f64,
+    /// The Lucy kernel of `mdpd/rhosum` (support h) this pair adds to rho.
+    pub kernel: Lucy,
+}
+
 /// The pair force computed in the force pass.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 pub enum PairForce {
-    /// a0 w(rc) with in-force friction `gamma` and noise `sigma` (both 0 under Shardlow).
-    Dpd { a0: f64, rc: f64, gamma: f64, sigma: f64 },
-    /// Warren's many-body DPD; rho from the Lucy kernel of support `h`.
-    Mdpd { a: f64, b: f64, rc: f64, rd: f64, gamma: f64, sigma: f64, h: f64 },
-    /// Velocity-Verlet DPDE: a0 w(rc), friction from `sigma` and theta_ij, heat `kappa`.
-    DpdEnergy { a0: f64, rc: f64, sigma: f64, kappa: f64 },
+    Dpd(TypeTable<DpdCoeff>),
+    /// Warren's many-body DPD; rho from the Lucy kernels.
+    Mdpd(TypeTable<MdpdCoeff>),
+    /// Velocity-Verlet DPDE (dpd/fdt/energy without fix shardlow).
+    DpdEnergy(TypeTable<DpdEnergyCoeff>),
 }
 
 impl PairForce {
     fn cutoff(&self) -> f64 {
         match self {
-            Self::Dpd { rc, .. } | Self::DpdEnergy { rc, .. } => *rc,
-            Self::Mdpd { rc, rd, h, .. } => rc.max(*rd).max(*h),
+            Self::Dpd(t) => t.max_of(|c| c.rc),
+            Self::Mdpd(t) => t.max_of(|c| c.rc.max(c.rd).max(c.kernel.cutoff())),
+            Self::DpdEnergy(t) => t.max_of(|c| c.rc),
         }
     }
+}
+
+/// Shardlow coefficients of one type pair.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ShardlowCoeff {
+    pub sigma: f64,
+    pub kappa: f64,
+    pub rc: f64,
 }
 
 /// `fix shardlow` with `pair dpd/fdt` (fixed T) or `dpd/fdt/energy` (per-particle theta).
 #[derive(Clone, Debug, PartialEq)]
 pub struct ShardlowDpd {
-    pub sigma: f64,
-    pub kappa: f64,
-    pub rc: f64,
+    pub coeff: TypeTable<ShardlowCoeff>,
     /// `dpd/fdt`: the temperature of the friction; None: theta of the particles.
     pub temperature: Option<f64>,
+}
+
+impl ShardlowDpd {
+    fn cutoff(&self) -> f64 {
+        self.coeff.max_of(|c| c.rc)
+    }
 }
 
 /// How positions and momenta advance.
@@ -90,7 +145,7 @@ pub struct ClassicDpd {
 
 impl ClassicDpd {
     fn radius(&self) -> f64 {
-        self.force.cutoff().max(self.shardlow.as_ref().map_or(0.0, |s| s.rc)) + self.settings.skin
+        self.force.cutoff().max(self.shardlow.as_ref().map_or(0.0, ShardlowDpd::cutoff)) + self.settings.skin
     }
 
     /// theta = u / C_V for owned particles (fix eos/cv), and 1/theta, which the sweep
@@ -114,11 +169,10 @@ impl ClassicDpd {
         outcome
     }
 
-    /// MDPD density: rho_i = sum_{j != i} m_j W(r_ij), without a self term, as the
+    /// MDPD density: rho_i = sum_{j != i} m_j W(r_ij; h_ij), without a self term, as the
     /// reference LAMMPS (22 Jul 2025) sums it. One pass over the half list (see
     /// [`gendpde_engine::NeighborList::pairs`]).
-    fn rho(&self, sys: &mut System, h: f64) {
-        let w = Lucy::new(h);
+    fn rho(&self, sys: &mut System, table: &TypeTable<MdpdCoeff>) {
         let s = &mut sys.store;
         let n = s.nlocal;
         s.rho[..n].fill(0.0);
@@ -126,6 +180,8 @@ impl ClassicDpd {
             let (i, j) = (i as usize, j as usize);
             let d = sub(s.r[i], s.r[j]);
             let r2 = dot(d, d);
+            let w = &table.get(s.kind[i], s.kind[j]).kernel;
+            let h = w.cutoff();
             if r2 < h * h {
                 let wij = w.eval(r2.sqrt()).0;
                 if i < n {
@@ -142,24 +198,24 @@ impl ClassicDpd {
     fn forces(&self, sys: &mut System, step: u64) {
         let inv_sqrt_dt = 1.0 / self.settings.dt.sqrt();
         let (seed, pairs, s) = (self.seed, &sys.nlist.pairs, &mut sys.store);
-        let inv_rc = match self.force {
-            PairForce::Dpd { rc, .. } | PairForce::Mdpd { rc, .. } | PairForce::DpdEnergy { rc, .. } => 1.0 / rc,
-        };
         let normals = Normals::get();
         let noise = move |s: &Particles, i: usize, j: usize| normals.pair(seed, step, s.tag[i].min(s.tag[j]), s.tag[i].max(s.tag[j]), stream::FORCE);
-        match self.force {
+        match &self.force {
             // w = 0 beyond rc: no branch to mispredict on the skin's pairs
-            PairForce::Dpd { a0, rc, gamma: 0.0, sigma: 0.0 } => tally::<true, false>(s, pairs, rc, |_, _, _, _, r| {
+            PairForce::Dpd(t) if t.iter().all(|c| c.gamma == 0.0 && c.sigma == 0.0) => tally::<true, false>(s, pairs, |_, _| f64::INFINITY, |s, i, j, _, r| {
+                let DpdCoeff { a0, rc, inv_rc, .. } = *t.get(s.kind[i], s.kind[j]);
                 let w = (1.0 - r * inv_rc).max(0.0);
                 Terms::conservative(a0 * w, 0.25 * a0 * rc * w * w)
             }),
-            PairForce::Dpd { a0, rc, gamma, sigma } => tally::<false, false>(s, pairs, rc, |s, i, j, d, r| {
+            PairForce::Dpd(t) => tally::<false, false>(s, pairs, |s, k| t.get(s.kind[k[0]], s.kind[k[1]]).rc, |s, i, j, d, r| {
+                let DpdCoeff { a0, rc, gamma, sigma, inv_rc } = *t.get(s.kind[i], s.kind[j]);
                 let w = 1.0 - r * inv_rc;
                 let fp = a0 * w - gamma * w * w * dot(d, sub(velocity(s, i), velocity(s, j))) / r + sigma * w * noise(s, i, j).0 * inv_sqrt_dt;
                 Terms::conservative(fp, 0.25 * a0 * rc * w * w)
             }),
-            PairForce::Mdpd { a, b, rc, rd, gamma, sigma, .. } => tally::<false, false>(s, pairs, rc, |s, i, j, d, r| {
-                let wc = 1.0 - r * inv_rc;
+            PairForce::Mdpd(t) => tally::<false, false>(s, pairs, |s, k| t.get(s.kind[k[0]], s.kind[k[1]]).rc, |s, i, j, d, r| {
+                let MdpdCoeff { a, b, rc, rd, gamma, sigma, .. } = *t.get(s.kind[i], s.kind[j]);
+                let wc = 1.0 - r * (1.0 / rc);
                 let wd = (1.0 - r / rd).max(0.0);
                 let rho = s.rho[i] + s.rho[j];
                 let mut fp = a * wc + b * rho * wd;
@@ -168,10 +224,11 @@ impl ClassicDpd {
                 }
                 Terms::conservative(fp, 0.25 * (a * rc * wc * wc + b * rd * rho * wd * wd))
             }),
-            PairForce::DpdEnergy { a0, rc, sigma, kappa } => {
-                let (kb, alpha) = (self.kb, (2.0 * self.kb * kappa).sqrt());
-                tally::<false, true>(s, pairs, rc, |s, i, j, d, r| {
-                    let w = 1.0 - r * inv_rc;
+            PairForce::DpdEnergy(t) => {
+                let kb = self.kb;
+                tally::<false, true>(s, pairs, |s, k| t.get(s.kind[k[0]], s.kind[k[1]]).rc, |s, i, j, d, r| {
+                    let DpdEnergyCoeff { a0, rc, sigma, kappa } = *t.get(s.kind[i], s.kind[j]);
+                    let w = 1.0 - r * (1.0 / rc);
                     let wd = w * w;
                     let (inv_i, inv_j) = (1.0 / s.theta[i], 1.0 / s.theta[j]);
                     let gamma = sigma * sigma * 0.5 * (inv_i + inv_j) / (2.0 * kb);
@@ -185,7 +242,7 @@ impl ClassicDpd {
                         force: a0 * w - gamma * wd * ev + random,
                         energy: 0.25 * a0 * rc * wd,
                         du_mech: 0.5 * (gamma * wd * ev * ev - 0.5 * sigma * sigma * mu * wd - ev * random),
-                        du_cond: kappa * (inv_i - inv_j) * wd + alpha * w * xibar * inv_sqrt_dt,
+                        du_cond: kappa * (inv_i - inv_j) * wd + (2.0 * kb * kappa).sqrt() * w * xibar * inv_sqrt_dt,
                     }
                 })
             }
@@ -208,16 +265,21 @@ impl ClassicDpd {
     fn sweep(&self, sys: &mut System, p: &ShardlowDpd) {
         let (dt, kb) = (self.settings.dt, self.kb);
         let sqrt_dt = dt.sqrt();
-        let (step, normals, inv_rc) = (sys.step, Normals::get(), 1.0 / p.rc);
-        for colour in 0..8 {
-            let pairs = sys.sweep.within(colour, &sys.store, p.rc);
+        let (step, normals, reach) = (sys.step, Normals::get(), p.cutoff());
+        for colour in 0..sys.sweep.colours() {
+            let pairs = sys.sweep.within(colour, &sys.store, reach);
             let s = &mut sys.store;
             for &[i, j] in pairs {
                 let (i, j) = (i as usize, j as usize);
+                let c = *p.coeff.get(s.kind[i], s.kind[j]);
                 let dr = sub(s.r[i], s.r[j]);
-                let r = dot(dr, dr).sqrt();
+                let r2 = dot(dr, dr);
+                if r2 >= c.rc * c.rc {
+                    continue;
+                }
+                let r = r2.sqrt();
                 let inv_r = 1.0 / r;
-                let w = 1.0 - r * inv_rc;
+                let w = 1.0 - r * (1.0 / c.rc);
                 let (theta_ij, inv_i, inv_j) = match p.temperature {
                     Some(t) => (t, 0.0, 0.0),
                     None => (2.0 / (s.inv_tau[i] + s.inv_tau[j]), s.inv_tau[i], s.inv_tau[j]),
@@ -227,8 +289,8 @@ impl ClassicDpd {
                 // `inv_tau`, here set to 1/theta as LAMMPS's dpd/fdt/energy does)
                 let drive = PairDrive {
                     e: [dr[0] * inv_r, dr[1] * inv_r, dr[2] * inv_r],
-                    gamma: p.sigma * p.sigma * w * w / (2.0 * kb * theta_ij),
-                    kappa: if p.temperature.is_none() { p.kappa * w * w } else { 0.0 },
+                    gamma: c.sigma * c.sigma * w * w / (2.0 * kb * theta_ij),
+                    kappa: if p.temperature.is_none() { c.kappa * w * w } else { 0.0 },
                     ti: Temps { theta: theta_ij, inv_tau: inv_i },
                     tj: Temps { theta: theta_ij, inv_tau: inv_j },
                     xi,
@@ -256,8 +318,8 @@ impl ClassicDpd {
         sys.settle(drifted)?;
         self.relist(sys);
         sys.comm.forward(&mut sys.store, self.moved());
-        if let PairForce::Mdpd { h, .. } = self.force {
-            self.rho(sys, h);
+        if let PairForce::Mdpd(t) = &self.force {
+            self.rho(sys, t);
             sys.comm.forward(&mut sys.store, Fields::RHO);
         }
         self.forces(sys, sys.step + 1);
@@ -311,7 +373,7 @@ impl Physics for ClassicDpd {
         if self.vv_dpde() {
             fields = fields | Fields::U_COND | Fields::DU;
         }
-        if matches!(self.force, PairForce::Mdpd { .. }) {
+        if matches!(self.force, PairForce::Mdpd(_)) {
             fields = fields | Fields::RHO;
         }
         sys.store.enable(fields);
@@ -331,8 +393,8 @@ impl Physics for ClassicDpd {
         }
         let state = self.eos(sys);
         sys.comm.forward(&mut sys.store, SWEPT | Fields::U_COND);
-        if let PairForce::Mdpd { h, .. } = self.force {
-            self.rho(sys, h);
+        if let PairForce::Mdpd(t) = &self.force {
+            self.rho(sys, t);
             sys.comm.forward(&mut sys.store, Fields::RHO);
         }
         self.forces(sys, sys.step);
@@ -417,10 +479,16 @@ impl Terms {
 
 /// Sums pair forces, energies and virials (and with `DU` the energy rates) over the half
 /// list into the owned particles (see [`gendpde_engine::NeighborList::pairs`]).
-/// `pair(s, i, j, r_ij, r)` gives the [`Terms`] of a pair closer than `rc`; with
-/// `CLAMPED` it is called for every pair of the list and must give zeros beyond `rc`.
+/// `pair(s, i, j, r_ij, r)` gives the [`Terms`] of a pair closer than its cutoff
+/// `rc(s, [i, j])`; with `CLAMPED` it is called for every pair of the list and must give
+/// zeros beyond the cutoff.
 #[inline(always)]
-fn tally<const CLAMPED: bool, const DU: bool>(s: &mut Particles, pairs: &[[u32; 2]], rc: f64, pair: impl Fn(&Particles, usize, usize, Vec3, f64) -> Terms) {
+fn tally<const CLAMPED: bool, const DU: bool>(
+    s: &mut Particles,
+    pairs: &[[u32; 2]],
+    rc: impl Fn(&Particles, [usize; 2]) -> f64,
+    pair: impl Fn(&Particles, usize, usize, Vec3, f64) -> Terms,
+) {
     let n = s.nlocal;
     s.f[..n].fill([0.0; 3]);
     s.epair[..n].fill(0.0);
@@ -433,7 +501,7 @@ fn tally<const CLAMPED: bool, const DU: bool>(s: &mut Particles, pairs: &[[u32; 
         let (i, j) = (i as usize, j as usize);
         let d = sub(s.r[i], s.r[j]);
         let r2 = dot(d, d);
-        if (!CLAMPED && r2 >= rc * rc) || r2 < 1e-20 {
+        if r2 < 1e-20 || (!CLAMPED && r2 >= rc(s, [i, j]).powi(2)) {
             continue;
         }
         let r = r2.sqrt();

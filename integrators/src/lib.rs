@@ -17,10 +17,11 @@ pub mod settings;
 pub mod species;
 pub mod sweep;
 pub mod system;
+pub mod type_table;
 pub mod verlet;
 pub mod vv_euler;
 
-pub use classic::{ClassicDpd, Integration, PairForce, ShardlowDpd};
+pub use classic::{ClassicDpd, DpdCoeff, DpdEnergyCoeff, Integration, MdpdCoeff, PairForce, ShardlowCoeff, ShardlowDpd};
 pub use edpd::{Edpd, EdpdCoeff, HeatSource, SourceShape};
 pub use error::StepError;
 pub use heat::HeatModel;
@@ -30,3 +31,4 @@ pub use isentropic::FixedEntropy;
 pub use settings::{Dissipation, Motion, RebuildPolicy, Reservoir, Settings, Work};
 pub use species::Species;
 pub use system::{Snapshot, System};
+pub use type_table::TypeTable;

@@ -44,7 +44,7 @@ pub fn sweep<E: FixedDensity, H: HeatFlow, N: Noise>(eos: &Species<E>, d: &Dissi
     let at: Vec<E::At<'_>> = (0..sys.store.mass.len()).map(|i| at_density(eos, &sys.store, i)).collect();
     let mut outcome = Ok(());
     let mut failures = Vec::new();
-    for colour in 0..8 {
+    for colour in 0..sys.sweep.colours() {
         let pairs = sys.sweep.within(colour, &sys.store, rc);
         let mut v = Swept::new::<H, N>(&mut sys.store, &at, inv_m);
         for &[i, j] in pairs {

@@ -119,23 +119,26 @@ impl System {
 
     /// Lays the cell grid for interactions up to `cut` (cutoff plus skin) or `min_cell`,
     /// whichever is larger, with no more cells than needed ([`CellGrid::at_most`]);
-    /// every rank must own at least one cell along each dimension.
+    /// every rank must own at least k cells (the grid's reach, cells of side >= cut / k)
+    /// along each dimension, so that its sub-domain is at least `cut` long.
     pub fn lay_grid(&mut self, cut: f64) -> Result<(), String> {
         let cut = cut.max(self.min_cell);
         let particles = self.comm.count(self.store.nlocal) as usize;
         let grid = CellGrid::new(&self.domain, cut).map_err(|e| e.to_string())?.at_most(particles);
         let procs = self.comm.grid.dims;
+        let k = grid.reach;
         for d in 0..3 {
-            if grid.count[d] < procs[d] {
+            if grid.count[d] / procs[d] < k {
                 let axis = ["x", "y", "z"][d];
                 return Err(format!(
-                    "{} ranks along {axis} need at least {} cells of side cutoff + skin = {cut:.6}, the box holds {}: \
+                    "{} ranks along {axis} need at least {} cells of side cutoff + skin = {cut:.6}{}, the box holds {}: \
                      use at most {} ranks along {axis} (processors command) or a box of length >= {:.6}",
                     procs[d],
-                    procs[d],
+                    procs[d] * k,
+                    if k > 1 { format!(" / {k}") } else { String::new() },
                     grid.count[d],
-                    grid.count[d],
-                    (procs[d].div_ceil(2) * 2).max(4) as f64 * cut
+                    grid.count[d] / k,
+                    (procs[d].div_ceil(2) * 2) as f64 * cut
                 ));
             }
         }
@@ -174,7 +177,7 @@ impl System {
         let restored = std::mem::take(&mut self.restored);
         self.comm.exchange(&mut self.store, &self.domain, grid, restored);
         let (lo, hi) = self.comm.owned_cells(grid);
-        self.bins.build(&self.store.cell, &self.store.tag, lo, hi);
+        self.bins.build(&self.store.cell, &self.store.tag, lo, hi, grid.reach);
         let req = ListRequest { nlist: density_radius.map(|r| (&mut self.nlist, r)), sweep: sweep_radius.map(|r| (&mut self.sweep, r)) };
         build_lists(&self.store, &self.bins, lo, hi, req);
         if density_radius.is_some() {

@@ -1,14 +1,15 @@
 //! Reading and writing LAMMPS data files (`read_data` / `write_data`).
 //!
 //! Only what gendpde needs is supported: an orthogonal box, atom types with
-//! optional masses, atoms in `atom_style atomic` or `atom_style dpd` and
-//! optional velocities. Anything that would need more (bonds, triclinic
-//! boxes, coefficient sections, ...) is reported as an error rather than
-//! silently dropped.
+//! optional masses, pair coefficients (`Pair Coeffs`, `PairIJ Coeffs`), atoms
+//! in `atom_style atomic`, `dpd` or `mdpd` and optional velocities. Anything
+//! that would need more (bonds, triclinic boxes, bond coefficients, ...) is
+//! reported as an error rather than silently dropped.
 //!
 //! Layout, as in LAMMPS: the first line is a title and is skipped; header
 //! lines (`N atoms`, `N atom types`, `lo hi xlo xhi`, ...) follow in any
-//! order until the first section keyword (`Masses`, `Atoms`, `Velocities`).
+//! order until the first section keyword (`Masses`, `Pair Coeffs`,
+//! `PairIJ Coeffs`, `Atoms`, `Velocities`).
 //! A section keyword is followed by exactly as many data lines as the header
 //! says. `#` starts a comment anywhere; blank and comment-only lines are
 //! ignored. `Atoms # dpd` names the atom style of the section's lines.
@@ -92,6 +93,28 @@ pub struct DataAtom {
     pub image: [i32; 3],
 }
 
+/// A `Pair Coeffs` (one line `I args` per type, meaning `pair_coeff I I args`) or
+/// `PairIJ Coeffs` section (one line `I J args` per pair I <= J, meaning
+/// `pair_coeff I J args`). The types are checked here, the values by the pair style.
+#[derive(Clone, Debug)]
+pub struct PairCoeffs {
+    /// `PairIJ Coeffs` rather than `Pair Coeffs`.
+    pub ij: bool,
+    /// The pair style named after `#` on the section line, if any.
+    pub style: Option<String>,
+    /// The words of each line, types first.
+    pub rows: Vec<Vec<String>>,
+    /// The line of each row in the file (0 for rows not read from a file).
+    pub lines: Vec<usize>,
+}
+
+impl PartialEq for PairCoeffs {
+    /// Equal sections hold the same rows, wherever they were read.
+    fn eq(&self, other: &Self) -> bool {
+        (self.ij, &self.style, &self.rows) == (other.ij, &other.style, &other.rows)
+    }
+}
+
 /// The contents of a data file.
 #[derive(Clone, Debug, PartialEq)]
 pub struct DataFile {
@@ -107,6 +130,8 @@ pub struct DataFile {
     pub hi: [f64; 3],
     /// Mass of each type, index `type - 1`; all `None` without `Masses`.
     pub masses: Vec<Option<f64>>,
+    /// The pair coefficients, if the file has a `Pair Coeffs` or `PairIJ Coeffs` section.
+    pub pair_coeffs: Option<PairCoeffs>,
     /// The atoms in file order.
     pub atoms: Vec<DataAtom>,
     /// `(id, velocity)` in file order, if the file has a `Velocities` section.
@@ -212,6 +237,24 @@ fn render(data: &DataFile, style: AtomStyle) -> Result<String, String> {
         for (i, m) in data.masses.iter().enumerate() {
             let m = finite("mass", m.unwrap_or(f64::NAN))?;
             let _ = writeln!(out, "{} {m:?}", i + 1);
+        }
+    }
+    if let Some(p) = &data.pair_coeffs {
+        let name = if p.ij { "PairIJ Coeffs" } else { "Pair Coeffs" };
+        let rows = if p.ij { data.ntypes * (data.ntypes + 1) / 2 } else { data.ntypes };
+        if p.rows.len() != rows {
+            return Err(format!("{name} has {} lines for {} atom types (expected {rows})", p.rows.len(), data.ntypes));
+        }
+        match &p.style {
+            Some(style) => {
+                let _ = writeln!(out, "\n{name} # {style}\n");
+            }
+            None => {
+                let _ = writeln!(out, "\n{name}\n");
+            }
+        }
+        for row in &p.rows {
+            let _ = writeln!(out, "{}", row.join(" "));
         }
     }
     let _ = writeln!(out, "\nAtoms # {}\n", style.name());
@@ -380,10 +423,12 @@ impl<'a> Parser<'a> {
             lo: header.lo,
             hi: header.hi,
             masses: vec![None; header.ntypes],
+            pair_coeffs: None,
             atoms: Vec::new(),
             velocities: None,
         };
         let mut masses_at = None;
+        let mut pair_at = None;
         let mut atoms_at = None;
         let mut velocities_at = None;
         // Atom id -> line number, filled by the Atoms section.
@@ -393,6 +438,7 @@ impl<'a> Parser<'a> {
             let keyword = kw.keyword();
             let seen = match keyword.as_str() {
                 "Masses" => &mut masses_at,
+                "Pair Coeffs" | "PairIJ Coeffs" => &mut pair_at,
                 "Atoms" => &mut atoms_at,
                 "Velocities" => &mut velocities_at,
                 _ => {
@@ -401,7 +447,7 @@ impl<'a> Parser<'a> {
                         None,
                         format!(
                             "unsupported section '{keyword}': gendpde reads only \
-                             Masses, Atoms and Velocities"
+                             Masses, Pair Coeffs, PairIJ Coeffs, Atoms and Velocities"
                         ),
                     ))
                 }
@@ -418,6 +464,13 @@ impl<'a> Parser<'a> {
                 "Masses" => {
                     let body = self.body(&kw, "Masses", header.ntypes, "atom types")?;
                     self.masses(&body, &mut data.masses)?;
+                }
+                "Pair Coeffs" | "PairIJ Coeffs" => {
+                    let ij = keyword == "PairIJ Coeffs";
+                    let n = header.ntypes;
+                    let (rows, what) = if ij { (n * (n + 1) / 2, "type pairs I <= J for the atom types") } else { (n, "atom types") };
+                    let body = self.body(&kw, &keyword, rows, what)?;
+                    data.pair_coeffs = Some(self.pair_coeffs(&body, &keyword, ij, n, kw.comment)?);
                 }
                 "Atoms" => {
                     self.check_style_hint(&kw)?;
@@ -668,6 +721,31 @@ impl<'a> Parser<'a> {
             }
         }
         Ok(())
+    }
+
+    /// The rows of a pair coefficient section: each type (pair) once, types in range.
+    fn pair_coeffs(&self, body: &[Line], section: &str, ij: bool, ntypes: usize, comment: Option<&str>) -> Result<PairCoeffs, ScriptError> {
+        let mut first_line: HashMap<(u32, u32), usize> = HashMap::new();
+        let (mut rows, mut lines) = (Vec::with_capacity(body.len()), Vec::with_capacity(body.len()));
+        for line in body {
+            let err = |msg: String| self.error(line.num, Some(section), msg);
+            let words: Vec<String> = line.text.split_whitespace().map(str::to_string).collect();
+            let ntype_words = if ij { 2 } else { 1 };
+            if words.len() <= ntype_words {
+                let layout = if ij { "I J coefficients" } else { "I coefficients" };
+                return Err(err(format!("expected {layout}, got {} words", words.len())));
+            }
+            let i = atom_type(&words[0], ntypes).map_err(err)?;
+            let j = if ij { atom_type(&words[1], ntypes).map_err(err)? } else { i };
+            let key = (i.min(j), i.max(j));
+            if let Some(first) = first_line.insert(key, line.num) {
+                return Err(err(format!("second line for types {} {} (the first is at line {first})", key.0, key.1)));
+            }
+            rows.push(words);
+            lines.push(line.num);
+        }
+        let style = comment.and_then(|c| c.split_whitespace().next()).map(str::to_string);
+        Ok(PairCoeffs { ij, style, rows, lines })
     }
 
     fn atoms(

@@ -11,7 +11,7 @@ pub mod restart;
 pub mod script;
 pub mod variables;
 
-pub use data_file::{parse_data, read_data, write_data, AtomStyle, DataAtom, DataFile};
+pub use data_file::{parse_data, read_data, write_data, AtomStyle, DataAtom, DataFile, PairCoeffs};
 pub use expr::evaluate;
 pub use format::{format_g, format_printf};
 pub use h5md::{check_h5md, repair_h5md, H5mdError, H5mdField, H5mdMeta, H5mdSummary, H5mdWriter};

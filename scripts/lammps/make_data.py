@@ -43,15 +43,18 @@ def gaussian_velocities(rng, n, std):
     return v
 
 
-def write(path, title, style, length, pos, vel, col3, fmt):
+def write(path, title, style, length, pos, vel, col3, fmt, ntypes=1):
+    """Particle i (from 1) gets type 1 + (i - 1) % ntypes; `col3` is the third column of
+    the Atoms lines (dpdTheta, rho), None for atom_style atomic."""
     n = len(pos)
     lines = [f"LAMMPS data file: {title} (scripts/lammps/make_data.py)", "",
-             f"{n} atoms", "1 atom types", ""]
+             f"{n} atoms", f"{ntypes} atom types", ""]
     for ax in "xyz":
         lines.append(f"0.0 {length!r} {ax}lo {ax}hi")
     lines += ["", f"Atoms # {style}", ""]
     for i, (x, y, z) in enumerate(pos, start=1):
-        lines.append(f"{i} 1 {col3} {x:{fmt}} {y:{fmt}} {z:{fmt}}")
+        extra = "" if col3 is None else f" {col3}"
+        lines.append(f"{i} {1 + (i - 1) % ntypes}{extra} {x:{fmt}} {y:{fmt}} {z:{fmt}}")
     lines += ["", "Velocities", ""]
     for i, (a, b, c) in enumerate(vel, start=1):
         lines.append(f"{i} {a:{fmt}} {b:{fmt}} {c:{fmt}}")
@@ -132,6 +135,15 @@ def main():
         lines.append(f"{i} {a:.10f} {b:.10f} {c:.10f}")
     with open(os.path.join(out, "data.edpd-small"), "w") as fh:
         fh.write("\n".join(lines) + "\n")
+    # g. two-type mixtures on small boxes (per-pair coefficients): 9^3 = 729 particles in a
+    # 6.0 cube (2 cells of cutoff + skin per dimension), and 2197 MDPD particles at rho = 6
+    rng = random.Random(1212)
+    write(os.path.join(out, "data.mix-dpd"), "two-type DPD mixture lj N=729 L=6", "atomic", 6.0,
+          jittered_lattice(rng, 9, 6.0), gaussian_velocities(rng, 729, 1.0), None, ".10f", 2)
+    rng = random.Random(1213)
+    length = 13 / 6.0 ** (1 / 3)
+    write(os.path.join(out, "data.mix-mdpd"), "two-type MDPD mixture lj N=2197", "mdpd", length,
+          jittered_lattice(rng, 13, length), gaussian_velocities(rng, 13 ** 3, 1.0), "0.0", ".10f", 2)
 
 
 if __name__ == "__main__":

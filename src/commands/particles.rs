@@ -1,14 +1,17 @@
-//! The particles to and from files: `read_data FILE` and `write_data FILE` (LAMMPS data
-//! files of atom styles atomic, dpd (whose `dpdTheta` column sets the particle
-//! temperature, so LAMMPS DPDE inputs run unchanged), mdpd and edpd), `read_restart FILE` and
-//! `write_restart FILE` (`output::restart`).
+//! The particles to and from files: `read_data FILE` and `write_data FILE [keywords]`
+//! (LAMMPS data files of atom styles atomic, dpd, mdpd and edpd, whose `dpdTheta` column sets
+//! the particle temperature, so LAMMPS DPDE inputs run unchanged; `Pair Coeffs` and
+//! `PairIJ Coeffs` as pair_coeff commands), `read_restart FILE` and `write_restart FILE`
+//! (`output::restart`).
 
 use crate::base::args::Args;
+use crate::commands::styles::pair_coeff;
 use crate::model::sim::Sim;
 use crate::output::restart;
+use crate::styles::pair::PairStyle;
 use gendpde_engine::{Comm, Domain, Fields, ProcGrid};
 use gendpde_integrators::System;
-use gendpde_io::{AtomStyle, DataAtom, DataFile, ScriptError};
+use gendpde_io::{AtomStyle, Command, DataAtom, DataFile, Location, PairCoeffs, ScriptError};
 use std::path::Path;
 
 /// `read_data FILE`: creates the box, the types' masses and the particles of a data
@@ -56,15 +59,61 @@ pub fn read_data(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     sim.masses = data.masses;
     sim.max_tag = max_tag;
     sim.system = Some(sys);
+    if let Some(section) = &data.pair_coeffs {
+        pair_coeffs_of_data(sim, a, file, section)?;
+    }
     sim.check_density_cap().map_err(|e| a.err(e))
 }
 
-/// `write_data FILE`: the current particles as a data file (rank 0 gathers them; its
-/// memory holds the whole system, about 100 bytes per particle).
+/// The lines of a `Pair Coeffs` (`I args` = `pair_coeff I I args`) or `PairIJ Coeffs`
+/// section (`I J args`), applied as pair_coeff commands located in the data file.
+fn pair_coeffs_of_data(sim: &mut Sim, a: &Args, file: &str, section: &PairCoeffs) -> Result<(), ScriptError> {
+    let name = if section.ij { "PairIJ Coeffs" } else { "Pair Coeffs" };
+    if sim.pair.is_none() {
+        return Err(a.err(format!("'{file}' has a {name} section: define the pair style (pair_style) before read_data")));
+    }
+    for (row, &line) in section.rows.iter().zip(&section.lines) {
+        let mut args = row.clone();
+        if !section.ij {
+            args.insert(1, row[0].clone());
+        }
+        let cmd = Command { name: "pair_coeff".into(), args, loc: Location { file: file.into(), line } };
+        pair_coeff(sim, &mut Args::new(&cmd))?;
+    }
+    Ok(())
+}
+
+/// `write_data FILE [nocoeff] [nofix] [pair ii|ij]`: the current particles as a data
+/// file (rank 0 gathers them; its memory holds the whole system, about 100 bytes per
+/// particle), with the pair coefficients of `pair dpd` (the one style of ours whose LAMMPS
+/// counterpart writes them) as `Pair Coeffs` (`i a0 gamma`, default) or `PairIJ Coeffs`
+/// (`i j a0 gamma cutoff`).
 pub fn write_data(sim: &Sim, a: &mut Args) -> Result<(), ScriptError> {
     let file = a.word("a data file")?;
-    a.done()?;
+    let (mut coeff, mut ij) = (true, false);
+    while a.remaining() > 0 {
+        match a.word("a keyword")? {
+            "nocoeff" => coeff = false,
+            "nofix" => {}
+            "pair" => {
+                ij = match a.word("ii or ij")? {
+                    "ii" => false,
+                    "ij" => true,
+                    w => return Err(a.err(format!("expected ii or ij after pair, got '{w}'"))),
+                }
+            }
+            w => return Err(a.err(format!("unknown keyword '{w}'; known: nocoeff, nofix, pair ii|ij"))),
+        }
+    }
     let sys = sim.system.as_ref().ok_or_else(|| a.err("write_data before create_box"))?;
+    let pair_coeffs = match &sim.pair {
+        Some(PairStyle::Pairwise(p)) if coeff => p.data_section(sim.ntypes, ij).map_err(|e| a.err(e))?,
+        _ => None,
+    };
+    if pair_coeffs.is_some() && !ij && sim.ntypes > 1 && sys.comm.rank() == 0 {
+        // LAMMPS's warning: these styles do not mix, so the I != J pairs are lost
+        log::warn!("write_data: Pair Coeffs keeps the I I coefficients only; use 'pair ij' to store all pair coeffs");
+    }
     let s = &sys.store;
     let edpd = s.has(Fields::EDPD);
     let mut local = Vec::with_capacity(s.nlocal * 14);
@@ -104,6 +153,7 @@ pub fn write_data(sim: &Sim, a: &mut Args) -> Result<(), ScriptError> {
         lo: sys.domain.lo,
         hi: sys.domain.hi,
         masses: sim.masses.clone(),
+        pair_coeffs,
         atoms,
         velocities: Some(velocities),
     };

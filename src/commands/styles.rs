@@ -19,7 +19,8 @@ pub fn pair_style(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     Ok(())
 }
 
-/// `pair_coeff I J args...` for the pair style in force.
+/// `pair_coeff I J args...` for the pair style in force (also a line of a data file's
+/// `Pair Coeffs` or `PairIJ Coeffs`, located in the data file).
 pub fn pair_coeff(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     if sim.system.is_none() {
         return Err(a.err("pair_coeff before the box exists (create_box, read_data or read_restart)"));

@@ -8,8 +8,8 @@ use crate::styles::pair::gendpde::{PairCoeff, PairGendpde};
 use crate::styles::pair::pairwise::{Kind, Pairwise};
 use crate::styles::pair::PairStyle;
 use gendpde_integrators::{
-    ClassicDpd, Dissipation, Edpd, FixedEntropy, GenDpde, HeatModel, HeatSource, Integration, Motion, NoiseForm, PairForce, Physics, RebuildPolicy, Reservoir, Settings, ShardlowDpd,
-    SourceShape, Species,
+    ClassicDpd, Dissipation, DpdCoeff, DpdEnergyCoeff, Edpd, FixedEntropy, GenDpde, HeatModel, HeatSource, Integration, MdpdCoeff, Motion, NoiseForm, PairForce, Physics,
+    RebuildPolicy, Reservoir, Settings, ShardlowCoeff, ShardlowDpd, SourceShape, Species, TypeTable,
 };
 use gendpde_io::{Command, ScriptError};
 use gendpde_potentials::volume::PartitionVolume;
@@ -24,13 +24,14 @@ pub fn build_physics(
     skin: f64,
     rebuild: RebuildPolicy,
     kb: f64,
+    ntypes: usize,
 ) -> Result<Box<dyn Physics>, ScriptError> {
     let err = |m: String| ScriptError::at(cmd, m);
     let pair = match pair.ok_or_else(|| err("no pair style is defined (pair_style)".into()))? {
         PairStyle::Gendpde(p) => p,
         PairStyle::Pairwise(p) => {
             let settings = Settings { dt, skin, rebuild, motion: Motion::Fixed, dissipation: None, reservoirs: Vec::new() };
-            return pairwise(cmd, p, fixes, settings, kb);
+            return pairwise(cmd, p, fixes, settings, kb, ntypes);
         }
         PairStyle::Edpd(p) => {
             let settings = Settings { dt, skin, rebuild, motion: Motion::Fixed, dissipation: None, reservoirs: Vec::new() };
@@ -145,9 +146,11 @@ fn with_weight<E: FixedEntropy + FixedDensity + 'static>(per_type: Vec<E>, pair:
 }
 
 /// The dynamics of a pairwise scene from the pair style and the fixes.
-fn pairwise(cmd: &Command, p: &Pairwise, fixes: &[Fix], settings: Settings, kb: f64) -> Result<Box<dyn Physics>, ScriptError> {
+fn pairwise(cmd: &Command, p: &Pairwise, fixes: &[Fix], settings: Settings, kb: f64, ntypes: usize) -> Result<Box<dyn Physics>, ScriptError> {
     let err = |m: &str| ScriptError::at(cmd, m);
-    let c = p.coeff.as_ref().ok_or_else(|| err("the pair style has no coefficients (pair_coeff)"))?;
+    // LAMMPS's Pair::init and init_one: no mixing in these styles
+    let unset = |(i, j): (usize, usize), what: &str| err(&format!("All {what}coeffs are not set: no pair_coeff for types {i} {j}"));
+    let c = p.coeff.complete(ntypes).map_err(|ij| unset(ij, "pair "))?;
     let has = |pred: fn(&FixStyle) -> bool| fixes.iter().any(|f| pred(&f.style));
     let shardlow = has(|s| matches!(s, FixStyle::Shardlow { .. }));
     if has(|s| matches!(s, FixStyle::Shardlow { noise: NoiseForm::Harmonic { .. }, .. })) {
@@ -172,26 +175,35 @@ fn pairwise(cmd: &Command, p: &Pairwise, fixes: &[Fix], settings: Settings, kb: 
         (false, None) => return Err(err("no integrator: add fix nve (or fix mvv/dpd for mdpd)")),
     };
     let energy = has(|s| matches!(s, FixStyle::DpdEnergy));
-    let sigma_of = |t: f64| (2.0 * kb * t * c.gamma).sqrt();
+    fn table<T>(cmd: &Command, ntypes: usize, v: Vec<T>) -> Result<TypeTable<T>, ScriptError> {
+        TypeTable::new(ntypes, v).ok_or_else(|| ScriptError::at(cmd, "the box has no particle types"))
+    }
+    let sigma_of = |t: f64, gamma: f64| (2.0 * kb * t * gamma).sqrt();
+    let conservative = || table(cmd, ntypes, c.iter().map(|c| DpdCoeff::new(c.a, c.rc, 0.0, 0.0)).collect());
+    let sweep_of = |temperature: Option<f64>| {
+        let kappa = |k: f64| if temperature.is_some() { 0.0 } else { k };
+        table(cmd, ntypes, c.iter().map(|c| ShardlowCoeff { sigma: c.sigma, kappa: kappa(c.kappa), rc: c.rc }).collect()).map(|coeff| ShardlowDpd { coeff, temperature })
+    };
     let (force, sweep) = match p.kind {
-        Kind::Dpd { temperature } => (PairForce::Dpd { a0: c.a, rc: c.rc, gamma: c.gamma, sigma: sigma_of(temperature) }, None),
+        Kind::Dpd { temperature } => (PairForce::Dpd(table(cmd, ntypes, c.iter().map(|c| DpdCoeff::new(c.a, c.rc, c.gamma, sigma_of(temperature, c.gamma))).collect())?), None),
         // velocity Verlet (pair_dpd_fdt.cpp without fix shardlow): gamma = sigma^2 / (2 k_B T)
         Kind::DpdFdt { temperature } if !shardlow => {
-            (PairForce::Dpd { a0: c.a, rc: c.rc, gamma: c.sigma * c.sigma / (2.0 * kb * temperature), sigma: c.sigma }, None)
+            let coeff = c.iter().map(|c| DpdCoeff::new(c.a, c.rc, c.sigma * c.sigma / (2.0 * kb * temperature), c.sigma));
+            (PairForce::Dpd(table(cmd, ntypes, coeff.collect())?), None)
         }
-        Kind::DpdFdtEnergy if !shardlow => (PairForce::DpdEnergy { a0: c.a, rc: c.rc, sigma: c.sigma, kappa: c.kappa }, None),
-        Kind::DpdFdt { temperature } => (
-            PairForce::Dpd { a0: c.a, rc: c.rc, gamma: 0.0, sigma: 0.0 },
-            Some(ShardlowDpd { sigma: c.sigma, kappa: 0.0, rc: c.rc, temperature: Some(temperature) }),
-        ),
-        Kind::DpdFdtEnergy => (
-            PairForce::Dpd { a0: c.a, rc: c.rc, gamma: 0.0, sigma: 0.0 },
-            Some(ShardlowDpd { sigma: c.sigma, kappa: c.kappa, rc: c.rc, temperature: None }),
-        ),
+        Kind::DpdFdtEnergy if !shardlow => {
+            let coeff = c.iter().map(|c| DpdEnergyCoeff { a0: c.a, rc: c.rc, sigma: c.sigma, kappa: c.kappa });
+            (PairForce::DpdEnergy(table(cmd, ntypes, coeff.collect())?), None)
+        }
+        Kind::DpdFdt { temperature } => (PairForce::Dpd(conservative()?), Some(sweep_of(Some(temperature))?)),
+        Kind::DpdFdtEnergy => (PairForce::Dpd(conservative()?), Some(sweep_of(None)?)),
         Kind::Mdpd { temperature } => {
-            let h = p.rhosum.ok_or_else(|| err("pair mdpd needs 'pair_coeff * * mdpd/rhosum H'"))?;
-            let force = PairForce::Mdpd { a: c.a, b: c.b, rc: c.rc, rd: c.rd, gamma: c.gamma, sigma: sigma_of(temperature), h };
-            (force, None)
+            if p.rhosum.ntypes() == 0 {
+                return Err(err("pair mdpd needs 'pair_coeff * * mdpd/rhosum H'"));
+            }
+            let h = p.rhosum.complete(ntypes).map_err(|ij| unset(ij, "pair mdpd/rhosum "))?;
+            let coeff = c.iter().zip(h).map(|(c, h)| MdpdCoeff { a: c.a, b: c.b, rc: c.rc, rd: c.rd, gamma: c.gamma, sigma: sigma_of(temperature, c.gamma), kernel: Lucy::new(h) });
+            (PairForce::Mdpd(table(cmd, ntypes, coeff.collect())?), None)
         }
     };
     if shardlow && matches!(p.kind, Kind::Dpd { .. } | Kind::Mdpd { .. }) {

@@ -170,7 +170,8 @@ impl Comm {
     }
 
     /// Wraps owned particles into the box, hands them to the owners of their cells, and
-    /// rebuilds the ghost layer: one cell on every side of the sub-domain. With
+    /// rebuilds the ghost layer: k cells (the grid's reach) on every side of the
+    /// sub-domain, which must own at least k cells along each dimension. With
     /// `keep_cells` (a system read from a restart) positions and cells stay as stored,
     /// so the lists come out as they were when the restart was written.
     pub fn exchange(&mut self, store: &mut Particles, domain: &Domain, grid: &CellGrid, keep_cells: bool) {
@@ -240,8 +241,9 @@ impl Comm {
         }
     }
 
-    /// Builds the ghost layer dimension by dimension; ghosts received in earlier
-    /// dimensions travel on, so edges and corners are covered.
+    /// Builds the ghost layer dimension by dimension (the k outermost owned cell layers
+    /// on each side); ghosts received in earlier dimensions travel on, so edges and
+    /// corners are covered.
     fn borders(&mut self, store: &mut Particles, domain: &Domain, grid: &CellGrid) {
         self.swaps.clear();
         let len = domain.len();
@@ -249,11 +251,12 @@ impl Comm {
         for d in 0..3 {
             let n = grid.count[d] as i32;
             for dir in [-1, 1] {
-                let layer = if dir == -1 { self.lo[d] } else { self.hi[d] - 1 };
+                let k = grid.reach as i32;
+                let layer = if dir == -1 { self.lo[d]..self.lo[d] + k } else { self.hi[d] - k..self.hi[d] };
                 let edge = if dir == -1 { 0 } else { self.grid.dims[d] - 1 };
                 let wraps = self.grid.coords[d] == edge;
                 let (shift, cell_shift) = if wraps { (-(dir as f64) * len[d], -dir * n) } else { (0.0, 0) };
-                let send: Vec<u32> = (0..store.len() as u32).filter(|&i| store.cell[i as usize][d] == layer).collect();
+                let send: Vec<u32> = (0..store.len() as u32).filter(|&i| layer.contains(&store.cell[i as usize][d])).collect();
                 self.send.clear();
                 for &i in &send {
                     store.pack_ghost(i as usize, &layout, d, shift, cell_shift, &mut self.send);

@@ -221,6 +221,7 @@ fn empty_system_round_trip() {
         lo: [0.0; 3],
         hi: [1.0, 2.0, 3.0],
         masses: vec![Some(1.0), Some(2.0)],
+        pair_coeffs: None,
         atoms: vec![],
         velocities: Some(vec![]),
     };
@@ -462,11 +463,7 @@ fn section_errors() {
     );
     assert_eq!(
         error(&format!("{SMALL}\nBonds\n\n1 1 1 2\n")),
-        "data.dpde:27: unsupported section 'Bonds': gendpde reads only Masses, Atoms and Velocities"
-    );
-    assert_eq!(
-        error(&replace_line(10, "Pair   Coeffs # dpd")),
-        "data.dpde:10: unsupported section 'Pair Coeffs': gendpde reads only Masses, Atoms and Velocities"
+        "data.dpde:27: unsupported section 'Bonds': gendpde reads only Masses, Pair Coeffs, PairIJ Coeffs, Atoms and Velocities"
     );
     assert_eq!(
         error(&format!("{SMALL}\nMasses\n\n1 1.0\n2 1.0\n")),
@@ -608,4 +605,54 @@ fn mutated_files_never_panic() {
     }
     // Some mutations (e.g. in comments or the title) leave the file valid.
     assert!(accepted > 0);
+}
+
+/// SMALL with `section` inserted before its Atoms section.
+fn with_pair_section(section: &str) -> String {
+    SMALL.replace("Atoms # dpd", &format!("{section}\nAtoms # dpd"))
+}
+
+#[test]
+fn pair_coeff_sections_are_read_and_written_back() {
+    let data = parse(&with_pair_section("Pair   Coeffs # dpd\n\n2 20.0 6.0\n1 25.0 4.5\n")).unwrap();
+    let p = data.pair_coeffs.as_ref().unwrap();
+    assert!(!p.ij);
+    assert_eq!(p.style.as_deref(), Some("dpd"));
+    assert_eq!(p.rows, vec![vec!["2", "20.0", "6.0"], vec!["1", "25.0", "4.5"]]);
+    assert_eq!(p.lines, vec![17, 18]);
+    let ij = parse(&with_pair_section("PairIJ Coeffs\n\n1 1 25 4.5 1.2\n2 1 30 3 1.3\n2 2 20 6\n")).unwrap();
+    let q = ij.pair_coeffs.as_ref().unwrap();
+    assert!(q.ij && q.style.is_none() && q.rows.len() == 3);
+    let dir = scratch("pair-coeffs");
+    for d in [data, ij] {
+        let path = dir.join("data.pair");
+        write_data(&path, &d, AtomStyle::Dpd).unwrap();
+        assert_eq!(read_data(&path, AtomStyle::Dpd).unwrap(), d);
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn pair_coeff_section_errors() {
+    assert_eq!(
+        error(&with_pair_section("Pair Coeffs\n\n1 25.0 4.5\n")),
+        "data.dpde:15: Pair Coeffs: expected 2 lines (2 atom types in the header), found 1 before section 'Atoms' at line 19"
+    );
+    assert_eq!(
+        error(&with_pair_section("PairIJ Coeffs\n\n1 1 25 4.5\n2 2 20 6\n")),
+        "data.dpde:15: PairIJ Coeffs: expected 3 lines (3 type pairs I <= J for the atom types in the header), \
+         found 2 before section 'Atoms' at line 20"
+    );
+    assert_eq!(
+        error(&with_pair_section("PairIJ Coeffs\n\n1 1 25 4.5\n2 1 20 6\n1 2 20 6\n")),
+        "data.dpde:19: PairIJ Coeffs: second line for types 1 2 (the first is at line 18)"
+    );
+    assert_eq!(
+        error(&with_pair_section("Pair Coeffs\n\n1 25.0 4.5\n3 20.0 6.0\n")),
+        "data.dpde:18: Pair Coeffs: atom type 3 is outside 1..2"
+    );
+    assert_eq!(
+        error(&with_pair_section("PairIJ Coeffs\n\n1 1 25 4.5\n1 2\n2 2 20 6\n")),
+        "data.dpde:18: PairIJ Coeffs: expected I J coefficients, got 2 words"
+    );
 }

@@ -23,12 +23,15 @@ pub enum PairStyle {
 
 impl PairStyle {
     /// The largest interaction cutoff (LAMMPS's `cutforce`): for gendpde the largest of
-    /// the density, friction and heat cutoffs, for the pairwise styles that of pair_coeff
-    /// (and the mdpd/rhosum kernel).
+    /// the density, friction and heat cutoffs, for the pairwise styles the largest over
+    /// the type pairs of pair_coeff (and the mdpd/rhosum kernels).
     pub fn cutoff(&self) -> f64 {
         match self {
             Self::Gendpde(p) => p.coeff.as_ref().map_or(p.cutoff, |c| p.cutoff.max(c.rc_friction).max(c.rc_heat)),
-            Self::Pairwise(p) => p.coeff.as_ref().map_or(p.cutoff, |c| c.rc).max(p.rhosum.unwrap_or(0.0)),
+            Self::Pairwise(p) => {
+                let set = p.coeff.values().map(|c| c.rc).chain(p.rhosum.values().copied());
+                set.reduce(f64::max).unwrap_or(p.cutoff)
+            }
             Self::Edpd(p) => p.cutoff(),
         }
     }

@@ -9,11 +9,14 @@
 //!   `pair_coeff I J mdpd/rhosum H`, `pair_coeff I J mdpd A B GAMMA CUTOFF CUTOFF_R` with
 //!   `fix mvv/dpd [LAMBDA]`.
 //!
-//! One coefficient set serves all type pairs (`pair_coeff * *`, or `1 1` with one type).
+//! Coefficients are per type pair, as in LAMMPS: `pair_coeff I J` with LAMMPS's type
+//! ranges (`*`, `1*2`, `*3`, `2*`) sets every pair i <= j of the ranges; plain numbers
+//! with J < I are swapped. None of these styles mixes: a pair left unset stops `run`
+//! with LAMMPS's "All pair coeffs are not set".
 
 use crate::base::args::Args;
 use crate::styles::PAIR_STYLES;
-use gendpde_io::{Command, ScriptError};
+use gendpde_io::{Command, PairCoeffs, ScriptError};
 
 #[derive(Clone, Debug, PartialEq)]
 pub enum Kind {
@@ -29,9 +32,9 @@ pub struct Pairwise {
     pub cutoff: f64,
     pub seed: u64,
     /// A (a0), B (mdpd), gamma (dpd, mdpd) or sigma (dpd/fdt*), kappa, cutoff, cutoff_r.
-    pub coeff: Option<Coeff>,
-    /// Kernel support of `mdpd/rhosum`.
-    pub rhosum: Option<f64>,
+    pub coeff: TypePairs<Coeff>,
+    /// Kernel support h of `mdpd/rhosum`.
+    pub rhosum: TypePairs<f64>,
 }
 
 #[derive(Clone, Debug, PartialEq, Default)]
@@ -45,10 +48,93 @@ pub struct Coeff {
     pub rd: f64,
 }
 
+/// One value per unordered pair of types 1..=n (LAMMPS's `setflag` with its
+/// coefficient arrays), `None` where no `pair_coeff` set it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TypePairs<T> {
+    n: usize,
+    set: Vec<Option<T>>,
+}
+
+impl<T> Default for TypePairs<T> {
+    fn default() -> Self {
+        Self { n: 0, set: Vec::new() }
+    }
+}
+
+impl<T: Clone> TypePairs<T> {
+    /// The number of types the table holds (0 before the first `pair_coeff`).
+    pub fn ntypes(&self) -> usize {
+        self.n
+    }
+
+    /// The value of types `i`, `j` (1-based, either order).
+    pub fn get(&self, i: usize, j: usize) -> Option<&T> {
+        let (i, j) = (i.min(j), i.max(j));
+        if i == 0 || j > self.n {
+            return None;
+        }
+        self.set[(i - 1) * self.n + j - 1].as_ref()
+    }
+
+    /// Every set value.
+    pub fn values(&self) -> impl Iterator<Item = &T> {
+        self.set.iter().flatten()
+    }
+
+    /// The table for `n` types, or the first pair (i <= j) left unset.
+    pub fn complete(&self, n: usize) -> Result<Vec<T>, (usize, usize)> {
+        let mut flat = Vec::with_capacity(n * n);
+        for i in 1..=n {
+            for j in 1..=n {
+                flat.push(self.get(i, j).cloned().ok_or((i.min(j), i.max(j)))?);
+            }
+        }
+        Ok(flat)
+    }
+
+    fn put(&mut self, n: usize, i: usize, j: usize, v: T) {
+        if self.n != n {
+            *self = Self { n, set: vec![None; n * n] };
+        }
+        self.set[(i - 1) * n + j - 1] = Some(v);
+    }
+}
+
+impl Pairwise {
+    /// The `Pair Coeffs` (`i a0 gamma`, LAMMPS's `write_data` default) or `PairIJ Coeffs`
+    /// (`i j a0 gamma cutoff`) section of `write_data`: `pair dpd` only, as in LAMMPS
+    /// (its other DPD styles write none). Values print in round-trip form, where LAMMPS
+    /// prints 6 digits. Err like LAMMPS's set-up when a pair is unset.
+    pub fn data_section(&self, ntypes: usize, ij: bool) -> Result<Option<PairCoeffs>, String> {
+        if !matches!(self.kind, Kind::Dpd { .. }) {
+            return Ok(None);
+        }
+        let c = self.coeff.complete(ntypes).map_err(|(i, j)| format!("All pair coeffs are not set: no pair_coeff for types {i} {j}"))?;
+        let mut rows = Vec::new();
+        for i in 1..=ntypes {
+            for j in if ij { i..=ntypes } else { i..=i } {
+                let p = &c[(i - 1) * ntypes + j - 1];
+                let mut row = vec![i.to_string()];
+                if ij {
+                    row.push(j.to_string());
+                }
+                row.extend([format!("{:?}", p.a), format!("{:?}", p.gamma)]);
+                if ij {
+                    row.push(format!("{:?}", p.rc));
+                }
+                rows.push(row);
+            }
+        }
+        let lines = vec![0; rows.len()];
+        Ok(Some(PairCoeffs { ij, style: Some("dpd".into()), rows, lines }))
+    }
+}
+
 /// A pairwise `pair_style` line (the words after the style name in `a`).
 pub fn parse_style(style: &str, a: &mut Args) -> Result<Pairwise, ScriptError> {
     let kind = match style {
-        "dpd" => Kind::Dpd { temperature: a.positive("the temperature T")? },
+        "dpd" => Kind::Dpd { temperature: a.non_negative("the temperature T")? },
         "dpd/fdt" => Kind::DpdFdt { temperature: a.positive("the temperature T")? },
         "dpd/fdt/energy" => Kind::DpdFdtEnergy,
         "hybrid/overlay" => {
@@ -68,18 +154,23 @@ pub fn parse_style(style: &str, a: &mut Args) -> Result<Pairwise, ScriptError> {
         return Err(a.err("the random seed must be positive"));
     }
     a.done()?;
-    Ok(Pairwise { kind, cutoff, seed, coeff: None, rhosum: None })
+    Ok(Pairwise { kind, cutoff, seed, coeff: TypePairs::default(), rhosum: TypePairs::default() })
 }
 
 /// A `pair_coeff` line for a pairwise style.
 pub fn parse_coeff(p: &mut Pairwise, cmd: &Command, ntypes: usize) -> Result<(), ScriptError> {
     let mut a = Args::new(cmd);
-    let (ti, tj) = (a.types(ntypes)?, a.types(ntypes)?);
-    if *ti.start() != 1 || *ti.end() != ntypes || *tj.start() != 1 || *tj.end() != ntypes {
-        return Err(a.err("one coefficient set for all type pairs: use 'pair_coeff * *' (or '1 1' with one type)"));
+    let plain = |k: usize| cmd.args.get(k).is_some_and(|w| w.bytes().all(|b| b.is_ascii_digit()));
+    let (mut ti, mut tj) = (a.types(ntypes)?, a.types(ntypes)?);
+    if plain(0) && plain(1) && tj.start() < ti.start() {
+        std::mem::swap(&mut ti, &mut tj);
     }
-    let mut c = p.coeff.clone().unwrap_or_default();
+    let pairs: Vec<(usize, usize)> = ti.flat_map(|i| (i.max(*tj.start())..=*tj.end()).map(move |j| (i, j))).collect();
+    if pairs.is_empty() {
+        return Err(a.err(format!("the types '{} {}' hold no pair I <= J", cmd.args[0], cmd.args[1])));
+    }
     let optional_cutoff = |a: &mut Args, default: f64| if a.remaining() > 0 { a.positive("the cutoff") } else { Ok(default) };
+    let mut c = Coeff::default();
     match p.kind {
         Kind::Dpd { .. } => {
             c.a = a.f64("A (a0)")?;
@@ -99,8 +190,11 @@ pub fn parse_coeff(p: &mut Pairwise, cmd: &Command, ntypes: usize) -> Result<(),
         }
         Kind::Mdpd { .. } => match a.word("mdpd/rhosum or mdpd")? {
             "mdpd/rhosum" => {
-                p.rhosum = Some(a.positive("the kernel cutoff h")?);
+                let h = a.positive("the kernel cutoff h")?;
                 a.done()?;
+                for (i, j) in pairs {
+                    p.rhosum.put(ntypes, i, j, h);
+                }
                 return Ok(());
             }
             "mdpd" => {
@@ -109,11 +203,16 @@ pub fn parse_coeff(p: &mut Pairwise, cmd: &Command, ntypes: usize) -> Result<(),
                 c.gamma = a.non_negative("gamma")?;
                 c.rc = a.positive("the cutoff")?;
                 c.rd = a.positive("the cutoff of the repulsive term")?;
+                if c.rc < c.rd {
+                    return Err(a.err(format!("the cutoff {:?} must not be shorter than that of the repulsive term {:?} (LAMMPS: cutA should be larger than cutB)", c.rc, c.rd)));
+                }
             }
             w => return Err(a.err(format!("expected mdpd/rhosum or mdpd, got '{w}'"))),
         },
     }
     a.done()?;
-    p.coeff = Some(c);
+    for (i, j) in pairs {
+        p.coeff.put(ntypes, i, j, c.clone());
+    }
     Ok(())
 }
