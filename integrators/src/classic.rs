@@ -21,6 +21,7 @@ use crate::rng::{normal_pair, stream, Normals};
 use crate::settings::Settings;
 use crate::sweep::SWEPT;
 use crate::system::System;
+use crate::tables::PairTables;
 use crate::verlet;
 use gendpde_engine::{dot, sub, Fields, Particles, Vec3};
 use gendpde_potentials::{Lucy, Weight};
@@ -32,6 +33,8 @@ pub enum PairForce {
     Dpd { a0: f64, rc: f64, gamma: f64, sigma: f64 },
     /// Warren's many-body DPD; rho from the Lucy kernel of support `h`.
     Mdpd { a: f64, b: f64, rc: f64, rd: f64, gamma: f64, sigma: f64, h: f64 },
+    /// No pairwise DPD force: the tables alone (`pair_style table`).
+    Off,
 }
 
 impl PairForce {
@@ -39,6 +42,7 @@ impl PairForce {
         match self {
             Self::Dpd { rc, .. } => *rc,
             Self::Mdpd { rc, rd, h, .. } => rc.max(*rd).max(*h),
+            Self::Off => 0.0,
         }
     }
 }
@@ -65,6 +69,8 @@ pub enum Integration {
 /// A LAMMPS-style pairwise DPD scene.
 pub struct ClassicDpd {
     pub force: PairForce,
+    /// `pair_style table`, alone or overlaid on `force` (hybrid/overlay).
+    pub tables: Option<PairTables>,
     pub shardlow: Option<ShardlowDpd>,
     pub integration: Integration,
     /// `fix eos/cv`: theta = u / C_V.
@@ -76,7 +82,8 @@ pub struct ClassicDpd {
 
 impl ClassicDpd {
     fn radius(&self) -> f64 {
-        self.force.cutoff().max(self.shardlow.as_ref().map_or(0.0, |s| s.rc)) + self.settings.skin
+        let tables = self.tables.as_ref().map_or(0.0, PairTables::cutoff);
+        self.force.cutoff().max(self.shardlow.as_ref().map_or(0.0, |s| s.rc)).max(tables) + self.settings.skin
     }
 
     /// theta = u / C_V for owned particles (fix eos/cv), and 1/theta, which the sweep
@@ -130,6 +137,7 @@ impl ClassicDpd {
         let (seed, pairs, s) = (self.seed, &sys.nlist.pairs, &mut sys.store);
         let inv_rc = match self.force {
             PairForce::Dpd { rc, .. } | PairForce::Mdpd { rc, .. } => 1.0 / rc,
+            PairForce::Off => 0.0,
         };
         let noise = |s: &Particles, i: usize, j: usize| normal_pair(seed, step, s.tag[i].min(s.tag[j]), s.tag[i].max(s.tag[j]), stream::FORCE).0;
         match self.force {
@@ -153,7 +161,16 @@ impl ClassicDpd {
                 }
                 (fp, 0.25 * (a * rc * wc * wc + b * rd * rho * wd * wd))
             }),
+            PairForce::Off => tally::<false>(s, &[], 0.0, |_, _, _, _, _| (0.0, 0.0)),
         }
+    }
+
+    /// The table forces added to those of [`Self::forces`]; every rank agrees whether a
+    /// pair lies outside its table.
+    fn table_forces(&self, sys: &mut System) -> Result<(), StepError> {
+        let Some(t) = &self.tables else { return Ok(()) };
+        let outcome = t.add_forces(&mut sys.store, &sys.nlist.pairs, sys.step);
+        sys.settle(outcome)
     }
 
     /// The Shardlow sweep with LAMMPS's DPDE (or isothermal) pair update.
@@ -213,7 +230,7 @@ impl ClassicDpd {
             sys.comm.forward(&mut sys.store, Fields::RHO);
         }
         self.forces(sys, sys.step + 1);
-        Ok(())
+        self.table_forces(sys)
     }
 }
 
@@ -270,7 +287,8 @@ impl Physics for ClassicDpd {
             sys.comm.forward(&mut sys.store, Fields::RHO);
         }
         self.forces(sys, sys.step);
-        sys.settle(state).map_err(SetupError::State)
+        sys.settle(state).map_err(SetupError::State)?;
+        self.table_forces(sys).map_err(SetupError::State)
     }
 
     fn step(&self, sys: &mut System) -> Result<(), StepError> {

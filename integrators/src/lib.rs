@@ -15,6 +15,7 @@ pub mod settings;
 pub mod species;
 pub mod sweep;
 pub mod system;
+pub mod tables;
 pub mod verlet;
 pub mod vv_euler;
 
@@ -26,3 +27,4 @@ pub use isentropic::FixedEntropy;
 pub use settings::{Dissipation, Motion, RebuildPolicy, Reservoir, Settings, Work};
 pub use species::Species;
 pub use system::{Snapshot, System};
+pub use tables::PairTables;

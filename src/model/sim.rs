@@ -107,7 +107,7 @@ impl Sim {
 
     /// Whether thermo `pe` is a pair energy (LAMMPS's pairwise styles).
     pub fn pe_is_pair(&self) -> bool {
-        matches!(self.pair, Some(PairStyle::Pairwise(_)))
+        matches!(self.pair, Some(PairStyle::Pairwise(_) | PairStyle::Table(_) | PairStyle::Overlay(_)))
     }
 
     /// The accumulated state of fixes, for a restart file: each reservoir's energy

@@ -5,6 +5,7 @@ use crate::styles::fix::eos::{each_eos, EosModel};
 use crate::styles::fix::{Fix, FixStyle};
 use crate::styles::pair::gendpde::{PairCoeff, PairGendpde};
 use crate::styles::pair::pairwise::{Kind, Pairwise};
+use crate::styles::pair::table::{tables_for_run, Tabulated};
 use crate::styles::pair::PairStyle;
 use gendpde_integrators::{
     ClassicDpd, Dissipation, FixedEntropy, GenDpde, HeatModel, Integration, Motion, PairForce, Physics, RebuildPolicy, Reservoir, Settings, ShardlowDpd, Species,
@@ -28,7 +29,19 @@ pub fn build_physics(
         PairStyle::Gendpde(p) => p,
         PairStyle::Pairwise(p) => {
             let settings = Settings { dt, skin, rebuild, motion: Motion::Fixed, dissipation: None, reservoirs: Vec::new() };
-            return pairwise(cmd, p, fixes, settings, kb);
+            return Ok(Box::new(pairwise(cmd, p, fixes, settings, kb)?));
+        }
+        PairStyle::Table(t) => {
+            let settings = Settings { dt, skin, rebuild, motion: Motion::Fixed, dissipation: None, reservoirs: Vec::new() };
+            return tabulated(cmd, t, None, fixes, settings, kb);
+        }
+        PairStyle::Overlay(o) => {
+            let settings = Settings { dt, skin, rebuild, motion: Motion::Fixed, dissipation: None, reservoirs: Vec::new() };
+            return match (&o.table, &o.pairwise) {
+                (Some(t), p) => tabulated(cmd, t, p.as_ref().map(|(_, p)| p), fixes, settings, kb),
+                (None, Some((_, p))) => Ok(Box::new(pairwise(cmd, p, fixes, settings, kb)?)),
+                (None, None) => Err(err("pair_style hybrid/overlay has no sub-styles".into())),
+            };
         }
     };
     if fixes.iter().any(|f| matches!(f.style, FixStyle::Nve | FixStyle::Mvv { .. })) {
@@ -133,7 +146,7 @@ fn with_weight<E: FixedEntropy + 'static>(per_type: Vec<E>, pair: &PairGendpde, 
 }
 
 /// The dynamics of a pairwise scene from the pair style and the fixes.
-fn pairwise(cmd: &Command, p: &Pairwise, fixes: &[Fix], settings: Settings, kb: f64) -> Result<Box<dyn Physics>, ScriptError> {
+fn pairwise(cmd: &Command, p: &Pairwise, fixes: &[Fix], settings: Settings, kb: f64) -> Result<ClassicDpd, ScriptError> {
     let err = |m: &str| ScriptError::at(cmd, m);
     let c = p.coeff.as_ref().ok_or_else(|| err("the pair style has no coefficients (pair_coeff)"))?;
     let has = |pred: fn(&FixStyle) -> bool| fixes.iter().any(|f| pred(&f.style));
@@ -181,5 +194,26 @@ fn pairwise(cmd: &Command, p: &Pairwise, fixes: &[Fix], settings: Settings, kb: 
     if matches!(integration, Integration::Mvv { .. }) && !matches!(p.kind, Kind::Mdpd { .. }) {
         return Err(err("fix mvv/dpd integrates pair mdpd"));
     }
-    Ok(Box::new(ClassicDpd { force, shardlow: sweep, integration, cv, kb, seed: p.seed, settings }))
+    Ok(ClassicDpd { force, tables: None, shardlow: sweep, integration, cv, kb, seed: p.seed, settings })
+}
+
+/// `pair_style table` alone (integrated by fix nve), or overlaid on the pairwise style
+/// `p` (which sets the fixes it works with).
+fn tabulated(cmd: &Command, t: &Tabulated, p: Option<&Pairwise>, fixes: &[Fix], settings: Settings, kb: f64) -> Result<Box<dyn Physics>, ScriptError> {
+    let err = |m: &str| ScriptError::at(cmd, m);
+    let tables = tables_for_run(t, p.is_some()).map_err(|e| err(&e))?;
+    if let Some(p) = p {
+        let dynamics = pairwise(cmd, p, fixes, settings, kb)?;
+        return Ok(Box::new(ClassicDpd { tables: Some(tables), ..dynamics }));
+    }
+    for f in fixes {
+        match f.style {
+            FixStyle::Nve | FixStyle::Eos(_) => {}
+            _ => return Err(err(&format!("fix {} does not work with pair table alone (fix nve integrates it; overlay dpd/fdt for fix shardlow)", f.id))),
+        }
+    }
+    if !fixes.iter().any(|f| f.style == FixStyle::Nve) {
+        return Err(err("no integrator: add fix nve"));
+    }
+    Ok(Box::new(ClassicDpd { force: PairForce::Off, tables: Some(tables), shardlow: None, integration: Integration::Nve, cv: None, kb, seed: 1, settings }))
 }

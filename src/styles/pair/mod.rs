@@ -1,11 +1,16 @@
-//! Pair styles: `pair_style` and `pair_coeff` of GenDPDE ([`gendpde`]) and of LAMMPS's
-//! pairwise DPD styles ([`pairwise`]).
+//! Pair styles: `pair_style` and `pair_coeff` of GenDPDE ([`gendpde`]), of LAMMPS's
+//! pairwise DPD styles ([`pairwise`]), tabulated potentials ([`table`]) and their
+//! overlays ([`hybrid`]).
 
 pub mod gendpde;
+pub mod hybrid;
 pub mod pairwise;
+pub mod table;
 
 use self::gendpde::PairGendpde;
+use self::hybrid::Overlay;
 use self::pairwise::Pairwise;
+use self::table::Tabulated;
 use crate::base::args::Args;
 use gendpde_io::{Command, ScriptError};
 
@@ -15,6 +20,10 @@ pub enum PairStyle {
     Gendpde(PairGendpde),
     /// LAMMPS's pairwise DPD styles.
     Pairwise(Pairwise),
+    /// `pair_style table`.
+    Table(Tabulated),
+    /// `pair_style hybrid/overlay` of table and a pairwise style.
+    Overlay(Overlay),
 }
 
 impl PairStyle {
@@ -24,9 +33,15 @@ impl PairStyle {
     pub fn cutoff(&self) -> f64 {
         match self {
             Self::Gendpde(p) => p.coeff.as_ref().map_or(p.cutoff, |c| p.cutoff.max(c.rc_friction).max(c.rc_heat)),
-            Self::Pairwise(p) => p.coeff.as_ref().map_or(p.cutoff, |c| c.rc).max(p.rhosum.unwrap_or(0.0)),
+            Self::Pairwise(p) => pairwise_cutoff(p),
+            Self::Table(t) => t.cutoff(),
+            Self::Overlay(o) => o.table.as_ref().map_or(0.0, Tabulated::cutoff).max(o.pairwise.as_ref().map_or(0.0, |(_, p)| pairwise_cutoff(p))),
         }
     }
+}
+
+fn pairwise_cutoff(p: &Pairwise) -> f64 {
+    p.coeff.as_ref().map_or(p.cutoff, |c| c.rc).max(p.rhosum.unwrap_or(0.0))
 }
 
 /// `pair_style STYLE args...`.
@@ -34,6 +49,8 @@ pub fn parse_pair_style(cmd: &Command) -> Result<PairStyle, ScriptError> {
     let mut a = Args::new(cmd);
     match a.word("a pair style")? {
         "gendpde" => self::gendpde::parse_style(&mut a).map(PairStyle::Gendpde),
+        "table" => self::table::parse_style(&mut a).map(PairStyle::Table),
+        name @ ("hybrid" | "hybrid/overlay") if !self::hybrid::is_mdpd(&a) => self::hybrid::parse_style(name, &mut a).map(PairStyle::Overlay),
         other => self::pairwise::parse_style(other, &mut a).map(PairStyle::Pairwise),
     }
 }
@@ -46,5 +63,11 @@ pub fn parse_pair_coeff(cmd: &Command, pair: &mut PairStyle, ntypes: usize) -> R
             Ok(())
         }
         PairStyle::Pairwise(p) => self::pairwise::parse_coeff(p, cmd, ntypes),
+        PairStyle::Table(t) => {
+            let mut a = Args::new(cmd);
+            let types = (a.types(ntypes)?, a.types(ntypes)?);
+            self::table::parse_coeff(t, &mut a, types, ntypes)
+        }
+        PairStyle::Overlay(o) => self::hybrid::parse_coeff(o, cmd, ntypes),
     }
 }
