@@ -12,12 +12,20 @@ Files (all single atom type, periodic orthogonal boxes starting at 0):
   data.mdpd-liquid  atom_style mdpd, lj,    N = 2197, L = 7.1337 (rho = 6.05),            v ~ N(0, 1)
   data.dpde         atom_style dpd,  metal, N = 1000, L = 60 A,               theta = 300 K,
                     v ~ N(0, kT/m) for m = 100 g/mol at 300 K (the mass comes from `mass 1 100.0`)
+  data.table-lj     atom_style atomic, lj, 2 types, N = 1000, L = 11.5, v ~ N(0, 1)
+  data.cg-water     atom_style atomic, real, N = 2197, L = 40.31 A (the density of LAMMPS's
+                    cg_spce.data), v ~ N(0, kT/m) for m = 18.0154 g/mol at 300 K
+  table-lj.pot      pair_style table sections: LJ_RSQ (N 400 RSQ 0.8 2.5), LJ_R (N 300 R 0.8
+                    2.5) of LJ 12-6 (epsilon = sigma = 1), SOFT (N 200, r from the file,
+                    unevenly spaced, FPRIME) of E = 2 exp(-r^2) - 0.5 exp(-(r - 1.5)^2 / 0.1)
 
 Atoms lines: dpd  `id type dpdTheta x y z`;  mdpd `id type rho x y z` (rho is recomputed by
 pair mdpd/rhosum before the first force, the column is written as 0).
 Positions: data.dpde-3000 is uniform random in the box (soft potential: overlaps are harmless,
 the statistical scene equilibrates first); the three 13^3 files are simple-cubic lattices with
-every site moved by uniform(-0.25, 0.25) lattice spacings (a smaller initial force spike, so the
+every site moved by uniform(-0.25, 0.25) lattice spacings (data.table-lj and data.cg-water:
+uniform(-0.12, 0.12) and (-0.15, 0.15), so no pair is closer than the inner distance of the
+tables, 0.8 and 2 A) (a smaller initial force spike, so the
 deterministic runs start from a liquid-like state); data.dpde is a 10x10x10 simple-cubic
 lattice with spacing 6 A jittered by +-1 A (the metal scene uses a cutoff of 10 A). The centre-of-mass velocity is removed.
 """
@@ -71,6 +79,61 @@ def jittered_lattice(rng, cells, length, jitter=0.25):
     return pos
 
 
+# real units: kB in kcal/mol/K, mvv2e converts (g/mol)(A/fs)^2 to kcal/mol
+BOLTZ_REAL = 0.0019872067
+MVV2E_REAL = 48.88821291 * 48.88821291
+
+
+def write_atomic(path, title, length, types, pos, vel, fmt):
+    """An atom_style atomic data file with `len(types)` atoms of the given types."""
+    lines = [f"LAMMPS data file: {title} (scripts/lammps/make_data.py)", "",
+             f"{len(pos)} atoms", f"{max(types)} atom types", ""]
+    for ax in "xyz":
+        lines.append(f"0.0 {length!r} {ax}lo {ax}hi")
+    lines += ["", "Atoms # atomic", ""]
+    for i, (t, (x, y, z)) in enumerate(zip(types, pos), start=1):
+        lines.append(f"{i} {t} {x:{fmt}} {y:{fmt}} {z:{fmt}}")
+    lines += ["", "Velocities", ""]
+    for i, (a, b, c) in enumerate(vel, start=1):
+        lines.append(f"{i} {a:{fmt}} {b:{fmt}} {c:{fmt}}")
+    with open(path, "w") as fh:
+        fh.write("\n".join(lines) + "\n")
+
+
+def lj(r):
+    return 4.0 * (r ** -12 - r ** -6), 4.0 * (12.0 * r ** -13 - 6.0 * r ** -7)
+
+
+def soft(r):
+    e = 2.0 * math.exp(-r * r) - 0.5 * math.exp(-(r - 1.5) ** 2 / 0.1)
+    f = 4.0 * r * math.exp(-r * r) - 0.5 * 2.0 * (r - 1.5) / 0.1 * math.exp(-(r - 1.5) ** 2 / 0.1)
+    return e, f
+
+
+def table_sections():
+    """table-lj.pot: three sections, with comments and blank lines between them."""
+    out = ["# pair_style table test potentials (scripts/lammps/make_data.py)", "# E in energy, F = -dE/dr", ""]
+    lo, hi = 0.8, 2.5
+    out += ["LJ_RSQ   # r^2 evenly spaced", "N 400 RSQ 0.8 2.5", ""]
+    for i in range(400):
+        r = math.sqrt(lo * lo + (hi * hi - lo * lo) * i / 399)
+        e, f = lj(r)
+        out.append(f"{i + 1} {r:.15e} {e:.15e} {f:.15e}")
+    out += ["", "LJ_R", "N 300 R 0.8 2.5", ""]
+    for i in range(300):
+        r = lo + (hi - lo) * i / 299
+        e, f = lj(r)
+        out.append(f"{i + 1} {r:.15e} {e:.15e} {f:.15e}")
+    # r from the file, denser at short range: r = 0.5 + 2 x^1.5
+    xs = [0.5 + 2.0 * (i / 199) ** 1.5 for i in range(200)]
+    fp = lambda r: (soft(r + 1e-6)[1] - soft(r - 1e-6)[1]) / 2e-6
+    out += ["", "# an uneven grid with its end slopes", "SOFT", f"N 200 FPRIME {fp(xs[0]):.15e} {fp(xs[-1]):.15e}", ""]
+    for i, r in enumerate(xs):
+        e, f = soft(r)
+        out.append(f"{i + 1} {r:.15e} {e:.15e} {f:.15e}")
+    return "\n".join(out) + "\n"
+
+
 def main():
     out = sys.argv[1] if len(sys.argv) > 1 else os.path.dirname(os.path.abspath(__file__))
     os.makedirs(out, exist_ok=True)
@@ -110,6 +173,24 @@ def main():
     std = math.sqrt(BOLTZ_METAL * 300.0 / (100.0 * MVV2E_METAL))  # A/ps
     write(os.path.join(out, "data.dpde"), "DPDE metal N=1000 L=60 A theta=300 K", "dpd", length,
           pos, gaussian_velocities(rng, len(pos), std), "300.0", ".8f")
+
+    # f. pair_style table (lj): 10^3 particles of two types on a jittered lattice
+    rng = random.Random(4004)
+    length = 11.5
+    pos = jittered_lattice(rng, 10, length, 0.12)
+    types = [rng.choice((1, 2)) for _ in pos]
+    write_atomic(os.path.join(out, "data.table-lj"), "table lj N=1000 two types", length, types, pos,
+                 gaussian_velocities(rng, len(pos), 1.0), ".10f")
+    with open(os.path.join(out, "table-lj.pot"), "w") as fh:
+        fh.write(table_sections())
+
+    # g. coarse-grained water (real): 13^3 = 2197 particles, L = 40.31 A, 300 K
+    rng = random.Random(2180)
+    length = 40.31
+    pos = jittered_lattice(rng, 13, length, 0.15)
+    std = math.sqrt(BOLTZ_REAL * 300.0 / (18.0154 * MVV2E_REAL))  # A/fs
+    write_atomic(os.path.join(out, "data.cg-water"), "CG water real N=2197 L=40.31 A", length, [1] * len(pos), pos,
+                 gaussian_velocities(rng, len(pos), std), ".10f")
 
 
 if __name__ == "__main__":
