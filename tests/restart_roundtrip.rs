@@ -36,6 +36,8 @@ const CASES: &[Case] = &[
     Case { script: "scripts/lammps/in.mdpd-liquid", vars: &[("equil", "5")], every: 5, k: 10 },
     Case { script: "scripts/lammps/in.dpd-isothermal", vars: &[], every: 5, k: 10 },
     Case { script: "scripts/lammps/in.dpd-fdt", vars: &[], every: 5, k: 10 },
+    Case { script: "scripts/lammps/in.table-lj", vars: &[("tstyle", "spline")], every: 5, k: 10 },
+    Case { script: "scripts/lammps/in.table-water", vars: &[("gamma", "10.0")], every: 5, k: 10 },
 ];
 
 /// Commands of the original script a continuation repeats: the output settings (the
