@@ -70,6 +70,7 @@ pub fn parse_coeff(o: &mut Overlay, cmd: &Command, ntypes: usize) -> Result<(), 
     let types = (a.types(ntypes)?, a.types(ntypes)?);
     let style = a.word("the sub-style of the pair coefficients")?;
     match (style, &mut o.table, &mut o.pairwise) {
+        ("table", Some(_), _) if a.peek().is_some_and(|w| w.parse::<u32>().is_ok()) => Err(a.err("sub-style numbers (pair_coeff I J table K ...) are not supported: one table sub-style")),
         ("table", Some(t), _) => table::parse_coeff(t, &mut a, types, ntypes),
         (name, _, Some((own, p))) if name == own => {
             // the sub-style's own pair_coeff line: I J and the words after the name
