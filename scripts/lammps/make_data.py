@@ -5,7 +5,7 @@ Standard library only, fixed seeds: running it again rewrites byte-identical fil
 
     python3 scripts/lammps/make_data.py [OUTDIR]     (default: the directory of this script)
 
-Files (all single atom type, periodic orthogonal boxes starting at 0):
+Files (periodic orthogonal boxes starting at 0, one atom type unless stated):
   data.dpde-small   atom_style dpd,  lj,    N = 2197, L = 9.0137 (rho = 3),    theta = 1, v ~ N(0, 1)
   data.dpde-3000    atom_style dpd,  lj,    N = 3000, L = 10     (rho = 3),    theta = 1, v ~ N(0, 1)
   data.mdpd-small   atom_style mdpd, lj,    N = 2197, L = 7.1534 (rho = 6),               v ~ N(0, 1)
@@ -19,7 +19,7 @@ Files (all single atom type, periodic orthogonal boxes starting at 0):
                     2.5) of LJ 12-6 (epsilon = sigma = 1), SOFT (N 200, r from the file,
                     unevenly spaced, FPRIME) of E = 2 exp(-r^2) - 0.5 exp(-(r - 1.5)^2 / 0.1)
 
-Atoms lines: dpd  `id type dpdTheta x y z`;  mdpd `id type rho x y z` (rho is recomputed by
+Atoms lines: dpd  `id type dpdTheta x y z`;  mdpd `id type rho x y z`;  atomic `id type x y z` (rho is recomputed by
 pair mdpd/rhosum before the first force, the column is written as 0).
 Positions: data.dpde-3000 is uniform random in the box (soft potential: overlaps are harmless,
 the statistical scene equilibrates first); the three 13^3 files are simple-cubic lattices with
@@ -48,15 +48,19 @@ def gaussian_velocities(rng, n, std):
     return v
 
 
-def write(path, title, style, length, pos, vel, col3, fmt):
+def write(path, title, style, length, pos, vel, col3, fmt, types=None):
+    """A data file; `col3` is the column after the type (dpdTheta, rho; None: atom_style
+    atomic), `types` the type of each atom (default all 1)."""
     n = len(pos)
+    types = types or [1] * n
     lines = [f"LAMMPS data file: {title} (scripts/lammps/make_data.py)", "",
-             f"{n} atoms", "1 atom types", ""]
+             f"{n} atoms", f"{max(types)} atom types", ""]
     for ax in "xyz":
         lines.append(f"0.0 {length!r} {ax}lo {ax}hi")
     lines += ["", f"Atoms # {style}", ""]
-    for i, (x, y, z) in enumerate(pos, start=1):
-        lines.append(f"{i} 1 {col3} {x:{fmt}} {y:{fmt}} {z:{fmt}}")
+    for i, (t, (x, y, z)) in enumerate(zip(types, pos), start=1):
+        extra = "" if col3 is None else f"{col3} "
+        lines.append(f"{i} {t} {extra}{x:{fmt}} {y:{fmt}} {z:{fmt}}")
     lines += ["", "Velocities", ""]
     for i, (a, b, c) in enumerate(vel, start=1):
         lines.append(f"{i} {a:{fmt}} {b:{fmt}} {c:{fmt}}")
@@ -82,22 +86,6 @@ def jittered_lattice(rng, cells, length, jitter=0.25):
 # real units: kB in kcal/mol/K, mvv2e converts (g/mol)(A/fs)^2 to kcal/mol
 BOLTZ_REAL = 0.0019872067
 MVV2E_REAL = 48.88821291 * 48.88821291
-
-
-def write_atomic(path, title, length, types, pos, vel, fmt):
-    """An atom_style atomic data file with `len(types)` atoms of the given types."""
-    lines = [f"LAMMPS data file: {title} (scripts/lammps/make_data.py)", "",
-             f"{len(pos)} atoms", f"{max(types)} atom types", ""]
-    for ax in "xyz":
-        lines.append(f"0.0 {length!r} {ax}lo {ax}hi")
-    lines += ["", "Atoms # atomic", ""]
-    for i, (t, (x, y, z)) in enumerate(zip(types, pos), start=1):
-        lines.append(f"{i} {t} {x:{fmt}} {y:{fmt}} {z:{fmt}}")
-    lines += ["", "Velocities", ""]
-    for i, (a, b, c) in enumerate(vel, start=1):
-        lines.append(f"{i} {a:{fmt}} {b:{fmt}} {c:{fmt}}")
-    with open(path, "w") as fh:
-        fh.write("\n".join(lines) + "\n")
 
 
 def lj(r):
@@ -179,8 +167,8 @@ def main():
     length = 11.5
     pos = jittered_lattice(rng, 10, length, 0.12)
     types = [rng.choice((1, 2)) for _ in pos]
-    write_atomic(os.path.join(out, "data.table-lj"), "table lj N=1000 two types", length, types, pos,
-                 gaussian_velocities(rng, len(pos), 1.0), ".10f")
+    write(os.path.join(out, "data.table-lj"), "table lj N=1000 two types", "atomic", length, pos,
+          gaussian_velocities(rng, len(pos), 1.0), None, ".10f", types)
     with open(os.path.join(out, "table-lj.pot"), "w") as fh:
         fh.write(table_sections())
 
@@ -189,8 +177,8 @@ def main():
     length = 40.31
     pos = jittered_lattice(rng, 13, length, 0.15)
     std = math.sqrt(BOLTZ_REAL * 300.0 / (18.0154 * MVV2E_REAL))  # A/fs
-    write_atomic(os.path.join(out, "data.cg-water"), "CG water real N=2197 L=40.31 A", length, [1] * len(pos), pos,
-                 gaussian_velocities(rng, len(pos), std), ".10f")
+    write(os.path.join(out, "data.cg-water"), "CG water real N=2197 L=40.31 A", "atomic", length, pos,
+          gaussian_velocities(rng, len(pos), std), None, ".10f")
 
 
 if __name__ == "__main__":
