@@ -1,7 +1,7 @@
 //! `pair_style table` and `hybrid/overlay` against the reference LAMMPS (22 Jul 2025), on
 //! inputs of scripts/lammps/ run unchanged by both codes:
 //! - in.table-lj: two types, a table per type pair (RSQ spacing used as given, R spacing
-//!   with an explicit cutoff, r from the file with FPRIME), linear and spline;
+//!   with an explicit cutoff, r from the file with FPRIME), lookup, linear and spline;
 //! - in.table-water: hybrid/overlay of LAMMPS's coarse-grained water table and pair dpd
 //!   with gamma = 0 (deterministic), real units.
 //!
@@ -83,6 +83,11 @@ fn table_linear_forces_and_energies_match_lammps() {
 }
 
 #[test]
+fn table_lookup_forces_and_energies_match_lammps() {
+    compare("table-lookup", "in.table-lj", "table-lj.dump", &[("tstyle", "lookup")]);
+}
+
+#[test]
 fn table_spline_forces_and_energies_match_lammps() {
     compare("table-spline", "in.table-lj", "table-lj.dump", &[("tstyle", "spline")]);
 }
@@ -132,7 +137,7 @@ fn a_pair_inside_the_inner_cutoff_stops_the_run_naming_both_particles() {
 fn bad_tables_and_styles_are_refused_naming_the_line() {
     let with = |coeff: &str| coeff.to_string();
     let cases: &[(&str, String, &str)] = &[
-        ("lookup", with("pair_style table lookup 100\n"), "in.test:5: pair_style: table style lookup is not supported: use linear or spline"),
+        ("bitmap", with("pair_style table bitmap 12\n"), "in.test:5: pair_style: table style bitmap is not supported: use lookup, linear or spline"),
         ("n", with("pair_style table linear 1\n"), "illegal number of pair table entries: 1"),
         ("keyword", with("pair_style table linear 100\npair_coeff * * table-lj.pot NOPE\n"), "in.test:6: pair_coeff: table-lj.pot: did not find keyword NOPE"),
         ("file", with("pair_style table linear 100\npair_coeff * * missing.pot LJ_R\n"), "cannot open table file missing.pot"),

@@ -1,13 +1,16 @@
 //! LAMMPS's tabulated pair potential (`pair_style table`, src/pair_table.cpp): a section
 //! of a potential file (keyword, `N n [R|RSQ rlo rhi] [FPRIME fplo fphi]`, a blank line,
 //! then `index r e f` lines) re-tabulated on N points evenly spaced in r^2 between the
-//! inner distance and the cutoff, read by linear interpolation or a cubic spline in r^2.
+//! inner distance and the cutoff, read by lookup (bin middles), linear interpolation or a
+//! cubic spline in r^2.
 //! The arithmetic follows LAMMPS's `spline_table`, `compute_table`, `spline` and `splint`
 //! operation for operation, so forces and energies agree with LAMMPS to round-off.
 
 /// How the re-tabulated values are read (`pair_style table STYLE N`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum TableStyle {
+    /// The value at the middle of the bin.
+    Lookup,
     Linear,
     Spline,
 }
@@ -206,6 +209,15 @@ impl PairTable {
         };
         let splint_e = |r| splint(&file.r, &file.e, &e2file, r);
         let splint_f = |r| splint(&file.r, &file.f, &f2file, r);
+        if style == TableStyle::Lookup {
+            // N-1 bins, values at their middles
+            for i in 0..tlm1 {
+                let rsq = innersq + (i as f64 + 0.5) * delta;
+                let r = rsq.sqrt();
+                (t.e[i], t.f[i]) = (splint_e(r), splint_f(r) / r);
+            }
+            return Ok(t);
+        }
         for i in 0..n {
             let rsq = innersq + i as f64 * delta;
             let r = rsq.sqrt();
@@ -220,6 +232,7 @@ impl PairTable {
             }
         }
         match style {
+            TableStyle::Lookup => {}
             TableStyle::Linear => {
                 t.e_aux = (0..tlm1).map(|i| t.e[i + 1] - t.e[i]).collect();
                 t.f_aux = (0..tlm1).map(|i| t.f[i + 1] - t.f[i]).collect();
@@ -269,6 +282,7 @@ impl PairTable {
             return Err(Outside::Outer);
         }
         Ok(match self.style {
+            TableStyle::Lookup => (self.f[itable], self.e[itable]),
             TableStyle::Linear => {
                 let fraction = (rsq - self.rsq[itable]) * self.invdelta;
                 (self.f[itable] + fraction * self.f_aux[itable], self.e[itable] + fraction * self.e_aux[itable])
@@ -350,12 +364,18 @@ mod tests {
     #[test]
     fn a_fine_spline_reproduces_lennard_jones() {
         let file = FileTable::parse(&lj_file("R", 2000), "LJ").unwrap();
-        for style in [TableStyle::Linear, TableStyle::Spline] {
+        for style in [TableStyle::Lookup, TableStyle::Linear, TableStyle::Spline] {
             let t = PairTable::new(style, 2000, &file, 2.5).unwrap();
             for r in [0.95, 1.1, 1.5, 2.2] {
                 let (fr, e) = t.eval(r * r).unwrap();
-                let (e0, f0) = (4.0 * (r.powi(-12) - r.powi(-6)), 4.0 * (12.0 * r.powi(-13) - 6.0 * r.powi(-7)));
-                let tol = if style == TableStyle::Spline { 1e-6 } else { 1e-3 };
+                // lookup: the value at the middle of the bin of r^2
+                let at = match style {
+                    TableStyle::Lookup => (t.innersq + (((r * r - t.innersq) / t.delta).floor() + 0.5) * t.delta).sqrt(),
+                    _ => r,
+                };
+                let (e0, f0) = (4.0 * (at.powi(-12) - at.powi(-6)), 4.0 * (12.0 * at.powi(-13) - 6.0 * at.powi(-7)));
+                let f0 = f0 * r / at;
+                let tol = if style == TableStyle::Linear { 1e-3 } else { 1e-6 };
                 assert!((fr * r - f0).abs() < tol * f0.abs().max(1.0), "{style:?} F({r}) = {} vs {f0}", fr * r);
                 assert!((e - e0).abs() < tol * e0.abs().max(1.0), "{style:?} E({r}) = {e} vs {e0}");
             }

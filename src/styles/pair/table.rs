@@ -29,11 +29,12 @@ impl Tabulated {
 
 /// The words after `pair_style table` (or after `table` in a hybrid line).
 pub fn parse_style(a: &mut Args) -> Result<Tabulated, ScriptError> {
-    let style = match a.word("the table style (linear or spline)")? {
+    let style = match a.word("the table style (lookup, linear or spline)")? {
+        "lookup" => TableStyle::Lookup,
         "linear" => TableStyle::Linear,
         "spline" => TableStyle::Spline,
-        s @ ("lookup" | "bitmap") => return Err(a.err(format!("table style {s} is not supported: use linear or spline"))),
-        other => return Err(a.err(format!("unknown table style '{other}': expected linear or spline"))),
+        "bitmap" => return Err(a.err("table style bitmap is not supported: use lookup, linear or spline")),
+        other => return Err(a.err(format!("unknown table style '{other}': expected lookup, linear or spline"))),
     };
     let n = a.u64("the number of table points N")?;
     if n < 2 {
