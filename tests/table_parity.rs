@@ -138,7 +138,7 @@ fn bad_tables_and_styles_are_refused_naming_the_line() {
     let with = |coeff: &str| coeff.to_string();
     let cases: &[(&str, String, &str)] = &[
         ("bitmap", with("pair_style table bitmap 12\n"), "in.test:5: pair_style: table style bitmap is not supported: use lookup, linear or spline"),
-        ("n", with("pair_style table linear 1\n"), "illegal number of pair table entries: 1"),
+        ("n", with("pair_style table linear 1\n"), "illegal number of pair table entries: 1 (2 to 16777216)"),
         ("keyword", with("pair_style table linear 100\npair_coeff * * table-lj.pot NOPE\n"), "in.test:6: pair_coeff: table-lj.pot: did not find keyword NOPE"),
         ("file", with("pair_style table linear 100\npair_coeff * * missing.pot LJ_R\n"), "cannot open table file missing.pot"),
         ("cut", with("pair_style table linear 100\npair_coeff * * table-lj.pot LJ_R 3.0\n"), "pair table cutoff 3 is outside of the table (0.8, 2.5]"),

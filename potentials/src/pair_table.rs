@@ -123,6 +123,9 @@ impl FileTable {
                 Spacing::R => t.rlo + (t.rhi - t.rlo) * i as f64 / (n - 1) as f64,
                 Spacing::Rsq => (t.rlo * t.rlo + (t.rhi * t.rhi - t.rlo * t.rlo) * i as f64 / (n - 1) as f64).sqrt(),
             };
+            if t.spacing == Spacing::File && t.r.last().is_some_and(|&last| !(r > last)) {
+                return Err(err(k, format!("r = {r} does not increase (the spline needs increasing distances)")));
+            }
             t.r.push(r);
             t.e.push(e);
             t.f.push(f);
@@ -396,6 +399,8 @@ mod tests {
         assert_eq!(e.line, 5);
         assert!(FileTable::parse("A\nN 3 Q 1 2\n\n", "A").unwrap_err().why.contains("invalid keyword Q"));
         assert!(FileTable::parse("A\nN 3\n\n1 1 0 0\n", "B").unwrap_err().why.contains("did not find keyword B"));
+        assert_eq!(FileTable::parse("A\nN 3\n\n1 1 0 0\n2 1.5 0 0\n3 1.5 0 0\n", "A").unwrap_err().line, 6);
+        assert!(FileTable::parse("A\nN 2 R 1 2\n1 1 0 0\n2 2 0 0\n", "A").unwrap_err().why.contains("blank line"));
         let file = FileTable::parse(&lj_file("R", 10), "LJ").unwrap();
         assert!(PairTable::new(TableStyle::Spline, 100, &file, 3.0).unwrap_err().contains("outside"));
     }

@@ -10,6 +10,9 @@ use gendpde_potentials::pair_table::{FileTable, PairTable, TableStyle};
 
 type Types = std::ops::RangeInclusive<usize>;
 
+/// The most points a table may have (5 arrays of 8 bytes per point per table).
+const MAX_POINTS: u64 = 1 << 24;
+
 /// `pair_style table` and the tables its pair_coeff lines read.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Tabulated {
@@ -37,8 +40,8 @@ pub fn parse_style(a: &mut Args) -> Result<Tabulated, ScriptError> {
         other => return Err(a.err(format!("unknown table style '{other}': expected lookup, linear or spline"))),
     };
     let n = a.u64("the number of table points N")?;
-    if n < 2 {
-        return Err(a.err(format!("illegal number of pair table entries: {n} (at least 2)")));
+    if !(2..=MAX_POINTS).contains(&n) {
+        return Err(a.err(format!("illegal number of pair table entries: {n} (2 to {MAX_POINTS})")));
     }
     if let Some(w) = a.peek() {
         return match w {
