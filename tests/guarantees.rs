@@ -268,6 +268,39 @@ fn thin_box_mixtures_are_bit_identical_on_1_2_3_4_ranks() {
     assert!(stderr.contains("4 ranks along x need at least 8 cells of side cutoff + skin = 1.500000 / 2, the box holds 6"), "{stderr}");
 }
 
+/// `pair_style table` alone and overlaid on `pair dpd` with noise (hybrid/overlay): two
+/// types, a table per type pair, lists rebuilt as the lattice melts.
+#[test]
+fn tables_and_their_overlay_are_bit_identical_on_1_2_3_4_ranks_and_an_uneven_grid() {
+    let fluid = |pair: &str| {
+        format!(
+            "units lj\natom_style atomic\ncomm_modify vel yes\nlattice sc 0.6575\nregion box block 0 10 0 10 0 10\n\
+             create_box 2 box\ncreate_atoms 1 box\nset group all type/fraction 2 0.5 4242\nmass 1 1.0\nmass 2 2.0\n\
+             velocity all create 1.5 4928 loop geom\n{pair}fix 1 all nve\nneighbor 0.3 bin\n\
+             neigh_modify every 1 delay 0 check yes\ntimestep 0.002\nthermo_style custom step temp press pe ke etotal\n"
+        )
+    };
+    let tables = |sub: &str| {
+        format!(
+            "pair_coeff 1 1 {sub}table-lj.pot LJ_RSQ\npair_coeff 1 2 {sub}table-lj.pot LJ_R 2.4\npair_coeff 2 2 {sub}table-lj.pot SOFT\n"
+        )
+    };
+    let scenes = [
+        ("table-linear", fluid(&format!("pair_style table linear 400\n{}", tables("")))),
+        (
+            "table-spline-overlay-dpd",
+            fluid(&format!("pair_style hybrid/overlay table spline 400 dpd 1.0 1.0 4928\n{}pair_coeff * * dpd 0.5 1.0 1.0\n", tables("table "))),
+        ),
+    ];
+    for (name, scene) in &scenes {
+        let dir = tempdir(name);
+        std::fs::copy(common::lammps::scripts_dir().join("table-lj.pot"), dir.join("table-lj.pot")).unwrap();
+        let start = std::time::Instant::now();
+        assert_rank_independent(&dir, name, scene, 30, &LAYOUTS);
+        eprintln!("{name}: identical on 1, 2, 3, 4 ranks and processors 1 3 1 ({:.1} s)", start.elapsed().as_secs_f64());
+    }
+}
+
 /// Finding 1: `pair dpd/fdt/energy` changed with the rank count from the first list
 /// rebuild (1/theta, which migration does not carry, was read stale).
 #[test]

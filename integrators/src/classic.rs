@@ -34,6 +34,7 @@ use crate::settings::Settings;
 use crate::sweep::SWEPT;
 use crate::system::System;
 use crate::type_table::TypeTable;
+use crate::tables::PairTables;
 use crate::verlet;
 use gendpde_engine::{dot, sub, Fields, Particles, Vec3};
 use gendpde_potentials::{Lucy, Weight};
@@ -86,6 +87,8 @@ pub enum PairForce {
     Mdpd(TypeTable<MdpdCoeff>),
     /// Velocity-Verlet DPDE (dpd/fdt/energy without fix shardlow).
     DpdEnergy(TypeTable<DpdEnergyCoeff>),
+    /// No pairwise DPD force: the tables alone (`pair_style table`).
+    Off,
 }
 
 impl PairForce {
@@ -94,6 +97,7 @@ impl PairForce {
             Self::Dpd(t) => t.max_of(|c| c.rc),
             Self::Mdpd(t) => t.max_of(|c| c.rc.max(c.rd).max(c.kernel.cutoff())),
             Self::DpdEnergy(t) => t.max_of(|c| c.rc),
+            Self::Off => 0.0,
         }
     }
 }
@@ -132,6 +136,8 @@ pub enum Integration {
 /// A LAMMPS-style pairwise DPD scene.
 pub struct ClassicDpd {
     pub force: PairForce,
+    /// `pair_style table`, alone or overlaid on `force` (hybrid/overlay).
+    pub tables: Option<PairTables>,
     pub shardlow: Option<ShardlowDpd>,
     pub integration: Integration,
     /// `fix eos/cv`: theta = u / C_V.
@@ -145,7 +151,8 @@ pub struct ClassicDpd {
 
 impl ClassicDpd {
     fn radius(&self) -> f64 {
-        self.force.cutoff().max(self.shardlow.as_ref().map_or(0.0, ShardlowDpd::cutoff)) + self.settings.skin
+        let tables = self.tables.as_ref().map_or(0.0, PairTables::cutoff);
+        self.force.cutoff().max(self.shardlow.as_ref().map_or(0.0, ShardlowDpd::cutoff)).max(tables) + self.settings.skin
     }
 
     /// theta = u / C_V for owned particles (fix eos/cv), and 1/theta, which the sweep
@@ -224,6 +231,7 @@ impl ClassicDpd {
                 }
                 Terms::conservative(fp, 0.25 * (a * rc * wc * wc + b * rd * rho * wd * wd))
             }),
+            PairForce::Off => tally::<false, false>(s, &[], |_, _| 0.0, |_, _, _, _, _| Terms::conservative(0.0, 0.0)),
             PairForce::DpdEnergy(t) => {
                 let kb = self.kb;
                 tally::<false, true>(s, pairs, |s, k| t.get(s.kind[k[0]], s.kind[k[1]]).rc, |s, i, j, d, r| {
@@ -259,6 +267,14 @@ impl ClassicDpd {
             s.u_cond[i] += h * s.du_cond[i];
             s.u[i] += h * (s.du_cond[i] + s.du_mech[i]);
         }
+    }
+
+    /// The table forces added to those of [`Self::forces`]; every rank agrees whether a
+    /// pair lies outside its table.
+    fn table_forces(&self, sys: &mut System) -> Result<(), StepError> {
+        let Some(t) = &self.tables else { return Ok(()) };
+        let outcome = t.add_forces(&mut sys.store, &sys.nlist.pairs, sys.step);
+        sys.settle(outcome)
     }
 
     /// The Shardlow sweep with LAMMPS's DPDE (or isothermal) pair update.
@@ -323,7 +339,7 @@ impl ClassicDpd {
             sys.comm.forward(&mut sys.store, Fields::RHO);
         }
         self.forces(sys, sys.step + 1);
-        Ok(())
+        self.table_forces(sys)
     }
 
     /// Whether the pair pass reads theta (velocity-Verlet DPDE).
@@ -398,7 +414,8 @@ impl Physics for ClassicDpd {
             sys.comm.forward(&mut sys.store, Fields::RHO);
         }
         self.forces(sys, sys.step);
-        sys.settle(state).map_err(SetupError::State)
+        sys.settle(state).map_err(SetupError::State)?;
+        self.table_forces(sys).map_err(SetupError::State)
     }
 
     fn step(&self, sys: &mut System) -> Result<(), StepError> {

@@ -17,6 +17,7 @@ pub mod settings;
 pub mod species;
 pub mod sweep;
 pub mod system;
+pub mod tables;
 pub mod type_table;
 pub mod verlet;
 pub mod vv_euler;
@@ -32,3 +33,4 @@ pub use settings::{Dissipation, Motion, RebuildPolicy, Reservoir, Settings, Work
 pub use species::Species;
 pub use system::{Snapshot, System};
 pub use type_table::TypeTable;
+pub use tables::PairTables;

@@ -6,6 +6,7 @@
 pub mod eos;
 pub mod hnc;
 pub mod lth_params;
+pub mod pair_table;
 pub mod volume;
 pub mod weight;
 

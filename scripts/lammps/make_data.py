@@ -5,22 +5,30 @@ Standard library only, fixed seeds: running it again rewrites byte-identical fil
 
     python3 scripts/lammps/make_data.py [OUTDIR]     (default: the directory of this script)
 
-Files (all single atom type, periodic orthogonal boxes starting at 0):
+Files (periodic orthogonal boxes starting at 0, one atom type unless stated):
   data.dpde-small   atom_style dpd,  lj,    N = 2197, L = 9.0137 (rho = 3),    theta = 1, v ~ N(0, 1)
   data.dpde-3000    atom_style dpd,  lj,    N = 3000, L = 10     (rho = 3),    theta = 1, v ~ N(0, 1)
   data.mdpd-small   atom_style mdpd, lj,    N = 2197, L = 7.1534 (rho = 6),               v ~ N(0, 1)
   data.mdpd-liquid  atom_style mdpd, lj,    N = 2197, L = 7.1337 (rho = 6.05),            v ~ N(0, 1)
   data.dpde         atom_style dpd,  metal, N = 1000, L = 60 A,               theta = 300 K,
                     v ~ N(0, kT/m) for m = 100 g/mol at 300 K (the mass comes from `mass 1 100.0`)
+  data.table-lj     atom_style atomic, lj, 2 types, N = 1000, L = 11.5, v ~ N(0, 1)
+  data.cg-water     atom_style atomic, real, N = 2197, L = 40.31 A (the density of LAMMPS's
+                    cg_spce.data), v ~ N(0, kT/m) for m = 18.0154 g/mol at 300 K
+  table-lj.pot      pair_style table sections: LJ_RSQ (N 400 RSQ 0.8 2.5), LJ_R (N 300 R 0.8
+                    2.5) of LJ 12-6 (epsilon = sigma = 1), SOFT (N 200, r from the file,
+                    unevenly spaced, FPRIME) of E = 2 exp(-r^2) - 0.5 exp(-(r - 1.5)^2 / 0.1)
 
   data.edpd-small   atom_style edpd, lj,    N = 2048, L = 8      (rho = 4), 2 types (alternating),
                     T ~ U(0.7, 1.3), cv ~ U(5, 15), uniform random positions, v ~ N(0, 1)
 
-Atoms lines: edpd `id type edpd_temp edpd_cv x y z`; dpd  `id type dpdTheta x y z`;  mdpd `id type rho x y z` (rho is recomputed by
+Atoms lines: edpd `id type edpd_temp edpd_cv x y z`; dpd  `id type dpdTheta x y z`;  mdpd `id type rho x y z`;  atomic `id type x y z` (rho is recomputed by
 pair mdpd/rhosum before the first force, the column is written as 0).
 Positions: data.dpde-3000 is uniform random in the box (soft potential: overlaps are harmless,
 the statistical scene equilibrates first); the three 13^3 files are simple-cubic lattices with
-every site moved by uniform(-0.25, 0.25) lattice spacings (a smaller initial force spike, so the
+every site moved by uniform(-0.25, 0.25) lattice spacings (data.table-lj and data.cg-water:
+uniform(-0.12, 0.12) and (-0.15, 0.15), so no pair is closer than the inner distance of the
+tables, 0.8 and 2 A) (a smaller initial force spike, so the
 deterministic runs start from a liquid-like state); data.dpde is a 10x10x10 simple-cubic
 lattice with spacing 6 A jittered by +-1 A (the metal scene uses a cutoff of 10 A). The centre-of-mass velocity is removed.
 """
@@ -43,18 +51,24 @@ def gaussian_velocities(rng, n, std):
     return v
 
 
-def write(path, title, style, length, pos, vel, col3, fmt, ntypes=1):
-    """Particle i (from 1) gets type 1 + (i - 1) % ntypes; `col3` is the third column of
-    the Atoms lines (dpdTheta, rho), None for atom_style atomic."""
+def alternating(n):
+    """Types 1, 2, 1, 2 ... of n particles."""
+    return [1 + i % 2 for i in range(n)]
+
+
+def write(path, title, style, length, pos, vel, col3, fmt, types=None):
+    """A data file; `col3` is the column after the type (dpdTheta, rho; None: atom_style
+    atomic), `types` the type of each atom (default all 1)."""
     n = len(pos)
+    types = types or [1] * n
     lines = [f"LAMMPS data file: {title} (scripts/lammps/make_data.py)", "",
-             f"{n} atoms", f"{ntypes} atom types", ""]
+             f"{n} atoms", f"{max(types)} atom types", ""]
     for ax in "xyz":
         lines.append(f"0.0 {length!r} {ax}lo {ax}hi")
     lines += ["", f"Atoms # {style}", ""]
-    for i, (x, y, z) in enumerate(pos, start=1):
-        extra = "" if col3 is None else f" {col3}"
-        lines.append(f"{i} {1 + (i - 1) % ntypes}{extra} {x:{fmt}} {y:{fmt}} {z:{fmt}}")
+    for i, (t, (x, y, z)) in enumerate(zip(types, pos), start=1):
+        extra = "" if col3 is None else f"{col3} "
+        lines.append(f"{i} {t} {extra}{x:{fmt}} {y:{fmt}} {z:{fmt}}")
     lines += ["", "Velocities", ""]
     for i, (a, b, c) in enumerate(vel, start=1):
         lines.append(f"{i} {a:{fmt}} {b:{fmt}} {c:{fmt}}")
@@ -75,6 +89,45 @@ def jittered_lattice(rng, cells, length, jitter=0.25):
             for iz in range(cells):
                 pos.append([((c + 0.5) + rng.uniform(-jitter, jitter)) * a for c in (ix, iy, iz)])
     return pos
+
+
+# real units: kB in kcal/mol/K, mvv2e converts (g/mol)(A/fs)^2 to kcal/mol
+BOLTZ_REAL = 0.0019872067
+MVV2E_REAL = 48.88821291 * 48.88821291
+
+
+def lj(r):
+    return 4.0 * (r ** -12 - r ** -6), 4.0 * (12.0 * r ** -13 - 6.0 * r ** -7)
+
+
+def soft(r):
+    e = 2.0 * math.exp(-r * r) - 0.5 * math.exp(-(r - 1.5) ** 2 / 0.1)
+    f = 4.0 * r * math.exp(-r * r) - 0.5 * 2.0 * (r - 1.5) / 0.1 * math.exp(-(r - 1.5) ** 2 / 0.1)
+    return e, f
+
+
+def table_sections():
+    """table-lj.pot: three sections, with comments and blank lines between them."""
+    out = ["# pair_style table test potentials (scripts/lammps/make_data.py)", "# E in energy, F = -dE/dr", ""]
+    lo, hi = 0.8, 2.5
+    out += ["LJ_RSQ   # r^2 evenly spaced", "N 400 RSQ 0.8 2.5", ""]
+    for i in range(400):
+        r = math.sqrt(lo * lo + (hi * hi - lo * lo) * i / 399)
+        e, f = lj(r)
+        out.append(f"{i + 1} {r:.15e} {e:.15e} {f:.15e}")
+    out += ["", "LJ_R", "N 300 R 0.8 2.5", ""]
+    for i in range(300):
+        r = lo + (hi - lo) * i / 299
+        e, f = lj(r)
+        out.append(f"{i + 1} {r:.15e} {e:.15e} {f:.15e}")
+    # r from the file, denser at short range: r = 0.5 + 2 x^1.5
+    xs = [0.5 + 2.0 * (i / 199) ** 1.5 for i in range(200)]
+    fp = lambda r: (soft(r + 1e-6)[1] - soft(r - 1e-6)[1]) / 2e-6
+    out += ["", "# an uneven grid with its end slopes", "SOFT", f"N 200 FPRIME {fp(xs[0]):.15e} {fp(xs[-1]):.15e}", ""]
+    for i, r in enumerate(xs):
+        e, f = soft(r)
+        out.append(f"{i + 1} {r:.15e} {e:.15e} {f:.15e}")
+    return "\n".join(out) + "\n"
 
 
 def main():
@@ -139,11 +192,28 @@ def main():
     # 6.0 cube (2 cells of cutoff + skin per dimension), and 2197 MDPD particles at rho = 6
     rng = random.Random(1212)
     write(os.path.join(out, "data.mix-dpd"), "two-type DPD mixture lj N=729 L=6", "atomic", 6.0,
-          jittered_lattice(rng, 9, 6.0), gaussian_velocities(rng, 729, 1.0), None, ".10f", 2)
+          jittered_lattice(rng, 9, 6.0), gaussian_velocities(rng, 729, 1.0), None, ".10f", alternating(729))
     rng = random.Random(1213)
     length = 13 / 6.0 ** (1 / 3)
     write(os.path.join(out, "data.mix-mdpd"), "two-type MDPD mixture lj N=2197", "mdpd", length,
-          jittered_lattice(rng, 13, length), gaussian_velocities(rng, 13 ** 3, 1.0), "0.0", ".10f", 2)
+          jittered_lattice(rng, 13, length), gaussian_velocities(rng, 13 ** 3, 1.0), "0.0", ".10f", alternating(13 ** 3))
+    # h. pair_style table (lj): 10^3 particles of two types on a jittered lattice
+    rng = random.Random(4004)
+    length = 11.5
+    pos = jittered_lattice(rng, 10, length, 0.12)
+    types = [rng.choice((1, 2)) for _ in pos]
+    write(os.path.join(out, "data.table-lj"), "table lj N=1000 two types", "atomic", length, pos,
+          gaussian_velocities(rng, len(pos), 1.0), None, ".10f", types)
+    with open(os.path.join(out, "table-lj.pot"), "w") as fh:
+        fh.write(table_sections())
+
+    # i. coarse-grained water (real): 13^3 = 2197 particles, L = 40.31 A, 300 K
+    rng = random.Random(2180)
+    length = 40.31
+    pos = jittered_lattice(rng, 13, length, 0.15)
+    std = math.sqrt(BOLTZ_REAL * 300.0 / (18.0154 * MVV2E_REAL))  # A/fs
+    write(os.path.join(out, "data.cg-water"), "CG water real N=2197 L=40.31 A", "atomic", length, pos,
+          gaussian_velocities(rng, len(pos), std), None, ".10f")
 
 
 if __name__ == "__main__":

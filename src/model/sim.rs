@@ -107,7 +107,7 @@ impl Sim {
 
     /// Whether thermo `pe` is a pair energy (LAMMPS's pairwise styles and edpd).
     pub fn pe_is_pair(&self) -> bool {
-        matches!(self.pair, Some(PairStyle::Pairwise(_) | PairStyle::Edpd(_)))
+        matches!(self.pair, Some(PairStyle::Pairwise(_) | PairStyle::Edpd(_) | PairStyle::Table(_) | PairStyle::Overlay(_)))
     }
 
     /// The accumulated state of fixes, for a restart file: each reservoir's energy

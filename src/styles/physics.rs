@@ -6,6 +6,7 @@ use crate::styles::fix::{Fix, FixStyle, Source};
 use crate::styles::pair::edpd::PairEdpd;
 use crate::styles::pair::gendpde::{PairCoeff, PairGendpde};
 use crate::styles::pair::pairwise::{Kind, Pairwise};
+use crate::styles::pair::table::{tables_for_run, Tabulated};
 use crate::styles::pair::PairStyle;
 use gendpde_integrators::{
     ClassicDpd, Dissipation, DpdCoeff, DpdEnergyCoeff, Edpd, FixedEntropy, GenDpde, HeatModel, HeatSource, Integration, MdpdCoeff, Motion, NoiseForm, PairForce, Physics,
@@ -31,11 +32,23 @@ pub fn build_physics(
         PairStyle::Gendpde(p) => p,
         PairStyle::Pairwise(p) => {
             let settings = Settings { dt, skin, rebuild, motion: Motion::Fixed, dissipation: None, reservoirs: Vec::new() };
-            return pairwise(cmd, p, fixes, settings, kb, ntypes);
+            return Ok(Box::new(pairwise(cmd, p, fixes, settings, kb, ntypes)?));
         }
         PairStyle::Edpd(p) => {
             let settings = Settings { dt, skin, rebuild, motion: Motion::Fixed, dissipation: None, reservoirs: Vec::new() };
             return edpd(cmd, p, fixes, settings, kb);
+        }
+        PairStyle::Table(t) => {
+            let settings = Settings { dt, skin, rebuild, motion: Motion::Fixed, dissipation: None, reservoirs: Vec::new() };
+            return tabulated(cmd, t, None, fixes, settings, kb, ntypes);
+        }
+        PairStyle::Overlay(o) => {
+            let settings = Settings { dt, skin, rebuild, motion: Motion::Fixed, dissipation: None, reservoirs: Vec::new() };
+            return match (&o.table, &o.pairwise) {
+                (Some(t), p) => tabulated(cmd, t, p.as_ref().map(|(_, p)| p), fixes, settings, kb, ntypes),
+                (None, Some((_, p))) => Ok(Box::new(pairwise(cmd, p, fixes, settings, kb, ntypes)?)),
+                (None, None) => Err(err("pair_style hybrid/overlay has no sub-styles".into())),
+            };
         }
     };
     if let Some(f) = fixes.iter().find(|f| matches!(f.style, FixStyle::MvvEdpd { .. } | FixStyle::EdpdSource { .. })) {
@@ -146,7 +159,7 @@ fn with_weight<E: FixedEntropy + FixedDensity + 'static>(per_type: Vec<E>, pair:
 }
 
 /// The dynamics of a pairwise scene from the pair style and the fixes.
-fn pairwise(cmd: &Command, p: &Pairwise, fixes: &[Fix], settings: Settings, kb: f64, ntypes: usize) -> Result<Box<dyn Physics>, ScriptError> {
+fn pairwise(cmd: &Command, p: &Pairwise, fixes: &[Fix], settings: Settings, kb: f64, ntypes: usize) -> Result<ClassicDpd, ScriptError> {
     let err = |m: &str| ScriptError::at(cmd, m);
     // LAMMPS's Pair::init and init_one: no mixing in these styles
     let unset = |(i, j): (usize, usize), what: &str| err(&format!("All {what}coeffs are not set: no pair_coeff for types {i} {j}"));
@@ -218,7 +231,7 @@ fn pairwise(cmd: &Command, p: &Pairwise, fixes: &[Fix], settings: Settings, kb: 
     if matches!(integration, Integration::Mvv { .. }) && !matches!(p.kind, Kind::Mdpd { .. }) {
         return Err(err("fix mvv/dpd integrates pair mdpd"));
     }
-    Ok(Box::new(ClassicDpd { force, shardlow: sweep, integration, cv, energy, kb, seed: p.seed, settings }))
+    Ok(ClassicDpd { force, tables: None, shardlow: sweep, integration, cv, energy, kb, seed: p.seed, settings })
 }
 
 /// The dynamics of an eDPD scene: pair edpd, fix mvv/edpd and any fix edpd/source.
@@ -244,4 +257,25 @@ fn edpd(cmd: &Command, p: &PairEdpd, fixes: &[Fix], settings: Settings, kb: f64)
     }
     let lambda = lambda.ok_or_else(|| err("pair edpd integrates with fix mvv/edpd".into()))?;
     Ok(Box::new(Edpd { coeff, ntypes: p.ntypes, seed: p.seed, kb, lambda, sources, settings }))
+}
+
+/// `pair_style table` alone (integrated by fix nve), or overlaid on the pairwise style
+/// `p` (which sets the fixes it works with).
+fn tabulated(cmd: &Command, t: &Tabulated, p: Option<&Pairwise>, fixes: &[Fix], settings: Settings, kb: f64, ntypes: usize) -> Result<Box<dyn Physics>, ScriptError> {
+    let err = |m: &str| ScriptError::at(cmd, m);
+    let tables = tables_for_run(t, p.is_some()).map_err(|e| err(&e))?;
+    if let Some(p) = p {
+        let dynamics = pairwise(cmd, p, fixes, settings, kb, ntypes)?;
+        return Ok(Box::new(ClassicDpd { tables: Some(tables), ..dynamics }));
+    }
+    for f in fixes {
+        match f.style {
+            FixStyle::Nve | FixStyle::Eos(_) => {}
+            _ => return Err(err(&format!("fix {} does not work with pair table alone (fix nve integrates it; overlay dpd/fdt for fix shardlow)", f.id))),
+        }
+    }
+    if !fixes.iter().any(|f| f.style == FixStyle::Nve) {
+        return Err(err("no integrator: add fix nve"));
+    }
+    Ok(Box::new(ClassicDpd { force: PairForce::Off, tables: Some(tables), shardlow: None, integration: Integration::Nve, cv: None, energy: false, kb, seed: 1, settings }))
 }

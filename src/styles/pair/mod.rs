@@ -1,13 +1,18 @@
 //! Pair styles: `pair_style` and `pair_coeff` of GenDPDE ([`gendpde`]), of LAMMPS's
-//! pairwise DPD styles ([`pairwise`]) and of eDPD ([`edpd`]).
+//! pairwise DPD styles ([`pairwise`]), tabulated potentials ([`table`]), their
+//! overlays ([`hybrid`]) and eDPD ([`edpd`]).
 
 pub mod edpd;
 pub mod gendpde;
+pub mod hybrid;
 pub mod pairwise;
+pub mod table;
 
 use self::edpd::PairEdpd;
 use self::gendpde::PairGendpde;
+use self::hybrid::Overlay;
 use self::pairwise::Pairwise;
+use self::table::Tabulated;
 use crate::base::args::Args;
 use gendpde_io::{Command, ScriptError};
 
@@ -19,6 +24,10 @@ pub enum PairStyle {
     Pairwise(Pairwise),
     /// DPD-MESO's energy-conserving DPD.
     Edpd(PairEdpd),
+    /// `pair_style table`.
+    Table(Tabulated),
+    /// `pair_style hybrid/overlay` of table and a pairwise style.
+    Overlay(Overlay),
 }
 
 impl PairStyle {
@@ -28,13 +37,17 @@ impl PairStyle {
     pub fn cutoff(&self) -> f64 {
         match self {
             Self::Gendpde(p) => p.coeff.as_ref().map_or(p.cutoff, |c| p.cutoff.max(c.rc_friction).max(c.rc_heat)),
-            Self::Pairwise(p) => {
-                let set = p.coeff.values().map(|c| c.rc).chain(p.rhosum.values().copied());
-                set.reduce(f64::max).unwrap_or(p.cutoff)
-            }
+            Self::Pairwise(p) => pairwise_cutoff(p),
             Self::Edpd(p) => p.cutoff(),
+            Self::Table(t) => t.cutoff(),
+            Self::Overlay(o) => o.table.as_ref().map_or(0.0, Tabulated::cutoff).max(o.pairwise.as_ref().map_or(0.0, |(_, p)| pairwise_cutoff(p))),
         }
     }
+}
+
+fn pairwise_cutoff(p: &Pairwise) -> f64 {
+    let set = p.coeff.values().map(|c| c.rc).chain(p.rhosum.values().copied());
+    set.reduce(f64::max).unwrap_or(p.cutoff)
 }
 
 /// `pair_style STYLE args...`.
@@ -43,6 +56,8 @@ pub fn parse_pair_style(cmd: &Command) -> Result<PairStyle, ScriptError> {
     match a.word("a pair style")? {
         "gendpde" => self::gendpde::parse_style(&mut a).map(PairStyle::Gendpde),
         "edpd" => self::edpd::parse_style(&mut a).map(PairStyle::Edpd),
+        "table" => self::table::parse_style(&mut a).map(PairStyle::Table),
+        name @ ("hybrid" | "hybrid/overlay") if !self::hybrid::is_mdpd(&a) => self::hybrid::parse_style(name, &mut a).map(PairStyle::Overlay),
         other => self::pairwise::parse_style(other, &mut a).map(PairStyle::Pairwise),
     }
 }
@@ -56,5 +71,11 @@ pub fn parse_pair_coeff(cmd: &Command, pair: &mut PairStyle, ntypes: usize) -> R
         }
         PairStyle::Pairwise(p) => self::pairwise::parse_coeff(p, cmd, ntypes),
         PairStyle::Edpd(p) => self::edpd::parse_coeff(p, cmd, ntypes),
+        PairStyle::Table(t) => {
+            let mut a = Args::new(cmd);
+            let types = (a.types(ntypes)?, a.types(ntypes)?);
+            self::table::parse_coeff(t, &mut a, types, ntypes)
+        }
+        PairStyle::Overlay(o) => self::hybrid::parse_coeff(o, cmd, ntypes),
     }
 }

@@ -1,0 +1,103 @@
+//! LAMMPS's `pair_style table STYLE N` and `pair_coeff I J FILE KEYWORD [CUTOFF]`
+//! (src/pair_table.cpp): each pair_coeff reads one section of a table file and
+//! re-tabulates it on N points in r^2 at once, so a bad file or cutoff is refused at
+//! its pair_coeff, as in LAMMPS.
+
+use crate::base::args::Args;
+use gendpde_integrators::PairTables;
+use gendpde_io::ScriptError;
+use gendpde_potentials::pair_table::{FileTable, PairTable, TableStyle};
+
+type Types = std::ops::RangeInclusive<usize>;
+
+/// The most points a table may have (5 arrays of 8 bytes per point per table).
+const MAX_POINTS: u64 = 1 << 24;
+
+/// `pair_style table` and the tables its pair_coeff lines read.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Tabulated {
+    pub style: TableStyle,
+    /// N, the points of the re-tabulation.
+    pub n: usize,
+    /// The tables of the type pairs (allocated at the first pair_coeff, like LAMMPS).
+    pub tables: Option<PairTables>,
+}
+
+impl Tabulated {
+    /// The largest table cutoff (0 before any pair_coeff).
+    pub fn cutoff(&self) -> f64 {
+        self.tables.as_ref().map_or(0.0, PairTables::cutoff)
+    }
+}
+
+/// The words after `pair_style table` (or after `table` in a hybrid line).
+pub fn parse_style(a: &mut Args) -> Result<Tabulated, ScriptError> {
+    let style = match a.word("the table style (lookup, linear or spline)")? {
+        "lookup" => TableStyle::Lookup,
+        "linear" => TableStyle::Linear,
+        "spline" => TableStyle::Spline,
+        "bitmap" => return Err(a.err("table style bitmap is not supported: use lookup, linear or spline")),
+        other => return Err(a.err(format!("unknown table style '{other}': expected lookup, linear or spline"))),
+    };
+    let n = a.u64("the number of table points N")?;
+    if !(2..=MAX_POINTS).contains(&n) {
+        return Err(a.err(format!("illegal number of pair table entries: {n} (2 to {MAX_POINTS})")));
+    }
+    if let Some(w) = a.peek() {
+        return match w {
+            "ewald" | "pppm" | "msm" | "dispersion" | "tip4p" => Err(a.err(format!("keyword {w}: long-range solvers are not supported"))),
+            "rlinear" | "rsquared" => Err(a.err(format!("keyword {w} is not supported (tables are spaced in r^2, LAMMPS's default)"))),
+            _ => Err(a.err(format!("unexpected '{w}' after N"))),
+        };
+    }
+    Ok(Tabulated { style, n: n as usize, tables: None })
+}
+
+/// `pair_coeff I J FILE KEYWORD [CUTOFF]` (`a` positioned after I J): reads the section
+/// and assigns its table to the type pairs I <= J of the ranges, and J I.
+pub fn parse_coeff(t: &mut Tabulated, a: &mut Args, types: (Types, Types), ntypes: usize) -> Result<(), ScriptError> {
+    let file = a.word("the table file")?;
+    let keyword = a.word("the section keyword")?;
+    let cut = if a.remaining() > 0 { Some(a.positive("the cutoff")?) } else { None };
+    a.done()?;
+    let text = std::fs::read_to_string(file).map_err(|e| a.err(format!("cannot open table file {file}: {e}")))?;
+    let section = FileTable::parse(&text, keyword).map_err(|e| match e.line {
+        0 => a.err(format!("{file}: {}", e.why)),
+        line => a.err(format!("{file}:{line}: {}", e.why)),
+    })?;
+    let cut = cut.unwrap_or(section.bounds().1);
+    let table = PairTable::new(t.style, t.n, &section, cut).map_err(|e| a.err(format!("{file} {keyword}: {e}")))?;
+    let tables = t.tables.get_or_insert_with(|| PairTables { tables: Vec::new(), index: vec![None; ntypes * ntypes], ntypes });
+    // numeric I > J are swapped (LAMMPS's Input::pair_coeff); else the pairs I <= J count
+    let (ti, tj) = match types {
+        (i, j) if i.start() == i.end() && j.start() == j.end() && i.start() > j.start() => (j, i),
+        other => other,
+    };
+    let m = tables.tables.len();
+    let mut count = 0;
+    for i in ti {
+        for j in i.max(*tj.start())..=*tj.end() {
+            tables.index[(i - 1) * ntypes + j - 1] = Some(m);
+            tables.index[(j - 1) * ntypes + i - 1] = Some(m);
+            count += 1;
+        }
+    }
+    if count == 0 {
+        return Err(a.err("the type ranges hold no pair I <= J"));
+    }
+    tables.tables.push(table);
+    Ok(())
+}
+
+/// The tables of a run: every type pair must have one unless `partial` (another
+/// sub-style of hybrid/overlay covers the rest).
+pub fn tables_for_run(t: &Tabulated, partial: bool) -> Result<PairTables, String> {
+    let tables = t.tables.clone().ok_or("pair table has no coefficients (pair_coeff I J FILE KEYWORD)")?;
+    if !partial {
+        if let Some(k) = tables.index.iter().position(Option::is_none) {
+            let (i, j) = (k / tables.ntypes + 1, k % tables.ntypes + 1);
+            return Err(format!("all pair coeffs are not set: types {i} {j} have no table"));
+        }
+    }
+    Ok(tables)
+}

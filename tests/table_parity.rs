@@ -1,0 +1,169 @@
+//! `pair_style table` and `hybrid/overlay` against the reference LAMMPS (22 Jul 2025), on
+//! inputs of scripts/lammps/ run unchanged by both codes:
+//! - in.table-lj: two types, a table per type pair (RSQ spacing used as given, R spacing
+//!   with an explicit cutoff, r from the file with FPRIME), lookup, linear and spline;
+//! - in.table-water: hybrid/overlay of LAMMPS's coarse-grained water table and pair dpd
+//!   with gamma = 0 (deterministic), real units.
+//!
+//! Per-particle forces at step 0 agree to round-off (1e-12 of the largest force), every
+//! thermo row (temp, press, pe, ke, etotal and the sum, sum of squares, min and max of
+//! compute pe/atom, so the per-particle energies) to 1e-11 relative, and the positions
+//! after 20-50 steps of fix nve to 1e-10 of the box. The errors name the line.
+
+mod common;
+
+use common::lammps::{expect_success, parse_dump, parse_thermo, run_lammps, scripts_dir, stage_inputs};
+use std::path::{Path, PathBuf};
+use std::process::Output;
+
+fn dir(name: &str) -> PathBuf {
+    let d = common::tempdir(name);
+    for pot in ["table-lj.pot", "cg_spce_table.pot"] {
+        std::fs::copy(scripts_dir().join(pot), d.join(pot)).unwrap();
+    }
+    d
+}
+
+fn gendpde(dir: &Path, input: &str, vars: &[(&str, &str)]) -> Output {
+    let mut args = vec!["run", input, "-log", "none"];
+    for (k, v) in vars {
+        args.extend(["-var", k, v]);
+    }
+    common::gendpde(dir, &args)
+}
+
+/// Runs `input` in both codes; compares the step-0 forces, every thermo row and the
+/// final positions, and returns the worst deviations (force, thermo, position).
+fn compare(name: &str, input: &str, dump: &str, vars: &[(&str, &str)]) -> (f64, f64, f64) {
+    let (dl, dg) = (dir(&format!("{name}-lammps")), dir(&format!("{name}-gendpde")));
+    stage_inputs(&dl, input);
+    stage_inputs(&dg, input);
+    let l = expect_success("LAMMPS", &run_lammps(&dl, input, vars));
+    let out = gendpde(&dg, input, vars);
+    assert!(out.status.success(), "gendpde failed on {input}:\n{}", String::from_utf8_lossy(&out.stderr));
+    let (tl, tg) = (parse_thermo(&l, "Step"), parse_thermo(&String::from_utf8_lossy(&out.stdout), "Step"));
+    assert_eq!(tl.len(), tg.len(), "thermo rows");
+    let mut thermo: f64 = 0.0;
+    for (a, b) in tl.iter().zip(&tg) {
+        for (x, y) in a.iter().zip(b) {
+            thermo = thermo.max((x - y).abs() / x.abs().max(1e-300));
+        }
+    }
+    let read = |d: &Path| parse_dump(&std::fs::read_to_string(d.join(dump)).unwrap());
+    let (sl, sg) = (read(&dl), read(&dg));
+    assert_eq!((sl.len(), sg.len()), (2, 2), "two dump frames");
+    let col = |s: &common::lammps::DumpSnapshot, c: &str| s.column_index(c).unwrap();
+    let fmax = sl[0].atoms.iter().flat_map(|(_, v)| ["fx", "fy", "fz"].map(|c| v[col(&sl[0], c)].abs())).fold(0.0, f64::max);
+    let (mut force, mut position): (f64, f64) = (0.0, 0.0);
+    let box_len = sl[1].bounds[0][1] - sl[1].bounds[0][0];
+    for ((ia, va), (ib, vb)) in sl[0].atoms.iter().zip(&sg[0].atoms) {
+        assert_eq!(ia, ib);
+        for c in ["fx", "fy", "fz"] {
+            force = force.max((va[col(&sl[0], c)] - vb[col(&sg[0], c)]).abs() / fmax);
+        }
+    }
+    for ((ia, va), (ib, vb)) in sl[1].atoms.iter().zip(&sg[1].atoms) {
+        assert_eq!(ia, ib);
+        for c in ["x", "y", "z"] {
+            let mut d = va[col(&sl[1], c)] - vb[col(&sg[1], c)];
+            d -= box_len * (d / box_len).round();
+            position = position.max(d.abs() / box_len);
+        }
+    }
+    eprintln!("{name}: forces at step 0 {force:.2e} of the largest, thermo rows {thermo:.2e} relative, positions {position:.2e} of the box");
+    assert!(force < 1e-12, "{name}: step-0 forces differ by {force:e} of the largest");
+    assert!(thermo < 1e-11, "{name}: thermo rows differ by {thermo:e}");
+    assert!(position < 1e-10, "{name}: final positions differ by {position:e} of the box");
+    (force, thermo, position)
+}
+
+#[test]
+fn table_linear_forces_and_energies_match_lammps() {
+    compare("table-linear", "in.table-lj", "table-lj.dump", &[("tstyle", "linear")]);
+}
+
+#[test]
+fn table_lookup_forces_and_energies_match_lammps() {
+    compare("table-lookup", "in.table-lj", "table-lj.dump", &[("tstyle", "lookup")]);
+}
+
+#[test]
+fn table_spline_forces_and_energies_match_lammps() {
+    compare("table-spline", "in.table-lj", "table-lj.dump", &[("tstyle", "spline")]);
+}
+
+#[test]
+fn hybrid_overlay_of_table_and_dpd_matches_lammps() {
+    compare("table-water", "in.table-water", "table-water.dump", &[]);
+}
+
+/// A directory with a two-particle scene at distance `r` (types 1 and 1): data.pair and
+/// in.test with the lines `rest` after read_data.
+fn pair_scene(name: &str, r: f64, rest: &str) -> PathBuf {
+    let d = dir(name);
+    let data = format!(
+        "two particles\n\n2 atoms\n2 atom types\n\n0 12 xlo xhi\n0 12 ylo yhi\n0 12 zlo zhi\n\nAtoms # atomic\n\n\
+         1 1 5 5 5\n2 1 {} 5 5\n",
+        5.0 + r
+    );
+    std::fs::write(d.join("data.pair"), data).unwrap();
+    let script = format!("units lj\natom_style atomic\nread_data data.pair\nmass * 1.0\n{rest}neighbor 0.3 bin\nfix 1 all nve\nrun 1\n");
+    std::fs::write(d.join("in.test"), script).unwrap();
+    d
+}
+
+fn expect_error(name: &str, rest: &str, expected: &str) {
+    let d = pair_scene(name, 1.0, rest);
+    let out = gendpde(&d, "in.test", &[]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success(), "{name}: the script should fail");
+    assert!(err.contains(expected), "{name}: expected '{expected}' in:\n{err}");
+    assert!(!err.contains("panicked"), "{name}: {err}");
+}
+
+#[test]
+fn a_pair_inside_the_inner_cutoff_stops_the_run_naming_both_particles() {
+    let coeff = "pair_style table linear 400\npair_coeff * * table-lj.pot LJ_R\n";
+    let out = gendpde(&pair_scene("inner", 0.7, coeff), "in.test", &[]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success() && err.contains("pair distance 7.000000000e-1 to particle 2 < table inner cutoff 0.8 (types 1 1)"), "{err}");
+    assert!(err.contains("particle 1 "), "{err}");
+    // the same pair at 0.9 runs
+    let out = gendpde(&pair_scene("inner-ok", 0.9, coeff), "in.test", &[]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+}
+
+#[test]
+fn bad_tables_and_styles_are_refused_naming_the_line() {
+    let with = |coeff: &str| coeff.to_string();
+    let cases: &[(&str, String, &str)] = &[
+        ("bitmap", with("pair_style table bitmap 12\n"), "in.test:5: pair_style: table style bitmap is not supported: use lookup, linear or spline"),
+        ("n", with("pair_style table linear 1\n"), "illegal number of pair table entries: 1 (2 to 16777216)"),
+        ("keyword", with("pair_style table linear 100\npair_coeff * * table-lj.pot NOPE\n"), "in.test:6: pair_coeff: table-lj.pot: did not find keyword NOPE"),
+        ("file", with("pair_style table linear 100\npair_coeff * * missing.pot LJ_R\n"), "cannot open table file missing.pot"),
+        ("cut", with("pair_style table linear 100\npair_coeff * * table-lj.pot LJ_R 3.0\n"), "pair table cutoff 3 is outside of the table (0.8, 2.5]"),
+        ("unset", with("pair_style table linear 100\npair_coeff 1 1 table-lj.pot LJ_R\n"), "all pair coeffs are not set: types 1 2 have no table"),
+        ("hybrid", with("pair_style hybrid table linear 100 dpd 1.0 1.0 5\n"), "pair_style hybrid (one sub-style per type pair) is not supported: use hybrid/overlay"),
+        (
+            "gendpde",
+            with("pair_style hybrid/overlay table linear 100 gendpde 1.0 5\n"),
+            "pair gendpde is many-body (densities and EOS): it cannot be combined in hybrid/overlay",
+        ),
+        ("mdpd", with("pair_style hybrid/overlay table linear 100 mdpd 1.0 1.0 5\n"), "many-body DPD combines only as"),
+        (
+            "substyle",
+            with("pair_style hybrid/overlay table linear 100 dpd 1.0 1.0 5\npair_coeff * * dpd/fdt 1.0 1.0\n"),
+            "'dpd/fdt' is not a sub-style of this pair_style hybrid/overlay",
+        ),
+        ("shardlow", with("pair_style table linear 100\npair_coeff * * table-lj.pot LJ_R\nfix 2 all shardlow\n"), "fix 2 does not work with pair table alone"),
+    ];
+    for (name, script, expected) in cases {
+        expect_error(name, script, expected);
+    }
+    // a damaged section names the file and its line
+    let d = pair_scene("damaged", 1.0, "pair_style table linear 100\npair_coeff * * bad.pot LJ_RSQ\n");
+    let text = std::fs::read_to_string(scripts_dir().join("table-lj.pot")).unwrap().replacen("\n3 ", "\n3 x", 1);
+    std::fs::write(d.join("bad.pot"), text).unwrap();
+    let err = String::from_utf8_lossy(&gendpde(&d, "in.test", &[]).stderr).into_owned();
+    assert!(err.contains("in.test:6: pair_coeff: bad.pot:9: expected 'index r e f', got '3 x"), "{err}");
+}
