@@ -148,7 +148,7 @@ impl Interpreter {
             // compatibility.
             "comm_modify" | "newton" => {}
             "group" => group::group(sim, a)?,
-            "velocity" => velocity::velocity(sim, a)?,
+            "velocity" => velocity::velocity(sim, &self.vars, &outputs.thermo, a)?,
             "read_data" => particles::read_data(sim, a)?,
             "write_data" => particles::write_data(sim, a)?,
             "write_restart" => particles::write_restart(sim, a)?,
@@ -185,7 +185,7 @@ impl Interpreter {
 }
 
 /// Values of thermo keywords inside variables and `$(...)`, with the thermo settings.
-fn resolve(sim: &Sim, thermo: &ThermoConfig, name: &str) -> Option<f64> {
+pub(crate) fn resolve(sim: &Sim, thermo: &ThermoConfig, name: &str) -> Option<f64> {
     let sys = sim.system.as_ref()?;
     ThermoContext::new(sim, sys, thermo, 0, 0.0).keyword(name)
 }
