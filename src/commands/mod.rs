@@ -5,6 +5,7 @@ mod group;
 mod output;
 mod particles;
 mod run;
+mod set;
 mod setup;
 mod styles;
 mod velocity;
@@ -136,7 +137,7 @@ impl Interpreter {
             "create_box" => setup::create_box(sim, a)?,
             "create_atoms" => setup::create_atoms(sim, a)?,
             "mass" => setup::mass(sim, a)?,
-            "set" => setup::set(sim, a)?,
+            "set" => set::set(sim, &self.vars, &outputs.thermo, a)?,
             "timestep" => setup::timestep(sim, a)?,
             "neighbor" => setup::neighbor(sim, a)?,
             "neigh_modify" => setup::neigh_modify(sim, a)?,
