@@ -172,7 +172,7 @@ impl Interpreter {
             "dump" => output::dump(&mut outputs.dumps, a)?,
             "dump_modify" => output::dump_modify(&mut outputs.dumps, a)?,
             "undump" => output::undump(&mut outputs.dumps, a)?,
-            "write_dump" => output::write_dump(sim, a)?,
+            "write_dump" => output::write_dump(sim, &self.vars, &outputs.thermo, a)?,
             "checkpoint" => outputs.checkpoint = Checkpoint::parse(a)?,
             "print" => output::print(&mut self.out, a)?,
             "log" => output::log(&mut self.out, self.mode, a)?,
