@@ -77,7 +77,7 @@ impl Interpreter {
         loop {
             let next = {
                 let (sim, vars, thermo) = (&self.sim, &self.vars, &self.outputs.thermo);
-                reader.next_command(vars, &|name| resolve(sim, thermo, name))?
+                reader.next_command(vars, &|name| resolve(sim, thermo, vars, name))?
             };
             let Some(cmd) = next else { return Ok(()) };
             if self.echo_screen {
@@ -186,7 +186,7 @@ impl Interpreter {
 }
 
 /// Values of thermo keywords inside variables and `$(...)`, with the thermo settings.
-pub(crate) fn resolve(sim: &Sim, thermo: &ThermoConfig, name: &str) -> Option<f64> {
+pub(crate) fn resolve(sim: &Sim, thermo: &ThermoConfig, vars: &Variables, name: &str) -> Option<f64> {
     let sys = sim.system.as_ref()?;
-    ThermoContext::new(sim, sys, thermo, 0, 0.0).keyword(name)
+    ThermoContext::new(sim, sys, thermo, vars, 0, 0.0).keyword(name)
 }

@@ -79,7 +79,7 @@ fn value(a: &mut Args, sim: &Sim, vars: &Variables, thermo: &ThermoConfig, what:
     match w.strip_prefix("v_") {
         Some(name) => {
             let sys = sim.system.as_ref().ok_or_else(|| a.err("set before create_box"))?;
-            let global = |n: &str| super::resolve(sim, thermo, n);
+            let global = |n: &str| super::resolve(sim, thermo, vars, n);
             per_atom::variable(vars, name, sys, sim.units.mvv2e, &global).map(Value::PerParticle).map_err(|e| a.err(e))
         }
         None => w.parse::<f64>().ok().filter(|x| x.is_finite()).map(Value::Number).ok_or_else(|| a.err(format!("{what}: expected a number or v_name, got '{w}'"))),

@@ -163,7 +163,7 @@ pub fn velocity(sim: &mut Sim, vars: &Variables, thermo: &ThermoConfig, a: &mut 
     // `velocity set`: the variables are evaluated before anything changes (as LAMMPS);
     // per particle (atom-style) or once (equal-style)
     let sys = sim.system.as_ref().ok_or_else(|| a.err("velocity before create_box"))?;
-    let global = |n: &str| super::resolve(sim, thermo, n);
+    let global = |n: &str| super::resolve(sim, thermo, vars, n);
     let mut fields: [Option<Vec<f64>>; 3] = [None, None, None];
     let mut value = [None; 3];
     if let Style::Set(c) = &style {

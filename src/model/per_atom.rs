@@ -41,3 +41,13 @@ pub fn equal(vars: &Variables, name: &str, global: &dyn Fn(&str) -> Option<f64>)
         None => Err(format!("unknown variable '{name}'")),
     }
 }
+
+/// The values of atom-style variable `name` for the owned particles (the inputs of dumps,
+/// compute reduce and fix ave/chunk, which LAMMPS limits to atom-style variables).
+pub fn atom_variable(vars: &Variables, name: &str, sys: &System, mvv2e: f64, global: &dyn Fn(&str) -> Option<f64>) -> Result<Vec<f64>, String> {
+    match vars.style(name) {
+        Some("atom") => variable(vars, name, sys, mvv2e, global),
+        Some(style) => Err(format!("variable '{name}' is {style}-style, not atom-style")),
+        None => Err(format!("unknown variable '{name}'")),
+    }
+}

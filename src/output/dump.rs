@@ -193,13 +193,9 @@ impl PerAtomInputs<'_> {
                 ColumnValues::Values((0..s.nlocal).map(|i| c.per_atom(sys, i, mvv2e, pair).unwrap_or(0.0)).collect())
             }
             Column::Variable(name) => {
-                let context = ThermoContext::new(sim, sys, self.thermo, 0, 0.0);
+                let context = ThermoContext::new(sim, sys, self.thermo, self.vars, 0, 0.0);
                 let global = |n: &str| context.keyword(n);
-                match self.vars.style(name) {
-                    Some("atom") => ColumnValues::Values(per_atom::variable(self.vars, name, sys, sim.units.mvv2e, &global).map_err(|e| format!("v_{name}: {e}"))?),
-                    Some(style) => return Err(format!("v_{name}: variable '{name}' is {style}-style, not atom-style")),
-                    None => return Err(format!("v_{name}: unknown variable '{name}'")),
-                }
+                ColumnValues::Values(per_atom::atom_variable(self.vars, name, sys, sim.units.mvv2e, &global).map_err(|e| format!("v_{name}: {e}"))?)
             }
         })
     }
