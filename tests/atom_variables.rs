@@ -6,25 +6,8 @@
 mod common;
 
 use common::lammps::{expect_success, parse_dump, parse_thermo_blocks, run_lammps};
-use common::{gendpde, tempdir};
+use common::{expect_errors, gendpde, random_data_file, tempdir};
 use std::path::PathBuf;
-
-/// 60 particles of types 1 and 2 at pseudo-random positions (6 decimals).
-fn data_file() -> String {
-    let mut state: u64 = 2463534242;
-    let mut next = || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
-    let mut s = String::from("test\n\n60 atoms\n2 atom types\n\n0 5 xlo xhi\n-1 4 ylo yhi\n0 6 zlo zhi\n\nMasses\n\n1 1.0\n2 2.5\n\nAtoms # atomic\n\n");
-    for i in 1..=60 {
-        let (x, y, z) = (5.0 * next(), -1.0 + 5.0 * next(), 6.0 * next());
-        s += &format!("{i} {} {x:.6} {y:.6} {z:.6}\n", 1 + i % 2);
-    }
-    s
-}
 
 /// Step-0 forces are deterministic: conservative dpd only (gamma 0, so no noise).
 const SCENE: &str = "units lj
@@ -41,7 +24,7 @@ fix 1 all nve
 fn stage(name: &str, script: &str) -> PathBuf {
     let dir = tempdir(name);
     std::fs::write(dir.join("in.x"), script).unwrap();
-    std::fs::write(dir.join("data.v"), data_file()).unwrap();
+    std::fs::write(dir.join("data.v"), random_data_file(60, &[1.0, 2.5], false, 2463534242)).unwrap();
     dir
 }
 
@@ -131,12 +114,5 @@ fn atom_variable_errors_name_the_line() {
         ("variable a atom x+nosuch\nwrite_dump all custom o.dump id v_a", "nosuch"),
         ("variable a atom 1/(x-x)\nwrite_dump all custom o.dump id v_a", "variable 'a'"),
     ];
-    for (lines, expected) in cases {
-        let script = format!("{SCENE}{lines}\n");
-        let dir = stage("atomvar-errors", &script);
-        let out = gendpde(&dir, &["run", "in.x", "-log", "none"]);
-        let err = String::from_utf8_lossy(&out.stderr);
-        assert!(!out.status.success(), "accepted: {lines}");
-        assert!(err.contains("in.x:") && err.contains(expected), "{lines}: expected '{expected}' with file:line, got {err}");
-    }
+    expect_errors(SCENE, &cases, |script| stage("atomvar-errors", script));
 }

@@ -7,31 +7,13 @@
 mod common;
 
 use common::lammps::{expect_success, parse_dump, run_lammps, DumpSnapshot};
-use common::{gendpde, mpirun, tempdir};
+use common::{expect_errors, gendpde, mpirun, random_data_file, tempdir};
 use std::path::{Path, PathBuf};
-
-/// A data file of `n` particles of types 1..3 at pseudo-random positions (6 decimals, so
-/// both programs read the same doubles), in a box not at the origin.
-fn data_file(n: usize) -> String {
-    let mut state: u64 = 88172645463325252;
-    let mut next = || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
-    let mut s = format!("test\n\n{n} atoms\n3 atom types\n\n0 5 xlo xhi\n-1 4 ylo yhi\n0 6 zlo zhi\n\nMasses\n\n1 1.0\n2 2.5\n3 0.7\n\nAtoms # dpd\n\n");
-    for i in 1..=n {
-        let (x, y, z) = (5.0 * next(), -1.0 + 5.0 * next(), 6.0 * next());
-        s += &format!("{i} {} 1.0 {x:.6} {y:.6} {z:.6}\n", 1 + i % 2);
-    }
-    s
-}
 
 fn stage(name: &str, script: &str) -> PathBuf {
     let dir = tempdir(name);
     std::fs::write(dir.join("in.x"), script).unwrap();
-    std::fs::write(dir.join("data.v"), data_file(60)).unwrap();
+    std::fs::write(dir.join("data.v"), random_data_file(60, &[1.0, 2.5, 0.7], true, 88172645463325252)).unwrap();
     dir
 }
 
@@ -174,13 +156,5 @@ fn velocity_and_set_errors_name_the_line() {
         ("set atom 1 charge 1.0", "unknown set keyword 'charge'"),
         ("variable s string abc\nset atom 1 x v_s", "variable 's' is string-style"),
     ];
-    for (line, expected) in cases {
-        let script = format!("{HEAD}{line}\n");
-        let dir = stage("errors", &script);
-        let out = gendpde(&dir, &["run", "in.x", "-log", "none"]);
-        let err = String::from_utf8_lossy(&out.stderr);
-        let n = script.lines().count();
-        assert!(!out.status.success(), "accepted: {line}");
-        assert!(err.contains(&format!("in.x:{n}:")) && err.contains(expected), "{line}: expected 'in.x:{n}: ... {expected}', got {err}");
-    }
+    expect_errors(HEAD, &cases, |script| stage("errors", script));
 }
