@@ -277,6 +277,30 @@ mod tests {
         vars.value(name, &none).unwrap_or_else(|e| panic!("{e}"))
     }
 
+    /// An atom variable reads per-particle names (and other atom variables) from the
+    /// resolver of one particle; read as one number it is an error.
+    #[test]
+    fn atom_variables_evaluate_per_particle() {
+        let mut vars = Variables::new();
+        vars.define(&cmd("variable k equal 3")).unwrap();
+        vars.define(&cmd("variable a atom x*v_k+type")).unwrap();
+        vars.define(&cmd("variable b atom v_a^2")).unwrap();
+        for (x, t) in [(1.0, 2.0), (-0.5, 1.0)] {
+            let particle = |n: &str| match n {
+                "x" => Some(x),
+                "type" => Some(t),
+                _ => None,
+            };
+            assert_eq!(vars.evaluate_atom("a", &particle), Ok(3.0 * x + t));
+            assert_eq!(vars.evaluate_atom("b", &particle), Ok((3.0 * x + t).powi(2)));
+        }
+        assert_eq!(vars.style("a"), Some("atom"));
+        assert!(vars.value("a", &none).unwrap_err().contains("atom-style"));
+        vars.define(&cmd("variable e equal v_a+1")).unwrap();
+        assert!(vars.value("e", &none).unwrap_err().contains("atom-style"));
+        assert!(vars.define(&cmd("variable k atom x")).is_err(), "equal redefined as atom");
+    }
+
     #[test]
     fn index_values_advance_and_exhaust() {
         let mut vars = Variables::new();
@@ -366,7 +390,7 @@ mod tests {
             "variable x",
             "variable x equal 1 + 2",
             "variable x index",
-            "variable x atom mass",
+            "variable x world a b",
             "variable x-y string a",
         ] {
             let err = vars.define(&cmd(bad)).unwrap_err();
