@@ -145,6 +145,8 @@ fn velocity_and_set_errors_name_the_line() {
         ("velocity all set v_nope NULL NULL", "unknown variable 'nope'"),
         ("velocity all zero sideways", "expected linear or angular"),
         ("velocity all scale 1.0", "cannot rescale a temperature of 0"),
+        ("region far block 10 11 10 11 10 11 units box\ngroup none region far\nvelocity none create 1.0 5", "the group is empty"),
+        ("region far block 10 11 10 11 10 11 units box\ngroup none region far\nvelocity none create 1.0 5 mom no", "cannot rescale a temperature of 0"),
         ("set type 1 type/fraction 2 1.5 4", "a fraction in [0, 1]"),
         ("set type 1 mass 2.0", "no per-particle mass"),
         ("set atom 1 image 1 x 0", "expected an integer or NULL, got 'x'"),

@@ -193,6 +193,9 @@ pub fn velocity(sim: &mut Sim, vars: &Variables, thermo: &ThermoConfig, a: &mut 
             for (k, &i) in members.iter().enumerate() {
                 sys.store.p[i] = v[k].map(|c| c * sys.store.mass[i]);
             }
+            if (o.mom || o.rot) && sys.comm.count(members.len()) == 0 {
+                return Err(a.err("cannot zero the momentum of no particles (the group is empty)"));
+            }
             if o.mom {
                 zero_linear(sys, &members);
             }
@@ -235,7 +238,7 @@ pub fn velocity(sim: &mut Sim, vars: &Variables, thermo: &ThermoConfig, a: &mut 
         }
         Style::Zero { angular } => {
             if sys.comm.count(members.len()) == 0 {
-                return Err(a.err("cannot zero the momentum of no particles"));
+                return Err(a.err("cannot zero the momentum of no particles (the group is empty)"));
             }
             if angular {
                 zero_angular(sys, &members)
