@@ -154,7 +154,7 @@ fn velocity_and_set_errors_name_the_line() {
         ("set mol 1 x 1.0", "no molecule IDs"),
         ("set group all dpd/theta NULL", "is not positive"),
         ("set atom 1 type 7", "is not one of 1..3"),
-        ("set atom 1 vx fast", "expected a number or v_name, got 'fast'"),
+        ("set atom 1 vx fast", "expected the velocity (a number), got 'fast'"),
         ("set atom 1 charge 1.0", "unknown set keyword 'charge'"),
         ("variable s string abc\nset atom 1 x v_s", "variable 's' is string-style"),
     ];

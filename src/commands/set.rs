@@ -75,14 +75,14 @@ impl Value {
 
 /// The next word as a number or `v_name`, evaluated now (the earlier keywords have acted).
 fn value(a: &mut Args, sim: &Sim, vars: &Variables, thermo: &ThermoConfig, what: &str) -> Result<Value, ScriptError> {
-    let w = a.word(what)?;
-    match w.strip_prefix("v_") {
+    match a.peek().and_then(|w| w.strip_prefix("v_")) {
         Some(name) => {
+            a.word(what)?;
             let sys = sim.system.as_ref().ok_or_else(|| a.err("set before create_box"))?;
             let global = |n: &str| super::resolve(sim, thermo, vars, n);
             per_atom::variable(vars, name, sys, sim.units.mvv2e, &global).map(Value::PerParticle).map_err(|e| a.err(e))
         }
-        None => w.parse::<f64>().ok().filter(|x| x.is_finite()).map(Value::Number).ok_or_else(|| a.err(format!("{what}: expected a number or v_name, got '{w}'"))),
+        None => a.f64(what).map(Value::Number),
     }
 }
 
