@@ -128,7 +128,7 @@ fn ave_chunk_errors_name_the_line() {
         ("fix a all ave/chunk 1 1 1 nochunk density/number", "in.x:5: fix: no compute chunk/atom with ID 'nochunk'"),
         ("fix a all ave/chunk 2 3 4 c density/number", "in.x:5: fix: Nevery 2, Nrepeat 3, Nfreq 4: all must be positive"),
         ("fix a all ave/chunk 1 1 1 c", "in.x:5: fix: expected values (density/number, density/mass, temp, vx, vy, vz, fx, fy, fz), got nothing"),
-        ("fix a all ave/chunk 1 1 1 c c_pe", "in.x:5: fix: value 'c_pe': per-atom computes, fixes and variables are not supported"),
+        ("fix a all ave/chunk 1 1 1 c c_pe", "in.x:5: fix: value 'c_pe': per-atom computes and fixes are not supported"),
         ("fix a all ave/chunk 1 1 1 c vx norm some", "in.x:5: fix: expected norm all, sample or none, got 'some'"),
         ("fix a all ave/chunk 1 1 1 c vx ave window 0", "in.x:5: fix: ave window M: M must be positive"),
         ("fix a all ave/chunk 1 1 1 c vx ave sometimes", "in.x:5: fix: expected ave one, running or window, got 'sometimes'"),
@@ -243,10 +243,10 @@ fn reduce_errors_name_the_line() {
     let k = "compute ke all ke/atom\ncompute t all temp\n";
     for (line, expected) in [
         ("compute r all reduce total c_ke", "in.x:6: compute: mode 'total': expected sum, sumsq, sumabs, min, max, ave, avesq or aveabs"),
-        ("compute r all reduce sum", "in.x:6: compute: missing argument: expected inputs (x, y, z, vx, vy, vz, fx, fy, fz, c_ID)"),
+        ("compute r all reduce sum", "in.x:6: compute: missing argument: expected inputs (x, y, z, vx, vy, vz, fx, fy, fz, c_ID, v_name)"),
         ("compute r all reduce sum c_nope", "in.x:6: compute: input 'c_nope': no per-atom compute with ID 'nope' (ke/atom, pe/atom)"),
         ("compute r all reduce sum c_t", "in.x:6: compute: input 'c_t': compute t has no per-atom values (ke/atom, pe/atom)"),
-        ("compute r all reduce sum mass", "in.x:6: compute: input 'mass': expected x, y, z, vx, vy, vz, fx, fy, fz or c_ID of a per-atom compute"),
+        ("compute r all reduce sum mass", "in.x:6: compute: input 'mass': expected x, y, z, vx, vy, vz, fx, fy, fz, c_ID of a per-atom compute or v_name of an atom-style variable"),
         ("compute r all reduce max c_ke replace 1 2", "in.x:6: compute: keyword replace is not supported"),
         ("compute p all pe/atom angle kspace charge", "in.x:6: compute: unknown keyword 'charge'; known: pair, bond, angle, dihedral, improper, kspace, fix"),
         ("compute p nogroup ke/atom", "in.x:6: compute: no group 'nogroup'"),

@@ -347,7 +347,7 @@ fn a_blow_up_is_one_message_the_same_on_1_2_3_4_ranks() {
         let errors: Vec<&str> = stderr.lines().filter(|l| l.contains("ERROR")).collect();
         assert_eq!(errors.len(), 1, "one message on {np} ranks:\n{stderr}");
         let e = errors[0].to_string();
-        assert!(e.contains("run stopped: particle 737 during step 18: ") && e.contains("the last good state (step 17) is in failed.restart.h5"), "{e}");
+        assert!(e.contains("run stopped: particle 847 during step 5: ") && e.contains("the last good state (step 4) is in failed.restart.h5"), "{e}");
         e
     });
 }

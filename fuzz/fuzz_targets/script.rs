@@ -25,6 +25,8 @@ fuzz_target!(|bytes: &[u8]| {
                     if vars.define(&cmd).is_ok() {
                         if let Some(name) = cmd.args.first() {
                             let _ = vars.value(name, &thermo);
+                            // atom-style: once per particle, names resolved per particle
+                            let _ = vars.evaluate_atom(name, &thermo);
                             let _ = evaluate(&format!("v_{name}"), &vars, &none);
                         }
                     }

@@ -14,12 +14,8 @@ pub mod stream {
     pub const PAIR: u32 = 0;
     /// Heat-reservoir noise of one particle.
     pub const RESERVOIR: u32 = 1;
-    /// `velocity create`.
-    pub const VELOCITY: u32 = 2;
     /// Random pair forces of `pair dpd` and `pair mdpd`.
     pub const FORCE: u32 = 3;
-    /// `set ... type/fraction`.
-    pub const SET_TYPE: u32 = 4;
     /// Brownian-bridge noises of split pair updates: SUBSTEP + node of the split tree.
     pub const SUBSTEP: u32 = 16;
 }

@@ -22,6 +22,9 @@ enum Var {
     Equal(String),
     /// A fixed string.
     Str(String),
+    /// An expression with one value per particle (per-particle names `x`, `vx`, `mass`,
+    /// `type`, `id`, ... are resolved for each particle).
+    Atom(String),
 }
 
 impl Var {
@@ -31,6 +34,7 @@ impl Var {
             Var::Loop { .. } => "loop",
             Var::Equal(_) => "equal",
             Var::Str(_) => "string",
+            Var::Atom(_) => "atom",
         }
     }
 }
@@ -66,7 +70,7 @@ impl Variables {
                 pos: 0,
             },
             "loop" => parse_loop(rest).map_err(err)?,
-            "equal" | "string" => {
+            "equal" | "string" | "atom" => {
                 let [value] = rest else {
                     return Err(err(format!(
                         "{style}-style variable takes exactly one value (quote it if it has spaces)"
@@ -79,6 +83,7 @@ impl Variables {
                         )))
                     }
                     _ if style == "equal" => Var::Equal(value.clone()),
+                    _ if style == "atom" => Var::Atom(value.clone()),
                     _ => Var::Str(value.clone()),
                 }
             }
@@ -159,7 +164,22 @@ impl Variables {
             Some(Var::Equal(_)) => expr::variable(self, name, resolve, 0, 0, &expr::Memo::default())
                 .map(|x| format_g(x, 15))
                 .map_err(|e| format!("variable '{name}': {e}")),
+            Some(Var::Atom(_)) => Err(format!(
+                "variable '{name}' is atom-style (a value per particle): read it in dump custom, compute reduce, fix ave/chunk, set or velocity"
+            )),
         }
+    }
+
+    /// The style of a variable (`index`, `loop`, `equal`, `string`, `atom`).
+    pub fn style(&self, name: &str) -> Option<&'static str> {
+        self.vars.get(name).map(Var::style)
+    }
+
+    /// The value of equal- or atom-style variable `name` for one particle, whose
+    /// per-particle names (and any global name) `resolve` gives.
+    pub fn evaluate_atom(&self, name: &str, resolve: &dyn Fn(&str) -> Option<f64>) -> Result<f64, String> {
+        expr::variable(&AtomScope(self), name, resolve, 0, 0, &expr::Memo::default())
+            .map_err(|e| format!("variable '{name}': {e}"))
     }
 
     /// Whether a variable of this name exists.
@@ -178,6 +198,23 @@ impl VariableLookup for Variables {
 
     fn text(&self, name: &str, resolve: &dyn Fn(&str) -> Option<f64>) -> Result<String, String> {
         self.value(name, resolve)
+    }
+}
+
+/// The variables as an atom-style expression reads them: `v_name` of an atom-style
+/// variable is evaluated for the same particle.
+struct AtomScope<'a>(&'a Variables);
+
+impl VariableLookup for AtomScope<'_> {
+    fn expression(&self, name: &str) -> Option<&str> {
+        match self.0.vars.get(name) {
+            Some(Var::Equal(text) | Var::Atom(text)) => Some(text),
+            _ => None,
+        }
+    }
+
+    fn text(&self, name: &str, resolve: &dyn Fn(&str) -> Option<f64>) -> Result<String, String> {
+        self.0.value(name, resolve)
     }
 }
 
@@ -238,6 +275,30 @@ mod tests {
 
     fn val(vars: &Variables, name: &str) -> String {
         vars.value(name, &none).unwrap_or_else(|e| panic!("{e}"))
+    }
+
+    /// An atom variable reads per-particle names (and other atom variables) from the
+    /// resolver of one particle; read as one number it is an error.
+    #[test]
+    fn atom_variables_evaluate_per_particle() {
+        let mut vars = Variables::new();
+        vars.define(&cmd("variable k equal 3")).unwrap();
+        vars.define(&cmd("variable a atom x*v_k+type")).unwrap();
+        vars.define(&cmd("variable b atom v_a^2")).unwrap();
+        for (x, t) in [(1.0, 2.0), (-0.5, 1.0)] {
+            let particle = |n: &str| match n {
+                "x" => Some(x),
+                "type" => Some(t),
+                _ => None,
+            };
+            assert_eq!(vars.evaluate_atom("a", &particle), Ok(3.0 * x + t));
+            assert_eq!(vars.evaluate_atom("b", &particle), Ok((3.0 * x + t).powi(2)));
+        }
+        assert_eq!(vars.style("a"), Some("atom"));
+        assert!(vars.value("a", &none).unwrap_err().contains("atom-style"));
+        vars.define(&cmd("variable e equal v_a+1")).unwrap();
+        assert!(vars.value("e", &none).unwrap_err().contains("atom-style"));
+        assert!(vars.define(&cmd("variable k atom x")).is_err(), "equal redefined as atom");
     }
 
     #[test]
@@ -329,7 +390,7 @@ mod tests {
             "variable x",
             "variable x equal 1 + 2",
             "variable x index",
-            "variable x atom mass",
+            "variable x world a b",
             "variable x-y string a",
         ] {
             let err = vars.define(&cmd(bad)).unwrap_err();

@@ -7,6 +7,7 @@ pub mod gather;
 pub mod groups;
 pub mod lattice;
 pub mod memory;
+pub mod park;
 pub mod region;
 pub mod script;
 pub mod signals;

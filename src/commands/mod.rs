@@ -6,6 +6,7 @@ mod group;
 mod output;
 mod particles;
 mod run;
+mod set;
 mod setup;
 mod styles;
 mod velocity;
@@ -77,7 +78,7 @@ impl Interpreter {
         loop {
             let next = {
                 let (sim, vars, thermo) = (&self.sim, &self.vars, &self.outputs.thermo);
-                reader.next_command(vars, &|name| resolve(sim, thermo, name))?
+                reader.next_command(vars, &|name| resolve(sim, thermo, vars, name))?
             };
             let Some(cmd) = next else { return Ok(()) };
             if self.echo_screen {
@@ -138,7 +139,7 @@ impl Interpreter {
             "change_box" => change_box::change_box(sim, a)?,
             "create_atoms" => setup::create_atoms(sim, a)?,
             "mass" => setup::mass(sim, a)?,
-            "set" => setup::set(sim, a)?,
+            "set" => set::set(sim, &self.vars, &outputs.thermo, a)?,
             "timestep" => setup::timestep(sim, a)?,
             "neighbor" => setup::neighbor(sim, a)?,
             "neigh_modify" => setup::neigh_modify(sim, a)?,
@@ -150,7 +151,7 @@ impl Interpreter {
             // compatibility.
             "comm_modify" | "newton" => {}
             "group" => group::group(sim, a)?,
-            "velocity" => velocity::velocity(sim, a)?,
+            "velocity" => velocity::velocity(sim, &self.vars, &outputs.thermo, a)?,
             "read_data" => particles::read_data(sim, a)?,
             "write_data" => particles::write_data(sim, a)?,
             "write_restart" => particles::write_restart(sim, a)?,
@@ -173,7 +174,7 @@ impl Interpreter {
             "dump" => output::dump(&mut outputs.dumps, a)?,
             "dump_modify" => output::dump_modify(&mut outputs.dumps, a)?,
             "undump" => output::undump(&mut outputs.dumps, a)?,
-            "write_dump" => output::write_dump(sim, a)?,
+            "write_dump" => output::write_dump(sim, &self.vars, &outputs.thermo, a)?,
             "checkpoint" => outputs.checkpoint = Checkpoint::parse(a)?,
             "print" => output::print(&mut self.out, a)?,
             "log" => output::log(&mut self.out, self.mode, a)?,
@@ -187,7 +188,7 @@ impl Interpreter {
 }
 
 /// Values of thermo keywords inside variables and `$(...)`, with the thermo settings.
-fn resolve(sim: &Sim, thermo: &ThermoConfig, name: &str) -> Option<f64> {
+pub(crate) fn resolve(sim: &Sim, thermo: &ThermoConfig, vars: &Variables, name: &str) -> Option<f64> {
     let sys = sim.system.as_ref()?;
-    ThermoContext::new(sim, sys, thermo, 0, 0.0).keyword(name)
+    ThermoContext::new(sim, sys, thermo, vars, 0, 0.0).keyword(name)
 }

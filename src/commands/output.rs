@@ -6,7 +6,7 @@ use crate::base::args::Args;
 use crate::base::script::Mode;
 use crate::model::sim::Sim;
 use crate::output::console::Output;
-use crate::output::dump::{group_all, Dump, TextDump, WriteDump};
+use crate::output::dump::{group_all, Dump, PerAtomInputs, TextDump, WriteDump};
 use crate::output::h5md::H5mdDump;
 use crate::output::thermo::{heading, ThermoConfig};
 use crate::styles::compute::{Compute, ComputeStyle};
@@ -121,10 +121,10 @@ pub fn undump(dumps: &mut Vec<Box<dyn Dump>>, a: &mut Args) -> Result<(), Script
 }
 
 /// `write_dump all custom FILE COLUMNS... [modify ...]`.
-pub fn write_dump(sim: &Sim, a: &mut Args) -> Result<(), ScriptError> {
+pub fn write_dump(sim: &Sim, vars: &Variables, thermo: &ThermoConfig, a: &mut Args) -> Result<(), ScriptError> {
     let dump = WriteDump::parse(a)?;
     let sys = sim.system.as_ref().ok_or_else(|| a.err("write_dump before create_box"))?;
-    dump.write(sim, sys).map_err(|e| a.err(e))
+    dump.write(sim, sys, &PerAtomInputs { vars, thermo }).map_err(|e| a.err(e))
 }
 
 /// `print TEXT [screen yes|no]`.

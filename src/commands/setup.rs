@@ -1,9 +1,8 @@
 //! Setup and settings: units, dimension, boundary, atom_style, lattice, region,
-//! processors, create_box, create_atoms, mass, set, timestep, neighbor, neigh_modify,
+//! processors, create_box, create_atoms, mass, timestep, neighbor, neigh_modify,
 //! reset_timestep, run_style and atom_modify.
 
 use crate::base::args::Args;
-use crate::base::groups;
 use crate::base::lattice::{random_points, Lattice, LatticeOptions};
 use crate::base::region::{Region, Shape};
 use crate::base::memory;
@@ -336,104 +335,6 @@ pub fn mass(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
                 }
                 s.mass[i] = internal;
             }
-        }
-    }
-    Ok(())
-}
-
-/// Gives owned particle `i` type `kind` and that type's mass (NaN while unset), keeping
-/// its velocity (p holds the velocity while the mass is unknown, as after read_data).
-fn retype(s: &mut gendpde_engine::Particles, i: usize, kind: u32, masses: &[Option<f64>], mvv2e: f64) {
-    let new = masses[kind as usize - 1].map_or(f64::NAN, |m| m * mvv2e);
-    let old = s.mass[i];
-    let velocity = if old.is_finite() { s.p[i].map(|p| p / old) } else { s.p[i] };
-    s.p[i] = if new.is_finite() { velocity.map(|v| v * new) } else { velocity };
-    s.kind[i] = kind;
-    s.mass[i] = new;
-}
-
-/// `set atom|type|group ID KEYWORD VALUE ...` with keywords theta (dpd/theta), u, type T,
-/// type/fraction T FRACTION SEED (as LAMMPS: each selected particle becomes type T
-/// with probability FRACTION), edpd/temp and edpd/cv (atom_style edpd).
-pub fn set(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
-    let style = a.word("atom, type or group")?;
-    let group_mask = if style == "group" { Some(groups::mask(&sim.groups, a.word("a group ID")?, a)?) } else { None };
-    let sys = sim.system.as_mut().ok_or_else(|| a.err("set before create_box"))?;
-    let s = &mut sys.store;
-    let selected: Vec<usize> = match style {
-        "group" => {
-            let m = group_mask.unwrap_or(0);
-            (0..s.nlocal).filter(|&i| s.in_group(i, m)).collect()
-        }
-        "type" => {
-            let range = a.range("a particle type", sim.ntypes as u64)?;
-            (0..s.nlocal).filter(|&i| range.contains(&(s.kind[i] as u64))).collect()
-        }
-        "atom" => {
-            let range = a.range("a particle ID", sim.max_tag)?;
-            (0..s.nlocal).filter(|&i| range.contains(&s.tag[i])).collect()
-        }
-        _ => return Err(a.err(format!("expected atom, type or group, got '{style}'"))),
-    };
-    if a.remaining() == 0 {
-        return Err(a.err("missing argument: expected a keyword (theta or u) and its value"));
-    }
-    while a.remaining() > 0 {
-        let key = a.word("a keyword")?;
-        match key {
-            "theta" | "dpd/theta" => {
-                let t = a.positive("the particle temperature theta")?;
-                for &i in &selected {
-                    s.theta[i] = t;
-                    s.theta_given[i] = true;
-                }
-            }
-            "u" => {
-                let u = a.f64("the internal energy u")?;
-                for &i in &selected {
-                    s.u[i] = u;
-                    s.theta_given[i] = false;
-                }
-            }
-            "type" => {
-                let t = a.range("a particle type", sim.ntypes as u64)?;
-                if t.start() != t.end() {
-                    return Err(a.err("set type takes one type"));
-                }
-                for &i in &selected {
-                    retype(s, i, *t.start() as u32, &sim.masses, sim.units.mvv2e);
-                }
-            }
-            "type/fraction" => {
-                let t = a.range("a particle type", sim.ntypes as u64)?;
-                let fraction = a.f64("the fraction")?;
-                let seed = a.u64("the random seed")?;
-                if t.start() != t.end() || !(0.0..=1.0).contains(&fraction) || seed == 0 {
-                    return Err(a.err("set type/fraction takes one type, a fraction in [0, 1] and a positive seed"));
-                }
-                for &i in &selected {
-                    // keyed by the tag: the same particles on any number of ranks
-                    let x = gendpde_integrators::rng::uniform4(seed, 0, s.tag[i], 0, gendpde_integrators::rng::stream::SET_TYPE)[0];
-                    if x < fraction {
-                        retype(s, i, *t.start() as u32, &sim.masses, sim.units.mvv2e);
-                    }
-                }
-            }
-            "edpd/temp" | "edpd/cv" => {
-                let what = if key == "edpd/temp" { "the eDPD temperature" } else { "the eDPD heat capacity" };
-                let x = a.positive(what)?;
-                if !s.has(Fields::EDPD) {
-                    return Err(a.err(format!("set {key} needs atom_style edpd")));
-                }
-                for &i in &selected {
-                    if key == "edpd/temp" {
-                        (s.edpd_temp[i], s.vest_temp[i]) = (x, x);
-                    } else {
-                        s.edpd_cv[i] = x;
-                    }
-                }
-            }
-            k => return Err(a.err(format!("unknown set keyword '{k}'; known: theta, dpd/theta, u, type, type/fraction, edpd/temp, edpd/cv"))),
         }
     }
     Ok(())

@@ -10,6 +10,8 @@
 use crate::base::args::Args;
 use crate::base::groups;
 use crate::base::units::Units;
+use crate::model::per_atom;
+use crate::output::thermo::ThermoContext;
 use crate::output::schedule::{write_on_rank0, Frame, RunOutput, Sampling, Span};
 use crate::model::sim::Sim;
 use crate::styles::compute::chunk::ChunkAtom;
@@ -31,13 +33,17 @@ enum Value {
     Force(usize),
     /// Per-atom compute `c_ID` (the ID is the value's name, without `c_`).
     PerAtom,
+    /// `v_name`: the atom-style variable of this index among [`AveChunk::variables`].
+    Variable(usize),
 }
 
 impl Value {
-    /// Its term for particle `i` of `sys`: 1, m, m v^2, v_k or f_k.
-    fn term(self, sys: &System, i: usize) -> f64 {
+    /// Its term for particle `i` of `sys`: 1, m, m v^2, v_k, f_k or the variable's value
+    /// (`variables`: each variable's values per owned particle).
+    fn term(self, sys: &System, i: usize, variables: &[Vec<f64>]) -> f64 {
         let s = &sys.store;
         match self {
+            Self::Variable(k) => variables[k][i],
             Self::DensityNumber => 1.0,
             Self::DensityMass => s.mass[i],
             Self::Temp => s.p[i].iter().map(|p| p * p).sum::<f64>() / s.mass[i],
@@ -77,6 +83,8 @@ pub struct AveChunk {
     /// The value words as given (the file's third heading line).
     names: Vec<String>,
     values: Vec<Value>,
+    /// The atom-style variables of `v_name` values.
+    variables: Vec<String>,
     norm: Norm,
     ave: Ave,
     adof: f64,
@@ -109,7 +117,7 @@ impl AveChunk {
         if !chunks.iter().any(|c| c.id == chunk) {
             return Err(a.err(format!("no compute chunk/atom with ID '{chunk}'")));
         }
-        let (mut names, mut values) = (Vec::new(), Vec::new());
+        let (mut names, mut values, mut variables) = (Vec::new(), Vec::new(), Vec::new());
         while let Some(w) = a.peek() {
             let v = match w {
                 "density/number" => Value::DensityNumber,
@@ -118,8 +126,12 @@ impl AveChunk {
                 "vx" | "vy" | "vz" => Value::Velocity(usize::from(w.as_bytes()[1] - b'x')),
                 "fx" | "fy" | "fz" => Value::Force(usize::from(w.as_bytes()[1] - b'x')),
                 _ if w.strip_prefix("c_").is_some_and(|c| computes.iter().any(|x| x.id == c && x.is_per_atom())) => Value::PerAtom,
-                _ if w.starts_with("c_") || w.starts_with("f_") || w.starts_with("v_") => {
-                    return Err(a.err(format!("value '{w}': not a per-atom compute (per-atom fixes and variables are not supported); values: density/number, density/mass, temp, vx, vy, vz, fx, fy, fz, c_ID")));
+                _ if w.len() > 2 && w.starts_with("v_") => {
+                    variables.push(w[2..].to_string());
+                    Value::Variable(variables.len() - 1)
+                }
+                _ if w.starts_with("c_") || w.starts_with("f_") => {
+                    return Err(a.err(format!("value '{w}': not a per-atom compute (per-atom fixes are not supported); values: density/number, density/mass, temp, vx, vy, vz, fx, fy, fz, c_ID, v_name")));
                 }
                 _ => break,
             };
@@ -165,11 +177,11 @@ impl AveChunk {
             }
         }
         let (many, total, window) = (Vec::new(), Vec::new(), VecDeque::new());
-        Ok(Self { id, group: group.to_string(), mask, chunk, sampling, names, values, norm, ave, adof, cdof, file, format, titles, out: None, nchunk: 0, many, total, window, running: 0 })
+        Ok(Self { id, group: group.to_string(), mask, chunk, sampling, names, values, variables, norm, ave, adof, cdof, file, format, titles, out: None, nchunk: 0, many, total, window, running: 0 })
     }
 
     /// The sums of one sample: count and values per chunk (exact over the ranks).
-    fn sample(&self, chunk: &ChunkAtom, sim: &Sim, sys: &System) -> Result<Block, String> {
+    fn sample(&self, chunk: &ChunkAtom, sim: &Sim, sys: &System, variables: &[Vec<f64>]) -> Result<Block, String> {
         let (d, s) = (&sys.domain, &sys.store);
         // the per-atom computes of c_ID values, by value
         let computes = self
@@ -187,7 +199,7 @@ impl AveChunk {
         let (mvv2e, pair_energy) = (sim.units.mvv2e, sim.pe_is_pair());
         let term = |j: usize, v: Value, i: usize| match computes[j] {
             Some(c) => c.per_atom(sys, i, mvv2e, pair_energy).unwrap_or(0.0),
-            None => v.term(sys, i),
+            None => v.term(sys, i, variables),
         };
         let bins = chunk.bins(d)?;
         if bins.nchunk() != self.nchunk {
@@ -334,7 +346,14 @@ impl RunOutput for AveChunk {
             self.nchunk = bins.nchunk();
             self.many = vec![0.0; self.nchunk * (1 + self.values.len())];
         }
-        let one = self.sample(chunk, f.sim, sys)?;
+        let context = ThermoContext::new(f.sim, sys, f.thermo, f.vars, 0, 0.0);
+        let variables: Vec<Vec<f64>> = self
+            .variables
+            .iter()
+            .map(|v| per_atom::atom_variable(f.vars, v, sys, units.mvv2e, &|n| context.keyword(n)))
+            .collect::<Result<_, _>>()
+            .map_err(|e| format!("fix {} ave/chunk: v_: {e}", self.id))?;
+        let one = self.sample(chunk, f.sim, sys, &variables)?;
         self.add(&one, units, bins.volume);
         if !self.sampling.sample(sys.step, &format!("{} ave/chunk", self.id))? {
             return Ok(());

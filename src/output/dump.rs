@@ -11,11 +11,13 @@
 
 use crate::base::args::Args;
 use crate::base::gather;
+use crate::model::per_atom;
 use crate::model::sim::Sim;
+use crate::output::thermo::{ThermoConfig, ThermoContext};
 use crate::output::schedule::{Frame, RunOutput, Span};
 use gendpde_engine::{FieldReader, Particles};
 use gendpde_integrators::System;
-use gendpde_io::{format_printf, ScriptError};
+use gendpde_io::{format_printf, ScriptError, Variables};
 use std::fs::File;
 use std::io::{BufWriter, Write};
 
@@ -145,6 +147,63 @@ pub fn readers(keywords: &[Keyword], sys: &System) -> Result<Vec<Reader>, String
     keywords.iter().map(|k| k.reader(&sys.store)).collect()
 }
 
+/// A column of a text dump: a per-particle keyword, or LAMMPS's `c_ID` (a per-atom
+/// compute: ke/atom, pe/atom) or `v_name` (an atom-style variable, evaluated per particle
+/// when the frame is written).
+#[derive(Clone)]
+enum Column {
+    Keyword(Keyword),
+    Compute(String),
+    Variable(String),
+}
+
+impl Column {
+    fn name(&self) -> String {
+        match self {
+            Column::Keyword(k) => k.name.to_string(),
+            Column::Compute(id) => format!("c_{id}"),
+            Column::Variable(name) => format!("v_{name}"),
+        }
+    }
+
+    fn integer(&self) -> bool {
+        matches!(self, Column::Keyword(k) if k.integer())
+    }
+}
+
+/// Where a column's values come from in one frame.
+enum ColumnValues {
+    Reader(Reader),
+    /// Per owned particle slot.
+    Values(Vec<f64>),
+}
+
+/// What the values of `c_ID` and `v_name` columns read besides the system.
+pub struct PerAtomInputs<'a> {
+    pub vars: &'a Variables,
+    pub thermo: &'a ThermoConfig,
+}
+
+impl PerAtomInputs<'_> {
+    /// The values of `column` in a frame of `sys`.
+    fn values(&self, column: &Column, sim: &Sim, sys: &System) -> Result<ColumnValues, String> {
+        let s = &sys.store;
+        Ok(match column {
+            Column::Keyword(k) => ColumnValues::Reader(k.reader(s)?),
+            Column::Compute(id) => {
+                let c = sim.computes.iter().find(|c| &c.id == id && c.is_per_atom()).ok_or_else(|| format!("c_{id}: no per-atom compute with ID '{id}' (ke/atom, pe/atom)"))?;
+                let (mvv2e, pair) = (sim.units.mvv2e, sim.pe_is_pair());
+                ColumnValues::Values((0..s.nlocal).map(|i| c.per_atom(sys, i, mvv2e, pair).unwrap_or(0.0)).collect())
+            }
+            Column::Variable(name) => {
+                let context = ThermoContext::new(sim, sys, self.thermo, self.vars, 0, 0.0);
+                let global = |n: &str| context.keyword(n);
+                ColumnValues::Values(per_atom::atom_variable(self.vars, name, sys, sim.units.mvv2e, &global).map_err(|e| format!("v_{name}: {e}"))?)
+            }
+        })
+    }
+}
+
 /// How a column prints its values.
 #[derive(Clone, Debug, PartialEq)]
 enum Format {
@@ -165,7 +224,7 @@ enum Style {
 /// `dump_modify` settings of the text.
 struct TextFormat {
     style: Style,
-    columns: Vec<Keyword>,
+    columns: Vec<Column>,
     /// The float format before any `dump_modify format`.
     float: Format,
     /// Default column formats (`format line`/`int`/`float` applied), then per column
@@ -184,14 +243,14 @@ fn check_format(a: &Args, f: &str) -> Result<String, ScriptError> {
 }
 
 impl TextFormat {
-    fn new(style: Style, columns: Vec<Keyword>, float: Format) -> Self {
+    fn new(style: Style, columns: Vec<Column>, float: Format) -> Self {
         let mut f = Self { style, columns: Vec::new(), float, formats: Vec::new(), overrides: Vec::new(), units: false, time: false, elements: Vec::new() };
         f.reset(columns);
         f
     }
 
     /// Sets the columns, with the default formats.
-    fn reset(&mut self, columns: Vec<Keyword>) {
+    fn reset(&mut self, columns: Vec<Column>) {
         self.formats = columns.iter().map(|c| if c.integer() { Format::Printf("%d".into()) } else { self.float.clone() }).collect();
         self.overrides = vec![None; columns.len()];
         self.columns = columns;
@@ -278,7 +337,7 @@ impl TextFormat {
             let e = |x: f64| format_printf("%1.16e", x).unwrap_or_else(|_| format!("{x:e}"));
             writeln!(o, "{} {}", e(d.lo[k]), e(d.hi[k]))?;
         }
-        let names: Vec<&str> = self.columns.iter().map(|c| c.name).collect();
+        let names: Vec<String> = self.columns.iter().map(Column::name).collect();
         writeln!(o, "ITEM: ATOMS {}", names.join(" "))
     }
 
@@ -296,7 +355,7 @@ impl TextFormat {
             }
             let (c, fmt) = (k - usize::from(self.style == Style::Xyz), &self.formats);
             match (&self.overrides[c], &fmt[c]) {
-                (Some(f), _) | (None, Format::Printf(f)) => line.push_str(&format_printf(f, *v).map_err(|e| format!("column {}: {e}", self.columns[c].name))?),
+                (Some(f), _) | (None, Format::Printf(f)) => line.push_str(&format_printf(f, *v).map_err(|e| format!("column {}: {e}", self.columns[c].name()))?),
                 (None, Format::RoundTrip) if self.columns[c].integer() => line.push_str(&(*v as i64).to_string()),
                 (None, Format::RoundTrip) => line.push_str(&format!("{v:?}")),
             }
@@ -306,12 +365,12 @@ impl TextFormat {
 
     /// Writes a frame of `sys` to `o` on rank 0 (every rank must call: it gathers);
     /// `first`: the first frame of the dump (LAMMPS writes the units once).
-    fn frame(&self, o: &mut Option<impl Write>, sim: &Sim, sys: &System, first: bool) -> Result<(), String> {
+    fn frame(&self, o: &mut Option<impl Write>, sim: &Sim, sys: &System, inputs: &PerAtomInputs, first: bool) -> Result<(), String> {
         let mut columns = self.columns.clone();
         if self.style == Style::Xyz {
-            columns.insert(0, Keyword::find("type").expect("type is a keyword"));
+            columns.insert(0, Column::Keyword(Keyword::find("type").expect("type is a keyword")));
         }
-        let readers = readers(&columns, sys)?;
+        let values: Vec<ColumnValues> = columns.iter().map(|c| inputs.values(c, sim, sys)).collect::<Result<_, _>>()?;
         let natoms = sys.comm.count(sys.store.nlocal);
         if let Some(o) = o.as_mut() {
             self.header(o, sim, sys, natoms, self.units && first).map_err(|e| e.to_string())?;
@@ -319,7 +378,10 @@ impl TextFormat {
         let width = columns.len() + 1;
         let row = |i: usize, buf: &mut Vec<f64>| {
             buf.push(sys.store.tag[i] as f64);
-            buf.extend(readers.iter().map(|r| r.get(sys, i)));
+            buf.extend(values.iter().map(|v| match v {
+                ColumnValues::Reader(r) => r.get(sys, i),
+                ColumnValues::Values(x) => x[i],
+            }));
         };
         let mut emit = |rows: &[f64]| -> Result<(), String> {
             let Some(o) = o.as_mut() else { return Ok(()) };
@@ -339,15 +401,21 @@ fn is_modify_key(w: &str) -> bool {
 }
 
 /// The columns of a `dump custom` or `write_dump custom`.
-fn parse_columns(a: &mut Args) -> Result<Vec<Keyword>, ScriptError> {
+fn parse_columns(a: &mut Args) -> Result<Vec<Column>, ScriptError> {
     let mut cols = Vec::new();
     while let Some(w) = a.peek().filter(|&w| w != "modify") {
-        let k = Keyword::find(w).ok_or_else(|| a.err(format!("unknown keyword '{w}'; known: {}", keyword_names())))?;
+        let c = match (w.strip_prefix("c_"), w.strip_prefix("v_")) {
+            (Some(id), _) if !id.is_empty() && !id.contains('[') => Column::Compute(id.to_string()),
+            (Some(_), _) => return Err(a.err(format!("column '{w}': per-atom arrays (c_ID[k]) are not supported; c_ID of ke/atom or pe/atom"))),
+            (_, Some(name)) if !name.is_empty() => Column::Variable(name.to_string()),
+            _ if w.starts_with("f_") => return Err(a.err(format!("column '{w}': no gendpde fix has per-particle values"))),
+            _ => Column::Keyword(Keyword::find(w).ok_or_else(|| a.err(format!("unknown keyword '{w}'; known: {}, c_ID, v_name", keyword_names())))?),
+        };
         a.word("a keyword")?;
-        cols.push(k);
+        cols.push(c);
     }
     if cols.is_empty() {
-        return Err(a.err(format!("missing argument: expected per-particle keywords ({})", keyword_names())));
+        return Err(a.err(format!("missing argument: expected per-particle keywords ({}, c_ID, v_name)", keyword_names())));
     }
     Ok(cols)
 }
@@ -391,13 +459,13 @@ impl WriteDump {
     }
 
     /// Writes the snapshot (rank 0 writes, through a temporary file; every rank calls).
-    pub fn write(&self, sim: &Sim, sys: &System) -> Result<(), String> {
+    pub fn write(&self, sim: &Sim, sys: &System, inputs: &PerAtomInputs) -> Result<(), String> {
         let (file, tmp) = (&self.file, format!("{}.tmp", self.file));
         let mut out = match sys.comm.rank() {
             0 => Some(BufWriter::new(File::create(&tmp).map_err(|e| format!("cannot create '{tmp}': {e}"))?)),
             _ => None,
         };
-        self.format.frame(&mut out, sim, sys, true).map_err(|e| format!("writing '{file}': {e}"))?;
+        self.format.frame(&mut out, sim, sys, inputs, true).map_err(|e| format!("writing '{file}': {e}"))?;
         if out.is_some() {
             drop(out);
             std::fs::rename(&tmp, file).map_err(|e| format!("renaming '{tmp}' to '{file}': {e}"))?;
@@ -491,8 +559,8 @@ impl TextDump {
         }
         let columns = match style {
             Style::Custom => parse_columns(a)?,
-            Style::Atom => ["id", "type", "xs", "ys", "zs"].iter().filter_map(|k| Keyword::find(k)).collect(),
-            Style::Xyz => ["x", "y", "z"].iter().filter_map(|k| Keyword::find(k)).collect(),
+            Style::Atom => ["id", "type", "xs", "ys", "zs"].iter().filter_map(|k| Keyword::find(k)).map(Column::Keyword).collect(),
+            Style::Xyz => ["x", "y", "z"].iter().filter_map(|k| Keyword::find(k)).map(Column::Keyword).collect(),
         };
         a.done()?;
         let format = TextFormat::new(style, columns, Format::Printf("%g".into()));
@@ -503,7 +571,7 @@ impl TextDump {
     fn atom_columns(&mut self) {
         let pos = if self.scale { ["id", "type", "xs", "ys", "zs"] } else { ["id", "type", "x", "y", "z"] };
         let image: &[&str] = if self.image { &["ix", "iy", "iz"] } else { &[] };
-        self.format.reset(pos.iter().chain(image).filter_map(|k| Keyword::find(k)).collect());
+        self.format.reset(pos.iter().chain(image).filter_map(|k| Keyword::find(k)).map(Column::Keyword).collect());
     }
 
     fn open(&mut self, step: u64) -> Result<(), String> {
@@ -533,7 +601,7 @@ impl RunOutput for TextDump {
             if f.sys.comm.rank() == 0 {
                 self.open(step)?;
             }
-            self.format.frame(&mut self.out, f.sim, f.sys, !self.wrote_units)?;
+            self.format.frame(&mut self.out, f.sim, f.sys, &PerAtomInputs { vars: f.vars, thermo: f.thermo }, !self.wrote_units)?;
             self.wrote_units = true;
             if self.file.contains('*') {
                 self.out = None;

@@ -22,7 +22,7 @@ use crate::output::thermo_settings::Mark;
 use crate::styles::compute::{self, ComputeStyle, Kinetic, Totals};
 use gendpde_engine::exact_sums;
 use gendpde_integrators::System;
-use gendpde_io::format_printf;
+use gendpde_io::{format_printf, Variables};
 
 impl RunOutput for ThermoConfig {
     /// At the setup, every `every` steps and at the last step of the run.
@@ -48,7 +48,7 @@ impl RunOutput for ThermoConfig {
 
 /// The values of thermo `keywords` at the frame's step (collective: every rank calls).
 pub fn values(config: &ThermoConfig, f: &Frame) -> Result<Vec<f64>, String> {
-    let ctx = ThermoContext::new(f.sim, f.sys, config, f.sys.step - f.run.first, f.cpu);
+    let ctx = ThermoContext::new(f.sim, f.sys, config, f.vars, f.sys.step - f.run.first, f.cpu);
     let resolve = |name: &str| ctx.keyword(name);
     let mut values = Vec::with_capacity(config.keywords.len());
     for k in &config.keywords {
@@ -151,6 +151,8 @@ impl Observables {
 pub struct ThermoContext<'a> {
     sim: &'a Sim,
     sys: &'a System,
+    /// The script's variables (atom-style inputs of compute reduce).
+    vars: &'a Variables,
     obs: Observables,
     /// Kinetic sums of the thermo temperature's group, and its extra dof.
     kinetic: Kinetic,
@@ -165,7 +167,7 @@ pub struct ThermoContext<'a> {
 impl<'a> ThermoContext<'a> {
     /// Measures `sys` of `sim` (collective) for the thermo settings `config`; `elapsed`
     /// steps and `cpu` seconds of the run.
-    pub fn new(sim: &'a Sim, sys: &'a System, config: &ThermoConfig, elapsed: u64, cpu: f64) -> Self {
+    pub fn new(sim: &'a Sim, sys: &'a System, config: &ThermoConfig, vars: &'a Variables, elapsed: u64, cpu: f64) -> Self {
         let obs = Observables::measure(sys);
         let temp = config.temp.as_deref().and_then(|id| sim.computes.iter().find(|c| c.id == id));
         let (kinetic, extra_dof) = match temp.map(|c| c.style) {
@@ -173,7 +175,7 @@ impl<'a> ThermoContext<'a> {
             _ => (obs.kinetic(), 3.0),
         };
         let last = config.last.filter(|_| elapsed > 0);
-        Self { sim, sys, obs, kinetic, extra_dof, norm: config.norm, last, elapsed, cpu }
+        Self { sim, sys, vars, obs, kinetic, extra_dof, norm: config.norm, last, elapsed, cpu }
     }
 
     /// Value of a built-in keyword; None if the name is not one.
@@ -248,7 +250,8 @@ impl<'a> ThermoContext<'a> {
         let totals = Totals { kb: self.sim.units.kb, atoms: o.atoms, u: o.u, u_cond: o.u_cond, inv_theta: o.inv_theta };
         let (sim, sys) = (self.sim, self.sys);
         compute::value(&sim.computes, sys, &totals, name).or_else(|| compute::msd_value(&sim.msds, sys, name)).or_else(|| {
-            let (v, extensive) = compute::reduce_value(&sim.reduces, &sim.computes, sys, sim.units.mvv2e, sim.pe_is_pair(), name)?;
+            let variable = |v: &str| crate::model::per_atom::atom_variable(self.vars, v, sys, sim.units.mvv2e, &|n| self.keyword(n)).ok();
+            let (v, extensive) = compute::reduce_value(&sim.reduces, &sim.computes, sys, sim.units.mvv2e, sim.pe_is_pair(), &variable, name)?;
             Some(if extensive && self.norm && o.atoms > 0.0 { v / o.atoms } else { v })
         })
     }

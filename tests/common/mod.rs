@@ -56,3 +56,41 @@ pub fn worst_energy_error(it: &mut Interpreter, steps: u64) -> f64 {
     }
     worst
 }
+
+/// A LAMMPS data file of `n` particles (types alternating 2, 1, 2, ...) at pseudo-random
+/// positions with 6 decimals (so LAMMPS and gendpde read the same doubles) in the box
+/// [0, 5] x [-1, 4] x [0, 6]; one type per mass; `dpd`: atom style dpd (dpdTheta 1).
+pub fn random_data_file(n: usize, masses: &[f64], dpd: bool, seed: u64) -> String {
+    let mut state = seed.max(1);
+    let mut next = || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let mut s = format!("test\n\n{n} atoms\n{} atom types\n\n0 5 xlo xhi\n-1 4 ylo yhi\n0 6 zlo zhi\n\nMasses\n\n", masses.len());
+    for (t, m) in masses.iter().enumerate() {
+        s += &format!("{} {m}\n", t + 1);
+    }
+    s += if dpd { "\nAtoms # dpd\n\n" } else { "\nAtoms # atomic\n\n" };
+    for i in 1..=n {
+        let (x, y, z) = (5.0 * next(), -1.0 + 5.0 * next(), 6.0 * next());
+        let theta = if dpd { " 1.0" } else { "" };
+        s += &format!("{i} {}{theta} {x:.6} {y:.6} {z:.6}\n", 1 + i % 2);
+    }
+    s
+}
+
+/// Runs `head` followed by each case's lines in the directory `stage` makes of a script;
+/// each must fail with its expected text and the location of its last line.
+pub fn expect_errors(head: &str, cases: &[(&str, &str)], stage: impl Fn(&str) -> PathBuf) {
+    for (lines, expected) in cases {
+        let script = format!("{head}{lines}\n");
+        let dir = stage(&script);
+        let out = gendpde(&dir, &["run", "in.x", "-log", "none"]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        let n = script.lines().count();
+        assert!(!out.status.success(), "accepted: {lines}");
+        assert!(err.contains(&format!("in.x:{n}:")) && err.contains(expected), "{lines}: expected 'in.x:{n}: ... {expected}', got {err}");
+    }
+}

@@ -224,8 +224,14 @@ pub fn msd_value(msds: &[Msd], sys: &System, name: &str) -> Option<f64> {
 /// `c_ID` or `c_ID[k]` of a compute reduce and whether it is extensive (divided by the
 /// particle count with `thermo_modify norm yes`); None if `name` is no such reference.
 /// Collective; `mvv2e` and `pair_energy` as for [`Compute::per_atom`].
-pub fn reduce_value(reduces: &[Reduce], computes: &[Compute], sys: &System, mvv2e: f64, pair_energy: bool, name: &str) -> Option<(f64, bool)> {
+/// `variable(name)` gives the values of an atom-style variable per owned particle (None:
+/// no such variable, or its evaluation fails).
+pub fn reduce_value(reduces: &[Reduce], computes: &[Compute], sys: &System, mvv2e: f64, pair_energy: bool, variable: &dyn Fn(&str) -> Option<Vec<f64>>, name: &str) -> Option<(f64, bool)> {
     let (r, k) = reduces.iter().find_map(|r| Some((r, r.index(name)?)))?;
+    if let Some(v) = r.variable_input(k) {
+        let values = variable(v)?;
+        return Some((r.value(k, sys, |i| values[i]), r.extensive()));
+    }
     // None if the per-atom compute was redefined as another style
     let compute = match r.compute_input(k) {
         Some(cid) => Some(computes.iter().find(|c| c.id == cid && c.is_per_atom())?),

@@ -1,6 +1,6 @@
 //! `compute ID GROUP reduce MODE input ...`: one global value per input, reduced over the
 //! group's particles, as LAMMPS's compute reduce. Inputs: `x y z vx vy vz fx fy fz` and
-//! `c_ID` of a per-atom compute (ke/atom, pe/atom). Modes: sum, sumsq, sumabs, min, max,
+//! `c_ID` of a per-atom compute (ke/atom, pe/atom), `v_name` of an atom-style variable. Modes: sum, sumsq, sumabs, min, max,
 //! ave, avesq, aveabs. One input gives thermo `c_ID`, several `c_ID[1]` ... (as LAMMPS's
 //! scalar and vector). Sums are exact and min/max are exact, so the values do not depend
 //! on the rank count.
@@ -29,6 +29,8 @@ enum Input {
     F(usize),
     /// A per-atom compute by ID.
     Compute(String),
+    /// An atom-style variable by name (checked when evaluated, as LAMMPS at init).
+    Variable(String),
 }
 
 /// LAMMPS's value of min and max over no particles.
@@ -66,8 +68,9 @@ impl Reduce {
                 [b'v', c @ b'x'..=b'z'] => Input::V(axis(*c)),
                 [b'f', c @ b'x'..=b'z'] => Input::F(axis(*c)),
                 _ if w == "replace" => return Err(a.err("keyword replace is not supported")),
+                _ if w.len() > 2 && w.starts_with("v_") => Input::Variable(w[2..].to_string()),
                 _ => {
-                    let cid = w.strip_prefix("c_").ok_or_else(|| a.err(format!("input '{w}': expected x, y, z, vx, vy, vz, fx, fy, fz or c_ID of a per-atom compute")))?;
+                    let cid = w.strip_prefix("c_").ok_or_else(|| a.err(format!("input '{w}': expected x, y, z, vx, vy, vz, fx, fy, fz, c_ID of a per-atom compute or v_name of an atom-style variable")))?;
                     match per_atom(cid) {
                         Some(true) => Input::Compute(cid.to_string()),
                         Some(false) => return Err(a.err(format!("input '{w}': compute {cid} has no per-atom values (ke/atom, pe/atom)"))),
@@ -78,7 +81,7 @@ impl Reduce {
             inputs.push(input);
         }
         if inputs.is_empty() {
-            return Err(a.err("missing argument: expected inputs (x, y, z, vx, vy, vz, fx, fy, fz, c_ID)"));
+            return Err(a.err("missing argument: expected inputs (x, y, z, vx, vy, vz, fx, fy, fz, c_ID, v_name)"));
         }
         Ok(Self { id, mask, mode, inputs })
     }
@@ -108,15 +111,23 @@ impl Reduce {
         }
     }
 
+    /// The atom-style variable input `k` reads, if it reads one.
+    pub fn variable_input(&self, k: usize) -> Option<&str> {
+        match &self.inputs[k] {
+            Input::Variable(name) => Some(name),
+            _ => None,
+        }
+    }
+
     /// The reduced value of input `k` (collective); `per_atom(i)` is the value of particle
-    /// i of its per-atom compute.
+    /// i of its per-atom compute or atom-style variable.
     pub fn value(&self, k: usize, sys: &System, per_atom: impl Fn(usize) -> f64) -> f64 {
         let s = &sys.store;
         let term = |i: usize| match &self.inputs[k] {
             Input::X(d) => s.r[i][*d],
             Input::V(d) => s.p[i][*d] / s.mass[i],
             Input::F(d) => s.f[i][*d],
-            Input::Compute(_) => per_atom(i),
+            Input::Compute(_) | Input::Variable(_) => per_atom(i),
         };
         let members = (0..s.nlocal).filter(|&i| s.in_group(i, self.mask));
         let t = sys.comm.transport();
