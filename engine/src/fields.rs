@@ -20,6 +20,10 @@ impl Fields {
     pub const PAIR_ENERGY: Self = Self(256);
     /// The MDPD density of pairwise many-body styles, as LAMMPS's mdpd/rhosum sums it.
     pub const RHO: Self = Self(512);
+    /// The stress increment of one SDPD step (pair sdpd/generic), owners to ghosts.
+    pub const SDPD_STRESS: Self = Self(1024);
+    /// The heat-flux increment of one SDPD step (pair sdpd/generic), owners to ghosts.
+    pub const SDPD_FLUX: Self = Self(2048);
 
     pub const fn union(self, other: Self) -> Self {
         Self(self.0 | other.0)

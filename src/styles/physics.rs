@@ -30,7 +30,11 @@ pub fn build_physics(
             let settings = Settings { dt, skin, rebuild, motion: Motion::Fixed, dissipation: None, reservoirs: Vec::new() };
             return pairwise(cmd, p, fixes, settings, kb);
         }
+        PairStyle::Sdpd(p) => return crate::styles::sdpd::build_sdpd(cmd, p, fixes, dt, skin, rebuild, kb),
     };
+    if let Some(f) = fixes.iter().find(|f| f.style == FixStyle::NveSdpd) {
+        return Err(err(format!("fix {} (nve/sdpd) integrates pair sdpd/generic", f.id)));
+    }
     if fixes.iter().any(|f| matches!(f.style, FixStyle::Nve | FixStyle::Mvv { .. })) {
         return Err(err("pair gendpde integrates with fix nve/gendpde or vv/euler (fix nve and mvv/dpd belong to LAMMPS's pairwise styles)".into()));
     }
@@ -144,7 +148,7 @@ fn pairwise(cmd: &Command, p: &Pairwise, fixes: &[Fix], settings: Settings, kb: 
         FixStyle::Eos(EosModel::Linear(e)) if !gendpde_potentials::Eos::density_dependent(e) && e.q == 0.0 => Some(e.cv),
         _ => None,
     });
-    if has(|s| matches!(s, FixStyle::Verlet { .. } | FixStyle::VvEuler { .. } | FixStyle::Reservoir { .. })) {
+    if has(|s| matches!(s, FixStyle::Verlet { .. } | FixStyle::VvEuler { .. } | FixStyle::Reservoir { .. } | FixStyle::NveSdpd)) {
         return Err(err("fix nve/gendpde, vv/euler and heat/reservoir belong to pair gendpde; LAMMPS's pairwise styles use fix nve, shardlow, eos/cv, mvv/dpd"));
     }
     let integration = match (nve, mvv) {

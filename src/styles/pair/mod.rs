@@ -3,9 +3,11 @@
 
 pub mod gendpde;
 pub mod pairwise;
+pub mod sdpd;
 
 use self::gendpde::PairGendpde;
 use self::pairwise::Pairwise;
+use self::sdpd::PairSdpd;
 use crate::base::args::Args;
 use gendpde_io::{Command, ScriptError};
 
@@ -15,6 +17,8 @@ pub enum PairStyle {
     Gendpde(PairGendpde),
     /// LAMMPS's pairwise DPD styles.
     Pairwise(Pairwise),
+    /// Thermal SDPD (Serrano-Espanol Sec VII).
+    Sdpd(PairSdpd),
 }
 
 impl PairStyle {
@@ -25,6 +29,7 @@ impl PairStyle {
         match self {
             Self::Gendpde(p) => p.coeff.as_ref().map_or(p.cutoff, |c| p.cutoff.max(c.rc_friction).max(c.rc_heat)),
             Self::Pairwise(p) => p.coeff.as_ref().map_or(p.cutoff, |c| c.rc).max(p.rhosum.unwrap_or(0.0)),
+            Self::Sdpd(p) => p.cutoff,
         }
     }
 }
@@ -34,6 +39,7 @@ pub fn parse_pair_style(cmd: &Command) -> Result<PairStyle, ScriptError> {
     let mut a = Args::new(cmd);
     match a.word("a pair style")? {
         "gendpde" => self::gendpde::parse_style(&mut a).map(PairStyle::Gendpde),
+        "sdpd/generic" => self::sdpd::parse_style(&mut a).map(PairStyle::Sdpd),
         other => self::pairwise::parse_style(other, &mut a).map(PairStyle::Pairwise),
     }
 }
@@ -46,5 +52,9 @@ pub fn parse_pair_coeff(cmd: &Command, pair: &mut PairStyle, ntypes: usize) -> R
             Ok(())
         }
         PairStyle::Pairwise(p) => self::pairwise::parse_coeff(p, cmd, ntypes),
+        PairStyle::Sdpd(p) => {
+            p.coeff = Some(self::sdpd::parse_coeff(cmd, ntypes)?);
+            Ok(())
+        }
     }
 }
