@@ -1,6 +1,7 @@
 //! Thermal SDPD: the GENERIC SPH model of Serrano and Espanol (Sec VII; docs/DESIGN.md
 //! "Thermal SDPD"). Particles of constant mass with volume 1/d_mu from the kernel density
-//! (eqs 92-93; the density pass of GenDPDE, W = w/[w]) or the normalised volume of eq 97;
+//! (eqs 92-93; the density pass of GenDPDE, W = w/[w], plus the self term W(0)) or the
+//! normalised volume of eq 97;
 //! the reversible part is eq 96 (GenDPDE's many-body force at fixed entropy) or eq 99,
 //! the irreversible part eq 82 with the SPH Omega_{mu nu} = dV_nu/dR_mu of eq 94 (shear
 //! and bulk viscosity, heat conduction) and the noise of eqs 76-80 with k_B a parameter.
@@ -29,7 +30,7 @@ use crate::species::Species;
 use crate::system::System;
 use crate::{isentropic, verlet, FixedEntropy, Physics, SetupError};
 use gendpde_engine::{exact_sums, sub, Fields, Vec3};
-use gendpde_potentials::{Eos, Weight, ISOLATED_DENSITY};
+use gendpde_potentials::{Eos, Weight};
 use std::cell::RefCell;
 
 /// Transport coefficients and fluctuation strength of `pair sdpd/generic`.
@@ -78,18 +79,24 @@ impl<E: FixedEntropy, W: Weight> Sdpd<E, W> {
         Self { eos, weight, params, settings, scratch: RefCell::new(Scratch { alpha: 1.0, ..Scratch::default() }) }
     }
 
-    /// Kernel density d_mu of particle i (the EOS reads 1/V = d/alpha).
+    /// Kernel density d_mu of particle i (the EOS reads 1/V = d/alpha); never below
+    /// W(0) > 0, so no particle is isolated.
     #[inline(always)]
     fn d(alpha: f64, sys: &System, i: usize) -> f64 {
-        alpha * sys.store.n[i].max(ISOLATED_DENSITY)
+        alpha * sys.store.n[i]
     }
 
-    /// Density pass, then the normalised volume (eq 97): n = 1/V = d/alpha.
+    /// Density pass with the self term W(0) of eq 92 (GenDPDE's n_i has none), then the
+    /// normalised volume (eq 97): n = 1/V = d/alpha.
     fn density(&self, sys: &mut System) {
         many_body::density(&self.weight, None, sys);
+        let nl = sys.store.nlocal;
+        let w0 = self.weight.eval(0.0).0;
+        for n in &mut sys.store.n[..nl] {
+            *n += w0;
+        }
         if self.params.normalized {
-            let nl = sys.store.nlocal;
-            let [inv_d] = exact_sums(sys.comm.transport(), sys.store.n[..nl].iter().map(|&d| [1.0 / d.max(ISOLATED_DENSITY)]));
+            let [inv_d] = exact_sums(sys.comm.transport(), sys.store.n[..nl].iter().map(|&d| [1.0 / d]));
             let alpha = sys.domain.volume() / inv_d;
             self.scratch.borrow_mut().alpha = alpha;
             for n in &mut sys.store.n[..nl] {
@@ -119,7 +126,7 @@ impl<E: FixedEntropy, W: Weight> Sdpd<E, W> {
             let [vp] = exact_sums(sys.comm.transport(), (0..nl).map(|i| [s.pn2[i] * s.n[i]]));
             let pbar = vp / sys.domain.volume();
             for i in 0..nl {
-                let n = s.n[i].max(ISOLATED_DENSITY);
+                let n = s.n[i];
                 s.pn2[i] = (s.pn2[i] * n * n - pbar) / (alpha * n * n);
             }
         }
@@ -167,7 +174,7 @@ impl<E: FixedEntropy, W: Weight> Sdpd<E, W> {
         self.gradients(sys, sc);
         let nl = sys.store.nlocal;
         for i in 0..nl {
-            let vol = 1.0 / sys.store.n[i].max(ISOLATED_DENSITY);
+            let vol = 1.0 / sys.store.n[i];
             let l = sc.grad[i];
             let tr = l[0] + l[4] + l[8];
             let (ce, cz) = (2.0 * p.eta / vol, p.zeta / vol);
@@ -245,7 +252,7 @@ impl<E: FixedEntropy, W: Weight> Sdpd<E, W> {
             let s = &sys.store;
             sc.inv_tau.clear();
             sc.inv_tau.extend((0..s.len()).map(|i| {
-                let (t, n) = (s.theta[i], s.n[i].max(ISOLATED_DENSITY));
+                let (t, n) = (s.theta[i], s.n[i]);
                 (1.0 - p.kb / self.eos.of(s.kind[i]).cv(t, n)) / t
             }));
             sc.a.clear();
@@ -271,7 +278,7 @@ impl<E: FixedEntropy, W: Weight> Sdpd<E, W> {
         for i in 0..nl {
             let s = &sys.store;
             let d = Self::d(sc.alpha, sys, i);
-            let (t, n) = (s.theta[i], s.n[i].max(ISOLATED_DENSITY));
+            let (t, n) = (s.theta[i], s.n[i]);
             let (vol, cv) = (1.0 / n, self.eos.of(s.kind[i]).cv(t, n));
             let cj = p.kappa * t * t / vol * dt / (d * d);
             let cself = -2.0 * p.kb * p.kappa * t / (cv * vol) * dt / (d * d);
@@ -301,7 +308,7 @@ impl<E: FixedEntropy, W: Weight> Sdpd<E, W> {
             }
             let [i, j] = sys.nlist.pairs[k as usize].map(|x| x as usize);
             let w = sub(s.r[i], s.r[j]).map(|x| g * x);
-            let (di, dj) = (sc.alpha * s.n[i].max(ISOLATED_DENSITY), sc.alpha * s.n[j].max(ISOLATED_DENSITY));
+            let (di, dj) = (sc.alpha * s.n[i], sc.alpha * s.n[j]);
             let du: f64 = (0..3).map(|c| -w[c] * (s.sdpd_flux[i][c] / (di * di) + s.sdpd_flux[j][c] / (dj * dj))).sum();
             if i < nl {
                 sums[i] += du;
