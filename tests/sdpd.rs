@@ -134,3 +134,35 @@ fn uniform_pressure_leaves_a_remnant_force_with_eq_96_and_none_with_eq_99() {
     assert!(plain > 0.1, "eq 96 should leave an O(1) remnant force, got {plain:e}");
     assert!(normalized < 1e-12 * plain, "eq 99 left {normalized:e}");
 }
+
+/// Equilibrium with noise (k_B = 1, C_V = 15, no pressure): the Einstein distribution
+/// exp(S/k_B) in the paper's variables (R, P, S) gives T_kin = <theta> (in u the
+/// Jacobian dS/du = 1/theta makes u ~ u^(C/k_B - 1) e^(-u/T)), where the u-measure
+/// of GenDPDE would give T_kin = <1/theta>^-1 = <theta>(1 - k_B/C), 6.7 % lower. Started
+/// off equilibrium (T_kin 0.5, theta 1); relaxed by step 700.
+#[test]
+fn kinetic_temperature_relaxes_to_the_mean_particle_temperature() {
+    let script = "units lj\natom_style gendpde\nlattice sc 1.0\nregion box block 0 12 0 12 0 12\ncreate_box 1 box\n\
+                  create_atoms 1 box\nmass 1 1.0\nvelocity all create 0.5 4928459 dist gaussian\nset group all theta 1.0\n\
+                  pair_style sdpd/generic 2.4 4928 kB 1.0\npair_coeff * * 1.0 1.0 1.0\nfix eos all eos/cv 15.0\n\
+                  fix int all nve/sdpd\ntimestep 0.01\nneighbor 0.3 bin\nneigh_modify every 1 delay 0 check yes\nrun 0\n";
+    let mut it = common::run_script(script);
+    let physics = it.dynamics().unwrap();
+    let sys = it.system().unwrap();
+    let mut ratios = Vec::new();
+    for step in 1..=1700 {
+        physics.step(sys).unwrap();
+        if step > 700 && step % 10 == 0 {
+            let s = &sys.store;
+            let n = s.nlocal as f64;
+            let mv2: f64 = (0..s.nlocal).map(|i| s.p[i].iter().map(|p| p * p).sum::<f64>() / s.mass[i]).sum();
+            let theta: f64 = s.theta[..s.nlocal].iter().sum::<f64>() / n;
+            ratios.push(mv2 / (3.0 * n - 3.0) / theta);
+        }
+    }
+    let (mean, sem) = common::lammps::block_average(&ratios, 10);
+    eprintln!("T_kin/<theta> = {mean:.4} +- {sem:.4} (Einstein in S: 1; in u: {:.4})", 1.0 - 1.0 / 15.0);
+    assert!((mean - 1.0).abs() < 4.0 * sem, "T_kin/<theta> = {mean} +- {sem}");
+    assert!((mean - (1.0 - 1.0 / 15.0)).abs() > 4.0 * sem, "cannot tell the S measure from the u measure");
+    assert!(sem < 0.01, "too noisy to tell: {sem}");
+}

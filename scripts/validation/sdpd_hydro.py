@@ -111,6 +111,7 @@ def mode(values, coord, k):
 
 def run_case(test, n, h, t, args):
     wd = common.workdir("sdpd_hydro", f"{test}_n{n}_h{h}")
+    wd.mkdir(parents=True, exist_ok=True)
     amp = {"shear": 0.1, "heat": 0.1, "sound": 0.02}[test]
     data_file(Path(wd) / "data.wave", n, t, test, amp)
     steps = {"shear": args.steps, "heat": args.steps, "sound": args.steps // 2}[test]
