@@ -166,3 +166,34 @@ fn kinetic_temperature_relaxes_to_the_mean_particle_temperature() {
     assert!((mean - (1.0 - 1.0 / 15.0)).abs() > 4.0 * sem, "cannot tell the S measure from the u measure");
     assert!(sem < 0.01, "too noisy to tell: {sem}");
 }
+
+/// Bad input stops at the command with `file:line: command: what was expected`.
+#[test]
+fn bad_sdpd_input_names_the_line() {
+    let base = fluid("kB 0\npair_coeff * * 1.0 1.0 1.0", 0.01);
+    for (from, to, expected) in [
+        ("sdpd/generic 2.4 4928 kB 0", "sdpd/generic 2.4 4928 kB -1", "test.in:13: pair_style:"),
+        ("sdpd/generic 2.4 4928 kB 0", "sdpd/generic 2.4 4928 volume corrected", "unknown particle volume 'corrected'; known: plain, normalized"),
+        ("sdpd/generic 2.4 4928 kB 0", "sdpd/generic 2.4 0", "the random seed must be positive"),
+        ("pair_coeff * * 1.0 1.0 1.0", "pair_coeff 1 1 1.0 1.0 1.0 2.0", "test.in:14: pair_coeff:"),
+        ("pair_coeff * * 1.0 1.0 1.0", "pair_coeff * * 1.0 -1.0 1.0", "the bulk viscosity zeta"),
+        ("fix int all nve/sdpd", "fix int all nve/gendpde", "fix int does not work with pair sdpd/generic"),
+        ("fix int all nve/sdpd", "fix int all shardlow", "fix int does not work with pair sdpd/generic"),
+        ("fix int all nve/sdpd\n", "", "pair sdpd/generic needs fix nve/sdpd"),
+        ("eos/vdw/reduced 1.0", "eos/vdw/reduced 0.5", "C_V = N0 D/2 = 0.75 must exceed k_B = 1"),
+        ("eos/vdw/reduced 1.0", "eos/vdw/reduced 1.0 dims 2", "unknown keyword 'dims'; known: dim, cap, table"),
+        ("units lj", "units real", "eos/vdw/reduced is in the reduced units of eqs 160-162"),
+    ] {
+        assert!(base.contains(from), "{from}");
+        let script = base.replacen(from, to, 1);
+        let mut it = gendpde::Interpreter::new(gendpde::Mode::Run, gendpde::Output::new(false));
+        let err = it.execute_str("test.in", &script).err().map(|e| e.to_string()).unwrap_or_default();
+        assert!(err.contains(expected), "'{to}': expected '{expected}', got '{err}'");
+    }
+    let gendpde_with_sdpd = "units lj\natom_style gendpde\nlattice sc 0.5\nregion box block 0 11 0 11 0 11\ncreate_box 1 box\n\
+                             create_atoms 1 box\nmass 1 1.0\npair_style gendpde 3.0 4928\npair_coeff * * 4.5 1.0\n\
+                             fix eos all eos/vdw 60.0 2.4682 1.4142\nfix int all nve/sdpd\nrun 0\n";
+    let mut it = gendpde::Interpreter::new(gendpde::Mode::Run, gendpde::Output::new(false));
+    let err = it.execute_str("test.in", gendpde_with_sdpd).err().map(|e| e.to_string()).unwrap_or_default();
+    assert!(err.contains("test.in:12: run: fix int (nve/sdpd) integrates pair sdpd/generic"), "got '{err}'");
+}
