@@ -68,6 +68,19 @@ fn gendpde_fluid(eos: &str, rest: &str) -> String {
     )
 }
 
+/// A thermal SDPD vdW fluid (pair sdpd/generic) of 12^3 particles with a hot slab;
+/// `options` after the pair style's seed.
+fn sdpd_fluid(options: &str) -> String {
+    format!(
+        "units lj\natom_style gendpde\nlattice sc 1.0\nregion box block 0 12 0 12 0 12\ncreate_box 1 box\n\
+         create_atoms 1 box\nmass 1 1.0\nvelocity all create 1.5 4928459 dist gaussian\nset group all theta 1.5\n\
+         region hot block 0 4 INF INF INF INF\ngroup hot region hot\nset group hot theta 2.5\n\
+         pair_style sdpd/generic 2.4 4928 {options}\npair_coeff * * 1.0 1.0 1.0\nfix eos all eos/vdw/reduced 1.0\n\
+         fix int all nve/sdpd\ntimestep 0.01\nneighbor 0.3 bin\nneigh_modify every 1 delay 0 check yes\n\
+         thermo_style custom step temp tint press pe ke etotal\n"
+    )
+}
+
 /// A pairwise DPD fluid (LAMMPS's styles) of n^3 particles at density rho (at least
 /// four cells of 1.3 per side) at T = 1, with the lines after the lattice.
 fn pairwise_fluid(atom_style: &str, rho: f64, n: usize, rest: &str) -> String {
@@ -129,6 +142,8 @@ fn every_style_is_bit_identical_on_1_2_3_4_ranks_and_an_uneven_grid() {
                 .to_string(),
             20,
         ),
+        ("sdpd-vdw", sdpd_fluid("kB 0.05"), 20),
+        ("sdpd-vdw-normalized-volume", sdpd_fluid("kB 0.05 volume normalized weight quadratic"), 20),
         ("dpd", pairwise_fluid("dpd", 3.0, 8, "pair_style dpd 1.0 1.0 4928\npair_coeff * * 25.0 4.5\nfix 1 all nve\n") + dpd_thermo, 30),
         (
             "dpd-fdt",

@@ -29,6 +29,7 @@ const CASES: &[Case] = &[
     Case { script: "examples/isothermal/in.isothermal", vars: &[("n", "11"), ("rc", "3.0"), ("equil", "5")], every: 5, k: 10 },
     Case { script: "examples/lj-fluid/in.lj-fluid", vars: &[("n", "11"), ("rc", "3.0"), ("equil", "5")], every: 5, k: 10 },
     Case { script: "examples/lth-argon/in.lth-argon", vars: &[("n", "10"), ("equil", "5")], every: 5, k: 10 },
+    Case { script: "examples/sdpd-vdw/in.sdpd-vdw", vars: &[("kB", "0.05")], every: 5, k: 10 },
     Case { script: "examples/vapour-liquid/in.vapour-liquid", vars: &[("lx", "16"), ("ly", "14"), ("lz", "14"), ("rc", "3.0"), ("dump", "5")], every: 5, k: 10 },
     Case { script: "scripts/lammps/in.dpde-deterministic", vars: &[], every: 5, k: 10 },
     Case { script: "scripts/lammps/in.dpde-metal", vars: &[], every: 5, k: 10 },

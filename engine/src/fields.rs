@@ -25,6 +25,10 @@ impl Fields {
     pub const DU: Self = Self(1024);
     /// eDPD's particle temperature (atom_style edpd; allocates heat capacity and flux too).
     pub const EDPD: Self = Self(2048);
+    /// The stress increment of one SDPD step (pair sdpd/generic), owners to ghosts.
+    pub const SDPD_STRESS: Self = Self(4096);
+    /// The heat-flux increment of one SDPD step (pair sdpd/generic), owners to ghosts.
+    pub const SDPD_FLUX: Self = Self(8192);
 
     pub const fn union(self, other: Self) -> Self {
         Self(self.0 | other.0)

@@ -287,6 +287,12 @@ particle_fields! {
     edpd_flux: f64, "edpd_flux", gate Fields::EDPD, comm NONE, stages RESTART | RESUME;
     /// Half-step temperature estimate of fix mvv/edpd (vest_temp, owned particles).
     vest_temp: f64, "vest_temp", gate Fields::EDPD, comm NONE, stages MIGRATE | RESTART;
+    /// SDPD stress increment of the step, diagonal (xx, yy, zz) and off-diagonal
+    /// (xy, xz, yz) parts (Serrano-Espanol eqs 77, 82; scratch of pair sdpd/generic).
+    sdpd_stress: Vec3, "sdpd_stress", gate Fields::SDPD_STRESS, comm Fields::SDPD_STRESS, stages 0;
+    sdpd_shear: Vec3, "sdpd_shear", gate Fields::SDPD_STRESS, comm Fields::SDPD_STRESS, stages 0;
+    /// SDPD heat-flux increment of the step (eqs 77, 83; scratch of pair sdpd/generic).
+    sdpd_flux: Vec3, "sdpd_flux", gate Fields::SDPD_FLUX, comm Fields::SDPD_FLUX, stages 0;
     /// Per-particle diagonal virial sum_j F_ij (x_ij^2, y_ij^2, z_ij^2) / 2 of owned
     /// particles (its trace is the scalar virial).
     virial: Vec3, "virial", gate Fields::PRESSURE.union(Fields::PAIR_ENERGY), comm NONE, stages RESTART | RESUME;

@@ -528,6 +528,44 @@ equations away from the slabs).
 ![theta profiles](validation/heat_flow.png)
 """)
 
+    sd = json.loads((common.OUT / "results.json").read_text()).get("sdpd_hydro")
+    if sd:
+        inp = sd["inputs"]
+        table = ["| h/lambda | shear rate (t < 1) | linearised lattice | continuum eta k^2/rho | D_T | kappa/(n c_p) | c_s | EOS c_s |",
+                 "|---|---|---|---|---|---|---|---|"]
+        for key in sorted(k for k in sd if k.startswith("h")):
+            r, sh, he = sd[key], sd[key].get("shear", {}), sd[key].get("heat", {})
+            fmt = lambda v, e=None: "-" if v is None else (f"{v:.4f}" if e is None else f"{v:.4f} +- {e:.4f}")
+            table.append(f"| {key[1:]} | {fmt(sh.get('rate'))} | {fmt(sh.get('rate_lattice'))} | {fmt(sh.get('rate_continuum'))} | "
+                         f"{fmt(he.get('D_T'), he.get('D_T_err'))} | {inp['D_T_cp']:.4f} | {fmt(he.get('c_s'), he.get('c_s_err'))} | {inp['c_s']:.4f} |")
+        rows.append("| Serrano-Espanol Sec VII: thermal SDPD, vdW T~ = 1.5, n~ = 1 | eta, kappa, c_s of the inputs and EOS | "
+                    "see the table of the scene | sdpd_hydro.py |")
+        parts.append(f"""### Serrano-Espanol Sec VII: thermal SDPD hydrodynamics (`sdpd_hydro.py`)
+
+pair sdpd/generic (Lucy kernel), eos/vdw/reduced 1.0 at n~ = 1, T~ = {inp['T']:g}, eta = zeta = kappa = 1,
+deterministic (kB 0), N = {inp['N']}, dt = {inp['dt']:g}, started from the sc lattice with a sine wave of
+wavelength L. Shear: decay rate of v_x = 0.1 sin(k z) fitted over t < 1 (later the sheared
+lattice's elasticity slows it); the linearised discrete equations on the lattice give the
+kernel-smoothed rate (W(k)^2 = 0.81 of the continuum at h = 2.4). Heat: theta = T + 0.1 sin(k x)
+fitted by an entropy mode A e^(-D_T k^2 t) plus a damped sound mode of frequency c_s k.
+A skeleton: the targets of issue 22 want fluid (noisy, disordered) starts, several seeds
+and h/lambda scans. The heat run's entropy mode comes out with the wrong sign (the hot
+slab ends colder: theta mode -0.026 where uniform EOS pressure gives +0.033); a control run
+without conduction (kappa 0, zeta 3) ends the same way with the hot slab over-expanded
+(d mode -0.085 against -0.044) at a pressure mode of -0.035: the static state of the
+reversible SPH dynamics (a minimum of sum u(s, d(R)), energy conserved to O(dt^2)) on the
+lattice at k h = 1.26 is not one of uniform EOS pressure. A box twice as long (k h = 0.63)
+had not settled in 1500 steps. Open: whether this is the kernel's discreteness (it should
+vanish as k h -> 0) or the missing volume partition of 1/d (eq 97's motivation).
+
+Tests (tests/sdpd.rs): momentum to 4e-17, energy O(dt^2) (ratios 4.05,
+4.01 for dt 0.02, 0.01, 0.005), K + U of the irreversible stages to round-off, dS >= 0 at
+kB = 0, remnant force 2.1 (eq 96) against 5e-16 (eq 99) at uniform pressure,
+T_kin/<theta> = 1.013 +- 0.007 at equilibrium (Einstein distribution in S: 1; in u: 0.933).
+
+{chr(10).join(table)}
+""")
+
     text = HEAD + "\n## Summary\n\n| scene | paper | gendpde | run |\n|---|---|---|---|\n" + "\n".join(rows) + "\n\n## Scenes\n\n" + "\n".join(parts)
     (common.ROOT / "docs" / "VALIDATION.md").write_text(text)
     print(text)

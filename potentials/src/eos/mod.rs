@@ -10,7 +10,7 @@ mod lj;
 mod lth;
 mod table;
 
-pub use linear::LinearTheta;
+pub use linear::{LinearTheta, DEFAULT_CAP};
 pub use lj::LennardJones;
 pub use lth::Lth;
 pub use lj::LjAt;

@@ -124,6 +124,9 @@ pub fn parse_eos(style: &str, a: &mut Args, kb: f64) -> Result<EosModel, ScriptE
 }
 
 fn parse_model(style: &str, a: &mut Args, kb: f64) -> Result<EosModel, ScriptError> {
+    if style == "eos/vdw/reduced" {
+        return vdw_reduced(a, kb);
+    }
     let cv = a.positive("the heat capacity C_V")?;
     if cv <= kb {
         return Err(a.err(format!("C_V = {cv:?} must exceed k_B = {kb:?} (the dressed temperature of eq 23 diverges at C_V = k_B)")));
@@ -186,6 +189,39 @@ fn parse_model(style: &str, a: &mut Args, kb: f64) -> Result<EosModel, ScriptErr
     eos.cv = cv;
     eos.kb = kb;
     Ok(EosModel::Linear(eos))
+}
+
+/// `eos/vdw/reduced N0 [dim D] [cap F]`: a fluid particle of N0 van der Waals molecules
+/// in the reduced units of Serrano-Espanol eqs 160-162 (k_B T~, n~ = 3 b n; energies in
+/// 8a/27b, so k_B = 1): u = N0 (D/2) theta - (9/8) N0^2 n, P = n~ theta/(1 - n~/3)
+/// - (9/8) n~^2 = (3/8) P~ with n~ = N0 n (eqs 157-159). The linear family with
+/// C_V = N0 D/2, q = r = N0, b = N0/3, V(n) = -(9/8) N0^2 n; the constant c of eq 163
+/// only shifts each particle's entropy.
+fn vdw_reduced(a: &mut Args, kb: f64) -> Result<EosModel, ScriptError> {
+    if kb != 1.0 {
+        return Err(a.err("eos/vdw/reduced is in the reduced units of eqs 160-162 (k_B = 1): use units lj"));
+    }
+    let n0 = a.positive("the molecules per particle N0")?;
+    let mut dim = 3.0;
+    let mut cap = gendpde_potentials::eos::DEFAULT_CAP;
+    while let Some(k) = a.peek().filter(|&k| k != "table") {
+        a.word("keyword")?;
+        match k {
+            "dim" => dim = a.positive("the dimension D")?,
+            "cap" => {
+                cap = a.positive("the cap fraction of 1/b")?;
+                if cap >= 1.0 {
+                    return Err(a.err(format!("cap {cap:?} must lie below 1 (a fraction of 1/b)")));
+                }
+            }
+            _ => return Err(a.err(format!("unknown keyword '{k}'; known: dim, cap, table"))),
+        }
+    }
+    let cv = n0 * dim / 2.0;
+    if cv <= kb {
+        return Err(a.err(format!("C_V = N0 D/2 = {cv:?} must exceed k_B = 1")));
+    }
+    Ok(EosModel::Linear(LinearTheta { q: n0, r: n0, b: n0 / 3.0, v_coeffs: vec![-9.0 / 8.0 * n0 * n0], cap, ..LinearTheta::cv_only(cv) }))
 }
 
 fn coefficients(a: &mut Args) -> Result<Vec<f64>, ScriptError> {

@@ -28,6 +28,9 @@ pub enum FixStyle {
     /// `fix ID GROUP heat/reservoir T KAPPA SEED [heat original|fourier]`; `mask` is the
     /// group's bit (`u32::MAX` for all).
     Reservoir { temperature: f64, kappa: f64, seed: u64, heat: Option<HeatModel>, mask: u32 },
+    /// `fix nve/sdpd`: velocity Verlet at fixed entropy, then the irreversible SDPD step
+    /// (pair sdpd/generic).
+    NveSdpd,
     /// `fix nve` (LAMMPS's pairwise styles).
     Nve,
     /// `fix mvv/dpd [LAMBDA]` (pair mdpd).
@@ -98,6 +101,7 @@ pub fn parse_fix_in(cmd: &Command, kb: f64, groups: &[String], regions: &HashMap
             FixStyle::Verlet { work }
         }
         "vv/euler" => FixStyle::VvEuler { heat: heat_keyword(&mut a)?.unwrap_or(HeatModel::Original) },
+        "nve/sdpd" => FixStyle::NveSdpd,
         "nve" => FixStyle::Nve,
         "dpd/energy" => FixStyle::DpdEnergy,
         "mvv/dpd" => FixStyle::Mvv { lambda: if a.remaining() > 0 { a.positive("lambda")? } else { 0.5 } },

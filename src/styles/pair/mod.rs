@@ -7,12 +7,14 @@ pub mod gendpde;
 pub mod hybrid;
 pub mod pairwise;
 pub mod table;
+pub mod sdpd;
 
 use self::edpd::PairEdpd;
 use self::gendpde::PairGendpde;
 use self::hybrid::Overlay;
 use self::pairwise::Pairwise;
 use self::table::Tabulated;
+use self::sdpd::PairSdpd;
 use crate::base::args::Args;
 use gendpde_io::{Command, ScriptError};
 
@@ -28,6 +30,8 @@ pub enum PairStyle {
     Table(Tabulated),
     /// `pair_style hybrid/overlay` of table and a pairwise style.
     Overlay(Overlay),
+    /// Thermal SDPD (Serrano-Espanol Sec VII).
+    Sdpd(PairSdpd),
 }
 
 impl PairStyle {
@@ -41,6 +45,7 @@ impl PairStyle {
             Self::Edpd(p) => p.cutoff(),
             Self::Table(t) => t.cutoff(),
             Self::Overlay(o) => o.table.as_ref().map_or(0.0, Tabulated::cutoff).max(o.pairwise.as_ref().map_or(0.0, |(_, p)| pairwise_cutoff(p))),
+            Self::Sdpd(p) => p.cutoff,
         }
     }
 }
@@ -58,6 +63,7 @@ pub fn parse_pair_style(cmd: &Command) -> Result<PairStyle, ScriptError> {
         "edpd" => self::edpd::parse_style(&mut a).map(PairStyle::Edpd),
         "table" => self::table::parse_style(&mut a).map(PairStyle::Table),
         name @ ("hybrid" | "hybrid/overlay") if !self::hybrid::is_mdpd(&a) => self::hybrid::parse_style(name, &mut a).map(PairStyle::Overlay),
+        "sdpd/generic" => self::sdpd::parse_style(&mut a).map(PairStyle::Sdpd),
         other => self::pairwise::parse_style(other, &mut a).map(PairStyle::Pairwise),
     }
 }
@@ -77,5 +83,9 @@ pub fn parse_pair_coeff(cmd: &Command, pair: &mut PairStyle, ntypes: usize) -> R
             self::table::parse_coeff(t, &mut a, types, ntypes)
         }
         PairStyle::Overlay(o) => self::hybrid::parse_coeff(o, cmd, ntypes),
+        PairStyle::Sdpd(p) => {
+            p.coeff = Some(self::sdpd::parse_coeff(cmd, ntypes)?);
+            Ok(())
+        }
     }
 }

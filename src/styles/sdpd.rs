@@ -1,0 +1,47 @@
+//! The dynamics of a `pair sdpd/generic` run: thermal SDPD monomorphised over its EOS and
+//! kernel, integrated by `fix nve/sdpd`.
+
+use crate::styles::fix::eos::{each_eos, EosModel};
+use crate::styles::fix::{Fix, FixStyle};
+use crate::styles::pair::sdpd::PairSdpd;
+use gendpde_integrators::{FixedEntropy, Motion, Physics, RebuildPolicy, Sdpd, SdpdParams, Settings, Species, Work};
+use gendpde_io::{Command, ScriptError};
+use gendpde_potentials::{CubicSpline, Linear, Lucy, Quadratic, WeightKind};
+
+/// Assembles thermal SDPD from the pair style, one EOS fix and `fix nve/sdpd`; `kb` is
+/// Boltzmann's constant of the units (the default of the pair style's `kB`).
+pub fn build_sdpd(cmd: &Command, pair: &PairSdpd, fixes: &[Fix], dt: f64, skin: f64, rebuild: RebuildPolicy, kb: f64) -> Result<Box<dyn Physics>, ScriptError> {
+    let err = |m: &str| ScriptError::at(cmd, m);
+    let [eta, zeta, kappa] = pair.coeff.ok_or_else(|| err("pair sdpd/generic has no coefficients (pair_coeff * * ETA ZETA KAPPA)"))?;
+    if let Some(f) = fixes.iter().find(|f| !matches!(f.style, FixStyle::Eos(_) | FixStyle::NveSdpd)) {
+        return Err(err(&format!("fix {} does not work with pair sdpd/generic (it takes one fix eos/... and fix nve/sdpd)", f.id)));
+    }
+    match fixes.iter().filter(|f| f.style == FixStyle::NveSdpd).count() {
+        0 => return Err(err("pair sdpd/generic needs fix nve/sdpd")),
+        1 => {}
+        _ => return Err(err("more than one fix nve/sdpd is defined")),
+    }
+    let eos: Vec<&EosModel> = fixes.iter().filter_map(|f| if let FixStyle::Eos(e) = &f.style { Some(e) } else { None }).collect();
+    let eos = match eos.as_slice() {
+        [e] => (*e).clone(),
+        [] => return Err(err("no EOS fix is defined (fix ID all eos/...)")),
+        _ => return Err(err("more than one EOS fix is defined")),
+    };
+    let params = SdpdParams { eta, zeta, kappa, kb: pair.kb.unwrap_or(kb), seed: pair.seed, normalized: pair.normalized };
+    let settings = Settings { dt, skin, rebuild, motion: Motion::Verlet(Work::Isentropic), dissipation: None, reservoirs: Vec::new() };
+    if let EosModel::PerType(v) = eos {
+        return Ok(with_weight(v, pair, params, settings));
+    }
+    Ok(each_eos!(eos, e => with_weight(vec![e.clone()], pair, params, settings)))
+}
+
+fn with_weight<E: FixedEntropy + 'static>(per_type: Vec<E>, pair: &PairSdpd, params: SdpdParams, settings: Settings) -> Box<dyn Physics> {
+    let Some(eos) = Species::new(per_type) else { unreachable!("an EOS model holds at least one EOS") };
+    let rc = pair.cutoff;
+    match pair.weight {
+        WeightKind::Quadratic => Box::new(Sdpd::new(eos, Quadratic::new(rc), params, settings)),
+        WeightKind::Linear => Box::new(Sdpd::new(eos, Linear::new(rc), params, settings)),
+        WeightKind::Lucy => Box::new(Sdpd::new(eos, Lucy::new(rc), params, settings)),
+        WeightKind::CubicSpline => Box::new(Sdpd::new(eos, CubicSpline::new(rc), params, settings)),
+    }
+}
