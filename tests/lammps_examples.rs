@@ -9,7 +9,16 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 /// Examples that run unchanged (folder under scripts/lammps/examples/, input).
-const SUPPORTED: &[&str] = &["dpd-react/dpd-shardlow/in.dpd-shardlow", "dpd-react/dpde-shardlow/in.dpde-shardlow", "dpd-meso/mdpd/in.mdpd"];
+const SUPPORTED: &[&str] = &[
+    "dpd-basic/dpd/in.dpd",
+    "dpd-meso/edpd/in.edpd",
+    "dpd-meso/edpd/in.edpd-region",
+    "dpd-meso/mdpd/in.mdpd",
+    "dpd-react/dpd-shardlow/in.dpd-shardlow",
+    "dpd-react/dpd-vv/in.dpd-vv",
+    "dpd-react/dpde-shardlow/in.dpde-shardlow",
+    "dpd-react/dpde-vv/in.dpde-vv",
+];
 
 fn examples() -> Vec<PathBuf> {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("scripts/lammps/examples");
