@@ -12,40 +12,12 @@
 
 mod common;
 
-use common::lammps::{agree_within, block_average, compare_dumps, expect_success, parse_thermo, parse_thermo_blocks, read_dump_snapshot, run_lammps, stage_inputs, ThermoBlock};
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("gendpde-parity-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn gendpde(dir: &Path, input: &str, vars: &[(&str, &str)]) -> Output {
-    let mut cmd = Command::new(env!("CARGO_BIN_EXE_gendpde"));
-    cmd.current_dir(dir).args(["run", input, "-log", "none"]);
-    for (k, v) in vars {
-        cmd.args(["-var", k, v]);
-    }
-    cmd.output().expect("gendpde runs")
-}
-
-/// Runs `input` in both codes, each in its own directory; returns both directories and outputs.
-fn both(name: &str, input: &str, vars: &[(&str, &str)]) -> ((PathBuf, String), (PathBuf, String)) {
-    let (dl, dg) = (dir(&format!("{name}-lammps")), dir(&format!("{name}-gendpde")));
-    stage_inputs(&dl, input);
-    stage_inputs(&dg, input);
-    let l = expect_success("LAMMPS", &run_lammps(&dl, input, vars));
-    let out = gendpde(&dg, input, vars);
-    assert!(out.status.success(), "gendpde failed on {input}:\n{}", String::from_utf8_lossy(&out.stderr));
-    ((dl, l), (dg, String::from_utf8_lossy(&out.stdout).into_owned()))
-}
+use common::lammps::{agree_within, block_average, compare_dumps, expect_success, parse_thermo, parse_thermo_blocks, read_dump_snapshot, run_both, run_gendpde, run_lammps, stage_inputs, ThermoBlock};
+use std::path::Path;
 
 #[test]
 fn dpde_conservative_dynamics_matches_lammps_per_particle() {
-    let ((dl, _), (dg, _)) = both("dpde-det", "in.dpde-deterministic", &[]);
+    let ((dl, _), (dg, _)) = run_both("dpde-det", "in.dpde-deterministic", &[], &[]);
     let (dr, dp) = compare_dumps(&dl.join("dpde-det.dump"), &dg.join("dpde-det.dump"));
     eprintln!("DPDE after 100 steps: max |dr|/L = {dr:.2e}, max |dp|/|p| = {dp:.2e}");
     assert!(dr < 1e-9 && dp < 1e-9, "dr {dr:e}, dp {dp:e}");
@@ -53,7 +25,7 @@ fn dpde_conservative_dynamics_matches_lammps_per_particle() {
 
 #[test]
 fn mdpd_conservative_dynamics_matches_lammps_per_particle() {
-    let ((dl, _), (dg, _)) = both("mdpd-det", "in.mdpd-deterministic", &[]);
+    let ((dl, _), (dg, _)) = run_both("mdpd-det", "in.mdpd-deterministic", &[], &[]);
     let (dr, dp) = compare_dumps(&dl.join("mdpd-det.dump"), &dg.join("mdpd-det.dump"));
     eprintln!("MDPD after 100 steps: max |dr|/L = {dr:.2e}, max |dp|/|p| = {dp:.2e}");
     assert!(dr < 1e-9 && dp < 1e-9, "dr {dr:e}, dp {dp:e}");
@@ -80,7 +52,7 @@ fn compare_forces(a: &Path, b: &Path) -> f64 {
 /// `steps` steps against LAMMPS (the driven MDPD mixture heats fast, and round-off grows
 /// with it).
 fn mixture_matches_lammps(name: &str, steps: &str) {
-    let ((dl, _), (dg, _)) = both(&format!("mix-{name}"), &format!("in.mix-{name}"), &[("steps", steps)]);
+    let ((dl, _), (dg, _)) = run_both(&format!("mix-{name}"), &format!("in.mix-{name}"), &[("steps", steps)], &[]);
     let f0 = format!("mix-{name}-f0.dump");
     let df = compare_forces(&dl.join(&f0), &dg.join(&f0));
     let end = format!("mix-{name}.dump");
@@ -104,7 +76,7 @@ fn mdpd_mixture_with_per_pair_coefficients_cutoffs_and_kernels_matches_lammps() 
 /// script (in.mix-dpd-data), gives the step-0 row of the script that set the coefficients.
 #[test]
 fn pairij_data_files_round_trip_between_gendpde_and_lammps() {
-    let ((dl, l), (dg, g)) = both("mix-data", "in.mix-dpd", &[("steps", "0")]);
+    let ((dl, l), (dg, g)) = run_both("mix-data", "in.mix-dpd", &[("steps", "0")], &[]);
     let first = |out: &str| parse_thermo(out, "Step")[0].clone();
     let expect = first(&l);
     assert!(agree(&expect, &first(&g)), "in.mix-dpd step 0: LAMMPS {expect:?}, gendpde {:?}", first(&g));
@@ -116,7 +88,7 @@ fn pairij_data_files_round_trip_between_gendpde_and_lammps() {
     stage_inputs(&dl, "in.mix-dpd-data");
     stage_inputs(&dg, "in.mix-dpd-data");
     let l2 = expect_success("LAMMPS", &run_lammps(&dl, "in.mix-dpd-data", &[("data", "from-gendpde.data")]));
-    let out = gendpde(&dg, "in.mix-dpd-data", &[("data", "from-lammps.data")]);
+    let out = run_gendpde(&dg, "in.mix-dpd-data", &[("data", "from-lammps.data")]);
     assert!(out.status.success(), "gendpde failed:\n{}", String::from_utf8_lossy(&out.stderr));
     let g2 = String::from_utf8_lossy(&out.stdout).into_owned();
     assert!(agree(&expect, &first(&l2)), "LAMMPS reading gendpde's file: {:?}", first(&l2));
@@ -169,7 +141,7 @@ fn drift(b: &ThermoBlock, column: &str) -> (f64, f64) {
 #[test]
 fn dpde_shardlow_statistics_and_speed_agree_with_lammps() {
     let vars = [("equil", "1000"), ("steps", "5000")];
-    let ((_, l), (_, g)) = both("dpde-stat", "in.dpde-shardlow", &vars);
+    let ((_, l), (_, g)) = run_both("dpde-stat", "in.dpde-shardlow", &vars, &[]);
     let (lb, gb) = (production(&l), production(&g));
     compare_averages("DPDE", &lb, &gb, &["Temp", "Press", "c_dpdU[4]"]);
     let (dl, dg) = (drift(&lb, "v_totEnergy"), drift(&gb, "v_totEnergy"));
@@ -182,7 +154,7 @@ fn dpde_shardlow_statistics_and_speed_agree_with_lammps() {
 #[test]
 fn mdpd_liquid_statistics_and_speed_agree_with_lammps() {
     let vars = [("equil", "3000"), ("steps", "5000")];
-    let ((_, l), (_, g)) = both("mdpd-stat", "in.mdpd-liquid", &vars);
+    let ((_, l), (_, g)) = run_both("mdpd-stat", "in.mdpd-liquid", &vars, &[]);
     compare_averages("MDPD", &production(&l), &production(&g), &["Temp", "Press"]);
     let (rl, rg) = (rate(&l), rate(&g));
     eprintln!("MDPD speed: LAMMPS {rl:.0} atom-steps/s, gendpde {rg:.0} atom-steps/s, ratio {:.2}", rg / rl);
@@ -190,7 +162,7 @@ fn mdpd_liquid_statistics_and_speed_agree_with_lammps() {
 
 #[test]
 fn lammps_dpde_example_in_metal_units_runs_unchanged() {
-    let ((_, l), (_, g)) = both("dpde-metal", "in.dpde-metal", &[]);
+    let ((_, l), (_, g)) = run_both("dpde-metal", "in.dpde-metal", &[], &[]);
     let (lb, gb) = (production(&l), production(&g));
     let k = gb.column_index("v_totEnergy").unwrap();
     let (e0, e1) = (gb.rows[0][k], gb.rows.last().unwrap()[k]);
@@ -214,7 +186,7 @@ fn lammps_dpde_example_in_metal_units_runs_unchanged() {
 /// each; several seeds: scripts/lammps/in_dpd_seeds.py).
 #[test]
 fn lammps_dpd_basic_example_runs_unchanged_and_agrees_statistically() {
-    let ((_, l), (_, g)) = both("dpd-basic", "in.dpd-basic", &[]);
+    let ((_, l), (_, g)) = run_both("dpd-basic", "in.dpd-basic", &[], &[]);
     let after = |b: ThermoBlock| ThermoBlock { header: b.header, rows: b.rows.into_iter().filter(|r| r[0] >= 1000.0).collect() };
     let (lb, gb) = (after(production(&l)), after(production(&g)));
     assert_eq!(gb.rows.len(), 41, "thermo every 100 steps to 5000");

@@ -12,36 +12,26 @@
 
 mod common;
 
-use common::lammps::{expect_success, parse_dump, parse_thermo, run_lammps, scripts_dir, stage_inputs};
+use common::lammps::{parse_dump, parse_thermo, run_both, run_gendpde, scripts_dir};
 use std::path::{Path, PathBuf};
-use std::process::Output;
+
+/// The potential files the inputs read.
+const POTENTIALS: [&str; 2] = ["table-lj.pot", "cg_spce_table.pot"];
 
 fn dir(name: &str) -> PathBuf {
     let d = common::tempdir(name);
-    for pot in ["table-lj.pot", "cg_spce_table.pot"] {
+    for pot in POTENTIALS {
         std::fs::copy(scripts_dir().join(pot), d.join(pot)).unwrap();
     }
     d
 }
 
-fn gendpde(dir: &Path, input: &str, vars: &[(&str, &str)]) -> Output {
-    let mut args = vec!["run", input, "-log", "none"];
-    for (k, v) in vars {
-        args.extend(["-var", k, v]);
-    }
-    common::gendpde(dir, &args)
-}
 
 /// Runs `input` in both codes; compares the step-0 forces, every thermo row and the
 /// final positions, and returns the worst deviations (force, thermo, position).
 fn compare(name: &str, input: &str, dump: &str, vars: &[(&str, &str)]) -> (f64, f64, f64) {
-    let (dl, dg) = (dir(&format!("{name}-lammps")), dir(&format!("{name}-gendpde")));
-    stage_inputs(&dl, input);
-    stage_inputs(&dg, input);
-    let l = expect_success("LAMMPS", &run_lammps(&dl, input, vars));
-    let out = gendpde(&dg, input, vars);
-    assert!(out.status.success(), "gendpde failed on {input}:\n{}", String::from_utf8_lossy(&out.stderr));
-    let (tl, tg) = (parse_thermo(&l, "Step"), parse_thermo(&String::from_utf8_lossy(&out.stdout), "Step"));
+    let ((dl, l), (dg, g)) = run_both(name, input, vars, &POTENTIALS);
+    let (tl, tg) = (parse_thermo(&l, "Step"), parse_thermo(&g, "Step"));
     assert_eq!(tl.len(), tg.len(), "thermo rows");
     let mut thermo: f64 = 0.0;
     for (a, b) in tl.iter().zip(&tg) {
@@ -114,7 +104,7 @@ fn pair_scene(name: &str, r: f64, rest: &str) -> PathBuf {
 
 fn expect_error(name: &str, rest: &str, expected: &str) {
     let d = pair_scene(name, 1.0, rest);
-    let out = gendpde(&d, "in.test", &[]);
+    let out = run_gendpde(&d, "in.test", &[]);
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(!out.status.success(), "{name}: the script should fail");
     assert!(err.contains(expected), "{name}: expected '{expected}' in:\n{err}");
@@ -124,12 +114,12 @@ fn expect_error(name: &str, rest: &str, expected: &str) {
 #[test]
 fn a_pair_inside_the_inner_cutoff_stops_the_run_naming_both_particles() {
     let coeff = "pair_style table linear 400\npair_coeff * * table-lj.pot LJ_R\n";
-    let out = gendpde(&pair_scene("inner", 0.7, coeff), "in.test", &[]);
+    let out = run_gendpde(&pair_scene("inner", 0.7, coeff), "in.test", &[]);
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(!out.status.success() && err.contains("pair distance 7.000000000e-1 to particle 2 < table inner cutoff 0.8 (types 1 1)"), "{err}");
     assert!(err.contains("particle 1 "), "{err}");
     // the same pair at 0.9 runs
-    let out = gendpde(&pair_scene("inner-ok", 0.9, coeff), "in.test", &[]);
+    let out = run_gendpde(&pair_scene("inner-ok", 0.9, coeff), "in.test", &[]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
 }
 
@@ -164,6 +154,6 @@ fn bad_tables_and_styles_are_refused_naming_the_line() {
     let d = pair_scene("damaged", 1.0, "pair_style table linear 100\npair_coeff * * bad.pot LJ_RSQ\n");
     let text = std::fs::read_to_string(scripts_dir().join("table-lj.pot")).unwrap().replacen("\n3 ", "\n3 x", 1);
     std::fs::write(d.join("bad.pot"), text).unwrap();
-    let err = String::from_utf8_lossy(&gendpde(&d, "in.test", &[]).stderr).into_owned();
+    let err = String::from_utf8_lossy(&run_gendpde(&d, "in.test", &[]).stderr).into_owned();
     assert!(err.contains("in.test:6: pair_coeff: bad.pot:9: expected 'index r e f', got '3 x"), "{err}");
 }

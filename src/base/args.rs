@@ -100,4 +100,14 @@ impl<'a> Args<'a> {
         let r = self.range("a particle type", ntypes as u64)?;
         Ok(*r.start() as usize..=*r.end() as usize)
     }
+
+    /// `* *` (or ranges covering every type) of a pair style with one coefficient set for
+    /// all type pairs; anything narrower is refused naming the `style`.
+    pub fn all_type_pairs(&mut self, ntypes: usize, style: &str) -> Result<(), ScriptError> {
+        let (ti, tj) = (self.types(ntypes)?, self.types(ntypes)?);
+        if *ti.start() != 1 || *ti.end() != ntypes || *tj.start() != 1 || *tj.end() != ntypes {
+            return Err(self.err(format!("pair {style} takes one coefficient set for all type pairs: use 'pair_coeff * *'")));
+        }
+        Ok(())
+    }
 }

@@ -117,6 +117,35 @@ pub fn stage_inputs(dir: &Path, input: &str) {
     }
 }
 
+/// `gendpde run INPUT -log none -var K V ...` in `dir`.
+pub fn run_gendpde(dir: &Path, input: &str, vars: &[(&str, &str)]) -> Output {
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_gendpde"));
+    cmd.current_dir(dir).args(["run", input, "-log", "none"]);
+    for (k, v) in vars {
+        cmd.args(["-var", k, v]);
+    }
+    cmd.output().expect("gendpde runs")
+}
+
+/// Runs `input` in both codes, each in a fresh directory (`NAME-lammps`, `NAME-gendpde`)
+/// staged as [`stage_inputs`] plus the `extra` files of scripts/lammps; returns both
+/// directories and standard outputs (a failure of either stops the test with its output).
+pub fn run_both(name: &str, input: &str, vars: &[(&str, &str)], extra: &[&str]) -> ((PathBuf, String), (PathBuf, String)) {
+    let stage = |side: &str| {
+        let d = super::tempdir(&format!("{name}-{side}"));
+        stage_inputs(&d, input);
+        for f in extra {
+            std::fs::copy(scripts_dir().join(f), d.join(f)).unwrap_or_else(|e| panic!("cannot copy {f}: {e}"));
+        }
+        d
+    };
+    let (dl, dg) = (stage("lammps"), stage("gendpde"));
+    let l = expect_success("LAMMPS", &run_lammps(&dl, input, vars));
+    let out = run_gendpde(&dg, input, vars);
+    assert!(out.status.success(), "gendpde failed on {input}:\n{}", String::from_utf8_lossy(&out.stderr));
+    ((dl, l), (dg, String::from_utf8_lossy(&out.stdout).into_owned()))
+}
+
 /// Stages `input` (as [`stage_inputs`]) and writes it as `name` with `before` in front
 /// of its `run` line, `after` behind it and its `write_dump` lines left out.
 pub fn stage_with(dir: &Path, input: &str, name: &str, before: &str, after: &str) {

@@ -56,11 +56,7 @@ pub fn parse_style(a: &mut Args) -> Result<PairGendpde, ScriptError> {
 /// `pair_coeff * * GAMMA KAPPA [RC_D [RC_H]]`.
 pub fn parse_coeff(cmd: &Command, pair: &PairGendpde, ntypes: usize) -> Result<PairCoeff, ScriptError> {
     let mut a = Args::new(cmd);
-    let ti = a.types(ntypes)?;
-    let tj = a.types(ntypes)?;
-    if *ti.start() != 1 || *ti.end() != ntypes || *tj.start() != 1 || *tj.end() != ntypes {
-        return Err(a.err("pair gendpde takes one coefficient set for all type pairs: use 'pair_coeff * *'"));
-    }
+    a.all_type_pairs(ntypes, "gendpde")?;
     let gamma = a.non_negative("the friction gamma")?;
     let kappa = a.non_negative("the conductivity kappa")?;
     let rc_friction = if a.remaining() > 0 { a.positive("the friction cutoff")? } else { pair.cutoff };

@@ -51,11 +51,7 @@ pub fn parse_style(a: &mut Args) -> Result<PairSdpd, ScriptError> {
 /// `pair_coeff * * ETA ZETA KAPPA`.
 pub fn parse_coeff(cmd: &Command, ntypes: usize) -> Result<[f64; 3], ScriptError> {
     let mut a = Args::new(cmd);
-    let ti = a.types(ntypes)?;
-    let tj = a.types(ntypes)?;
-    if *ti.start() != 1 || *ti.end() != ntypes || *tj.start() != 1 || *tj.end() != ntypes {
-        return Err(a.err("pair sdpd/generic takes one coefficient set for all type pairs: use 'pair_coeff * *'"));
-    }
+    a.all_type_pairs(ntypes, "sdpd/generic")?;
     let eta = a.non_negative("the shear viscosity eta")?;
     let zeta = a.non_negative("the bulk viscosity zeta")?;
     let kappa = a.non_negative("the thermal conductivity kappa")?;
