@@ -14,6 +14,7 @@ use std::sync::OnceLock;
 
 use gendpde_engine::Vec3;
 use gendpde_integrators::heat::{Fourier, HeatFlow, Original, Temps};
+use gendpde_integrators::noise::{Arithmetic, Harmonic, Noise};
 use gendpde_integrators::pair_update::{pair_update, PairDrive, PairState};
 use gendpde_potentials::{Eos, LennardJones, LinearTheta, TableGrid, Tabulated, ISOLATED_DENSITY};
 use proptest::prelude::*;
@@ -322,13 +323,13 @@ enum Outcome {
 }
 
 /// Runs one pair update and checks conservation (see the module doc).
-fn check_pair_update<H: HeatFlow>(c: &Case) -> Result<Outcome, TestCaseError> {
+fn check_pair_update<H: HeatFlow, N: Noise>(c: &Case) -> Result<Outcome, TestCaseError> {
     let (mut p_i, mut p_j, mut u_i, mut u_j) = (c.p_i, c.p_j, c.u_i, c.u_j);
     let (inv_m_i, inv_m_j) = (1.0 / c.m_i, 1.0 / c.m_j);
     let kinetic = |p_i: Vec3, p_j: Vec3| 0.5 * (dot(p_i, p_i) * inv_m_i + dot(p_j, p_j) * inv_m_j);
     let k_before = kinetic(p_i, p_j);
     let s = PairState { p_i: &mut p_i, p_j: &mut p_j, u_i: &mut u_i, u_j: &mut u_j, inv_m_i, inv_m_j };
-    let deltas = pair_update::<H>(s, &c.drive, 1.0, c.dt, c.dt.sqrt());
+    let deltas = pair_update::<H, N>(s, &c.drive, 1.0, c.dt, c.dt.sqrt());
     let k_after = kinetic(p_i, p_j);
 
     let total_p = |a: Vec3, b: Vec3| [a[0] + b[0], a[1] + b[1], a[2] + b[2]];
@@ -383,20 +384,27 @@ fn check_pair_update<H: HeatFlow>(c: &Case) -> Result<Outcome, TestCaseError> {
 proptest! {
     #[test]
     fn pair_update_conserves_original(c in case(-6.0, 6.0)) {
-        check_pair_update::<Original>(&c)?;
+        check_pair_update::<Original, Arithmetic>(&c)?;
     }
 
     #[test]
     fn pair_update_conserves_fourier(c in case(-6.0, 6.0)) {
-        check_pair_update::<Fourier>(&c)?;
+        check_pair_update::<Fourier, Arithmetic>(&c)?;
+    }
+
+    /// The harmonic noise form (fix shardlow noise harmonic) with either heat law.
+    #[test]
+    fn pair_update_conserves_harmonic_noise(c in case(-6.0, 6.0)) {
+        check_pair_update::<Original, Harmonic>(&c)?;
+        check_pair_update::<Fourier, Harmonic>(&c)?;
     }
 
     /// Momenta far beyond any simulation (up to 1e200, so K overflows): the update either
     /// conserves or its result is visibly non-finite.
     #[test]
     fn pair_update_overflow_is_visible(c in case(-6.0, 200.0)) {
-        check_pair_update::<Original>(&c)?;
-        check_pair_update::<Fourier>(&c)?;
+        check_pair_update::<Original, Arithmetic>(&c)?;
+        check_pair_update::<Fourier, Arithmetic>(&c)?;
     }
 }
 
@@ -407,8 +415,8 @@ fn pair_update_in_range_states_stay_finite() {
     let strategy = case(-6.0, 6.0);
     for _ in 0..256 {
         let c = strategy.new_tree(&mut runner).unwrap().current();
-        assert_eq!(check_pair_update::<Original>(&c).unwrap(), Outcome::Conserved, "{c:?}");
-        assert_eq!(check_pair_update::<Fourier>(&c).unwrap(), Outcome::Conserved, "{c:?}");
+        assert_eq!(check_pair_update::<Original, Arithmetic>(&c).unwrap(), Outcome::Conserved, "{c:?}");
+        assert_eq!(check_pair_update::<Fourier, Arithmetic>(&c).unwrap(), Outcome::Conserved, "{c:?}");
     }
 }
 
@@ -426,7 +434,7 @@ fn pair_update_stiff_momentum_strict() {
     let (mut u_i, mut u_j) = (1.0, 1.0);
     let drive = PairDrive { e: [0.0, 0.0, -1.0], gamma: 8892.599973432598, kappa: 0.0, ti: t, tj: t, xi: 0.0, xibar: 0.0 };
     let s = PairState { p_i: &mut p_i, p_j: &mut p_j, u_i: &mut u_i, u_j: &mut u_j, inv_m_i: 1.0, inv_m_j: 1.0 / 0.004051844860422516 };
-    pair_update::<Original>(s, &drive, 1.0, 1.0, 1.0);
+    pair_update::<Original, Arithmetic>(s, &drive, 1.0, 1.0, 1.0);
     let scale = norm(before_i) + norm(before_j) + norm(p_i) + norm(p_j);
     for k in 0..3 {
         let err = ((p_i[k] + p_j[k]) - (before_i[k] + before_j[k])).abs();
@@ -449,5 +457,5 @@ fn pair_update_overflow_example() {
         drive: PairDrive { e, gamma: 10.0, kappa: 1.0, ti: t, tj: t, xi: 1.0, xibar: 1.0 },
         dt: 0.01,
     };
-    assert_eq!(check_pair_update::<Original>(&c).unwrap(), Outcome::NonFinite);
+    assert_eq!(check_pair_update::<Original, Arithmetic>(&c).unwrap(), Outcome::NonFinite);
 }
