@@ -128,7 +128,7 @@ fn ave_chunk_errors_name_the_line() {
         ("fix a all ave/chunk 1 1 1 nochunk density/number", "in.x:5: fix: no compute chunk/atom with ID 'nochunk'"),
         ("fix a all ave/chunk 2 3 4 c density/number", "in.x:5: fix: Nevery 2, Nrepeat 3, Nfreq 4: all must be positive"),
         ("fix a all ave/chunk 1 1 1 c", "in.x:5: fix: expected values (density/number, density/mass, temp, vx, vy, vz, fx, fy, fz), got nothing"),
-        ("fix a all ave/chunk 1 1 1 c c_pe", "in.x:5: fix: value 'c_pe': per-atom computes and fixes are not supported"),
+        ("fix a all ave/chunk 1 1 1 c c_pe", "in.x:5: fix: value 'c_pe': not a per-atom compute"),
         ("fix a all ave/chunk 1 1 1 c vx norm some", "in.x:5: fix: expected norm all, sample or none, got 'some'"),
         ("fix a all ave/chunk 1 1 1 c vx ave window 0", "in.x:5: fix: ave window M: M must be positive"),
         ("fix a all ave/chunk 1 1 1 c vx ave sometimes", "in.x:5: fix: expected ave one, running or window, got 'sometimes'"),
