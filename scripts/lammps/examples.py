@@ -159,6 +159,9 @@ def compare(g_logs, l_logs):
             continue
         (mg, sg), (ml, sl) = (estimate([r[col].to_numpy() for r in runs]) for runs in (g_runs, l_runs))
         se = math.hypot(sg, sl)
+        if math.isnan(se):
+            rows.append((col, mg, sg, ml, sl, None, "too few rows for an error"))
+            continue
         z = (mg - ml) / se if se > 0 else float("inf")
         rows.append((col, mg, sg, ml, sl, z, "agrees" if abs(z) < 3 else "differs"))
     return rows
@@ -281,8 +284,9 @@ def write_report(path, report):
     for package, name, code, gerr, gwall, lcode, lerr, lwall, rows, seeds in report:
         g = "runs" if code == 0 else f"stops: `{gerr[:90]}`"
         l = "runs" if lcode == 0 else f"stops: `{lerr[:90]}`"
-        ok = sum(1 for r in rows if r[6] in ("agrees", "same"))
-        agree = f"{ok}/{len(rows)}" if rows else "-"
+        judged = [r for r in rows if r[6] != "too few rows for an error"]
+        ok = sum(1 for r in judged if r[6] in ("agrees", "same"))
+        agree = f"{ok}/{len(judged)}" if judged else "-"
         lines.append(f"| {package} | {name} | {g} | {l} | {seeds} | {gwall:.1f} / {lwall:.1f} | {agree} |")
         if rows:
             details += ["", f"### {package}/{name}", ""] + ["    " + fmt_row(r) for r in rows]
