@@ -72,6 +72,20 @@ fn mdpd_mixture_with_per_pair_coefficients_cutoffs_and_kernels_matches_lammps() 
     mixture_matches_lammps("mdpd", "50");
 }
 
+/// `pair_style` naming the style in force again keeps the coefficients and resets every
+/// cutoff to the new global one, as LAMMPS does: forces before and after, against LAMMPS.
+#[test]
+fn pair_style_named_again_keeps_coefficients_as_lammps() {
+    let ((dl, _), (dg, _)) = run_both("mix-restyle", "in.mix-dpd-restyle", &[], &[]);
+    for f in ["restyle-f0.dump", "restyle-f1.dump"] {
+        let df = compare_forces(&dl.join(f), &dg.join(f));
+        assert!(df < 1e-12, "{f}: forces differ by {df:e}");
+    }
+    // the cutoffs did change: the forces after differ from those before
+    let (a, b) = (read_dump_snapshot(&dg.join("restyle-f0.dump")), read_dump_snapshot(&dg.join("restyle-f1.dump")));
+    assert!(a.atoms.iter().zip(&b.atoms).any(|((_, x), (_, y))| x != y), "the new global cutoff changed nothing");
+}
+
 /// `write_data pair ij` of either code, read by the other with only `pair_style` in the
 /// script (in.mix-dpd-data), gives the step-0 row of the script that set the coefficients.
 #[test]

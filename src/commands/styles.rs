@@ -12,10 +12,17 @@ use crate::styles::fix::parse_fix_in;
 use crate::styles::pair::{parse_pair_coeff, parse_pair_style};
 use gendpde_io::ScriptError;
 
-/// `pair_style STYLE args...` (before or after the box, as LAMMPS).
+/// `pair_style STYLE args...` (before or after the box, as LAMMPS). The style in force
+/// named again keeps its coefficients (see `PairStyle::keep_coefficients`); the restart's
+/// command text then replays both lines.
 pub fn pair_style(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
-    sim.pair = Some(parse_pair_style(a.command())?);
-    sim.pair_text = vec![echo(a.command())];
+    let mut pair = parse_pair_style(a.command())?;
+    let kept = sim.pair.as_ref().is_some_and(|old| pair.keep_coefficients(old));
+    if !kept {
+        sim.pair_text.clear();
+    }
+    sim.pair_text.push(echo(a.command()));
+    sim.pair = Some(pair);
     Ok(())
 }
 

@@ -50,6 +50,33 @@ impl PairStyle {
     }
 }
 
+impl PairStyle {
+    /// `pair_style` naming the style in force again: as LAMMPS (`Input::pair_style` calls
+    /// only the style's `settings()`), the coefficients stay and every cutoff a
+    /// `pair_coeff` set is reset to the new global cutoff. False (nothing taken) for
+    /// another style and for table and hybrid/overlay, whose `settings()` discard their
+    /// coefficients in LAMMPS too.
+    pub fn keep_coefficients(&mut self, old: &PairStyle) -> bool {
+        match (self, old) {
+            (Self::Pairwise(new), Self::Pairwise(old)) if std::mem::discriminant(&new.kind) == std::mem::discriminant(&old.kind) && !matches!(new.kind, pairwise::Kind::Mdpd { .. }) => {
+                new.coeff = old.coeff.clone();
+                new.coeff.for_each_set(|c| c.rc = new.cutoff);
+                true
+            }
+            (Self::Edpd(new), Self::Edpd(old)) => {
+                (new.ntypes, new.coeff) = (old.ntypes, old.coeff.clone());
+                new.coeff.iter_mut().flatten().for_each(|c| c.rc = new.cutoff);
+                true
+            }
+            (Self::Gendpde(new), Self::Gendpde(old)) => {
+                new.coeff = old.coeff.clone().map(|c| gendpde::PairCoeff { rc_friction: new.cutoff, rc_heat: new.cutoff, ..c });
+                true
+            }
+            _ => false,
+        }
+    }
+}
+
 fn pairwise_cutoff(p: &Pairwise) -> f64 {
     let set = p.coeff.values().map(|c| c.rc).chain(p.rhosum.values().copied());
     set.reduce(f64::max).unwrap_or(p.cutoff)

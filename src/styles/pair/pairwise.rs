@@ -93,6 +93,11 @@ impl<T: Clone> TypePairs<T> {
         Ok(flat)
     }
 
+    /// Applies `f` to every set value.
+    pub fn for_each_set(&mut self, f: impl FnMut(&mut T)) {
+        self.set.iter_mut().flatten().for_each(f);
+    }
+
     fn put(&mut self, n: usize, i: usize, j: usize, v: T) {
         if self.n != n {
             *self = Self { n, set: vec![None; n * n] };
