@@ -404,7 +404,6 @@ def equilibrium(args, out):
     row = {q: mean_err([p[q] for p in per]) for q in per[0] if q != "wall_s"}
     row["tkin_over_theta"] = mean_err([p["tkin"] / p["theta_mean"] for p in per])
     row["var_over_theta2"] = mean_err([p["theta_var"] / p["theta_mean"] ** 2 for p in per])
-    row["v_var_M_over_theta"] = mean_err([10.0 * p["v_var"] / p["theta_mean"] for p in per])
     row["targets"] = {"var_over_theta2": 1 / cv, "theta_skew": 2 / math.sqrt(cv), "v_kurt": 0.0, "tkin_over_theta": 1.0}
     row["wall_s"] = sum(p["wall_s"] for p in per)
     row["seeds"] = args.seeds
