@@ -588,8 +588,8 @@ pressure: c_v/c_p = 1/3).
 What to compare with. Each SPH sum over neighbours acting on a Fourier mode is, in the
 continuum limit (pair correlation g = 1, d = n), a kernel average: integrating by parts,
 sum_nu omega_(mu nu) f_nu/d^2 -> grad f times W^(k) = int W(r) e^(ik.r) d^3r. The viscous
-and conduction rates apply two such gradients (W^2), the sound frequency one pressure
-gradient of a kernel density (W^ each way, W^ on w). The column "operator on the fluid" is
+and conduction rates apply two such gradients (W^2); sound applies one to a pressure
+that follows the kernel-averaged density (W^2 on w^2, so W^ on w). The column "operator on the fluid" is
 exact instead: the linearised viscous step of integrators/src/sdpd.rs applied to
 v_x = sin(k z) on each seed's relaxed configuration (driver's `discrete_factors`), over
 eta k^2/rho; the same for conduction gives the kappa column ("kappa/(n c_p) x operator").
