@@ -2,7 +2,8 @@
 //! (and 1/tau) of i and j refreshed from the EOS after each pair; then the reservoir.
 //!
 //! Between colours the ghosts written in the colour return their values to their
-//! owners, and the owners forward the new values to all ghosts (ARCHITECTURE.md).
+//! owners, and the particles the colour touched forward their new values to their ghosts
+//! (ARCHITECTURE.md).
 //!
 //! theta -> 0: a pair update that would leave a particle temperature non-positive (or
 //! non-finite) is undone and redone as two half steps whose noises split the step's
@@ -78,9 +79,7 @@ pub fn sweep<E: FixedDensity, H: HeatFlow, N: Noise>(eos: &Species<E>, d: &Dissi
         for failed in failures.drain(..) {
             outcome = lowest(outcome, Err(failed.error(eos, &sys.store, step)));
         }
-        let ghosts = &sys.sweep.ghost_writes[colour];
-        sys.comm.reverse(&mut sys.store, ghosts, SWEPT);
-        sys.comm.forward(&mut sys.store, SWEPT);
+        sys.comm.after_colour(&mut sys.store, &sys.sweep, colour, SWEPT);
     }
     outcome
 }
