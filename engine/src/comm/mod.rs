@@ -47,8 +47,6 @@ pub struct Comm {
     written: Vec<bool>,
     /// Particles whose new values go to their ghosts in [`Comm::after_colour`].
     fresh: Vec<bool>,
-    /// Scratch: which records of a swap travel, one bit each.
-    mask: Vec<u64>,
     /// Wall time spent in exchanges and collectives.
     time: std::cell::Cell<std::time::Duration>,
     traffic: Traffic,
@@ -91,7 +89,6 @@ impl Comm {
             recv: Vec::new(),
             written: Vec::new(),
             fresh: Vec::new(),
-            mask: Vec::new(),
             time: Default::default(),
             traffic: Traffic::default(),
         }
@@ -330,13 +327,14 @@ impl Comm {
         }
     }
 
-    /// Copies `fields` of the listed ghosts back to their owners (values, not deltas),
-    /// marking the owners reached in `fresh` (when it is in use). Within one colour of the sweep each
+    /// Copies `fields` of the listed ghosts back to their owners (values, not deltas; a
+    /// message leads with one bit per ghost of the swap saying whether its record
+    /// follows), marking the owners reached in `fresh` (when it is in use). Within one colour of the sweep each
     /// particle has exactly one writer, so only the ghosts written travel back, hop by hop
     /// through the swaps in reverse order.
     fn reverse(&mut self, store: &mut Particles, ghosts: &[u32], fields: Fields) {
         let fields = fields.without(Fields::POSITION);
-        let width = 1 + store.comm_width(fields);
+        let width = store.comm_width(fields);
         self.written.clear();
         self.written.resize(store.len(), false);
         for &g in ghosts {
@@ -361,17 +359,15 @@ impl Comm {
                 }
                 continue;
             }
-            self.send.clear();
-            for k in 0..s.recv_count {
-                if self.written[s.recv_start + k] {
-                    self.send.push(k as f64);
-                    store.pack_fields(s.recv_start + k, fields, None, &mut self.send);
-                }
+            let written = &self.written;
+            lead_with_mask(&mut self.send, s.recv_count, |k| written[s.recv_start + k]);
+            for k in (0..s.recv_count).filter(|&k| written[s.recv_start + k]) {
+                store.pack_fields(s.recv_start + k, fields, None, &mut self.send);
             }
             self.traffic.sendrecv(self.t.as_ref(), &self.send, s.src, s.dest, &mut self.recv);
-            for rec in self.recv.chunks_exact(width) {
-                let i = s.send[rec[0] as usize] as usize;
-                store.unpack_fields(i, fields, &rec[1..]);
+            for (k, rec) in masked_records(&self.recv, s.send.len(), width) {
+                let i = s.send[k] as usize;
+                store.unpack_fields(i, fields, rec);
                 self.written[i] |= i >= store.nlocal;
                 if let Some(f) = self.fresh.get_mut(i) {
                     *f = true;
@@ -398,28 +394,33 @@ impl Comm {
                 store.copy_fields(moves, fields, Some((s.dim, s.shift)));
                 continue;
             }
-            self.mask.clear();
-            self.mask.resize(s.send.len().div_ceil(64), 0);
-            for (k, &i) in s.send.iter().enumerate() {
-                self.mask[k / 64] |= (fresh[i as usize] as u64) << (k % 64);
-            }
-            self.send.clear();
-            self.send.extend(self.mask.iter().map(|&m| f64::from_bits(m)));
+            lead_with_mask(&mut self.send, s.send.len(), |k| fresh[s.send[k] as usize]);
             for &i in s.send.iter().filter(|&&i| fresh[i as usize]) {
                 store.pack_fields(i as usize, fields, Some((s.dim, s.shift)), &mut self.send);
             }
             self.traffic.sendrecv(self.t.as_ref(), &self.send, s.dest, s.src, &mut self.recv);
-            let (mask, records) = self.recv.split_at(s.recv_count.div_ceil(64));
-            let mut records = records.chunks_exact(width);
-            for k in 0..s.recv_count {
-                if mask[k / 64].to_bits() >> (k % 64) & 1 == 1 {
-                    if let Some(rec) = records.next() {
-                        store.unpack_fields(s.recv_start + k, fields, rec);
-                    }
-                    fresh[s.recv_start + k] = true;
-                }
+            for (k, rec) in masked_records(&self.recv, s.recv_count, width) {
+                store.unpack_fields(s.recv_start + k, fields, rec);
+                fresh[s.recv_start + k] = true;
             }
         }
         self.time.set(self.time.get() + start.elapsed());
     }
+}
+
+/// Starts message `buf` with one bit per record slot 0..n: slot k's record follows when
+/// `travels(k)` (records in slot order).
+fn lead_with_mask(buf: &mut Vec<f64>, n: usize, travels: impl Fn(usize) -> bool) {
+    buf.clear();
+    for w in 0..n.div_ceil(64) {
+        let bits = (64 * w..n.min(64 * w + 64)).fold(0u64, |m, k| m | (travels(k) as u64) << (k - 64 * w));
+        buf.push(f64::from_bits(bits));
+    }
+}
+
+/// The slots of a [`lead_with_mask`] message of n slots that travelled, each with its
+/// record of `width` values.
+fn masked_records(msg: &[f64], n: usize, width: usize) -> impl Iterator<Item = (usize, &[f64])> {
+    let (mask, records) = msg.split_at(n.div_ceil(64));
+    (0..n).filter(move |&k| mask[k / 64].to_bits() >> (k % 64) & 1 == 1).zip(records.chunks_exact(width))
 }
