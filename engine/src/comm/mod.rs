@@ -303,9 +303,8 @@ impl Comm {
     /// (`sweep`'s last [`SweepPairs::within`]): the ghosts written return their values to
     /// their owners, then every particle touched (owned and written, or reached by a
     /// returning ghost) forwards its values to its ghosts. Ghosts of particles the colour
-    /// left alone keep theirs, which are current, so they do not travel.
-    /// On one rank every swap is a copy, and all ghosts are copied (marking costs more
-    /// than the copies saved).
+    /// left alone keep theirs, which are current, so they do not travel. On one rank every
+    /// swap is a copy, and all ghosts are copied (marking costs more than it saves).
     pub fn after_colour(&mut self, store: &mut Particles, sweep: &SweepPairs, colour: usize, fields: Fields) {
         let start = std::time::Instant::now();
         let me = self.t.rank();
@@ -329,9 +328,9 @@ impl Comm {
 
     /// Copies `fields` of the listed ghosts back to their owners (values, not deltas; a
     /// message leads with one bit per ghost of the swap saying whether its record
-    /// follows), marking the owners reached in `fresh` (when it is in use). Within one colour of the sweep each
-    /// particle has exactly one writer, so only the ghosts written travel back, hop by hop
-    /// through the swaps in reverse order.
+    /// follows), marking the owners reached in `fresh` (when it is in use). Within one
+    /// colour of the sweep each particle has exactly one writer, so only the ghosts
+    /// written travel back, hop by hop through the swaps in reverse order.
     fn reverse(&mut self, store: &mut Particles, ghosts: &[u32], fields: Fields) {
         let fields = fields.without(Fields::POSITION);
         let width = store.comm_width(fields);
