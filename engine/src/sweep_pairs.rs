@@ -45,7 +45,13 @@ impl SweepPairs {
             self.active[m] = [i, j];
             m += (r2 < rc * rc && r2 >= 1e-20) as usize;
         }
-        &self.active[..m]
+        self.active.truncate(m);
+        &self.active
+    }
+
+    /// The pairs the last [`SweepPairs::within`] selected.
+    pub fn active(&self) -> &[[u32; 2]] {
+        &self.active
     }
 }
 

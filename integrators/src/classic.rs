@@ -323,8 +323,7 @@ impl ClassicDpd {
             }
             // theta (and 1/theta) stay as they are until the sweep is over
             let fields = Fields::MOMENTUM | Fields::ENERGY | Fields::U_COND;
-            sys.comm.reverse(&mut sys.store, &sys.sweep.ghost_writes[colour], fields);
-            sys.comm.forward(&mut sys.store, fields);
+            sys.comm.after_colour(&mut sys.store, &sys.sweep, colour, fields);
         }
     }
 

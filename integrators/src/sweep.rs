@@ -2,7 +2,8 @@
 //! (and 1/tau) of i and j refreshed from the EOS after each pair; then the reservoir.
 //!
 //! Between colours the ghosts written in the colour return their values to their
-//! owners, and the owners forward the new values to all ghosts (ARCHITECTURE.md).
+//! owners, and the particles the colour touched forward their new values to their ghosts
+//! (ARCHITECTURE.md).
 //!
 //! theta -> 0: a pair update that would leave a particle temperature non-positive (or
 //! non-finite) is undone and redone as two half steps whose noises split the step's
@@ -78,9 +79,7 @@ pub fn sweep<E: FixedDensity, H: HeatFlow, N: Noise>(eos: &Species<E>, d: &Dissi
         for failed in failures.drain(..) {
             outcome = lowest(outcome, Err(failed.error(eos, &sys.store, step)));
         }
-        let ghosts = &sys.sweep.ghost_writes[colour];
-        sys.comm.reverse(&mut sys.store, ghosts, SWEPT);
-        sys.comm.forward(&mut sys.store, SWEPT);
+        sys.comm.after_colour(&mut sys.store, &sys.sweep, colour, SWEPT);
     }
     outcome
 }
@@ -242,7 +241,7 @@ fn pair_step<A: AtDensity, H: HeatFlow, N: Noise>(
     let (mut p_i, mut p_j, mut u_i, mut u_j) = (a.p, b.p, a.u, b.u);
     let state = PairState { p_i: &mut p_i, p_j: &mut p_j, u_i: &mut u_i, u_j: &mut u_j, inv_m_i: p.inv_m.0, inv_m_j: p.inv_m.1 };
     pair_update::<H, N>(state, &drive, p.kb, dt, dt.sqrt());
-    let refreshed = refresh::<A, H, N>(&v.at[i], i, p_i, u_i, a.theta).and_then(|a| Ok((a, refresh::<A, H, N>(&v.at[j], j, p_j, u_j, b.theta)?)));
+    let refreshed = refresh_pair::<A, H, N>([&v.at[i], &v.at[j]], [i, j], [p_i, p_j], [u_i, u_j], [a.theta, b.theta]);
     match refreshed {
         Ok((a, b)) => {
             v.store::<H, N>(i, a);
@@ -287,7 +286,21 @@ pub(crate) fn temps<H: HeatFlow, N: Noise>(s: &Particles, i: usize) -> Temps {
 /// or noise law reads it: the particle's new state, or why it has none.
 #[inline(always)]
 fn refresh<A: AtDensity, H: HeatFlow, N: Noise>(at: &A, k: usize, p: Vec3, u: f64, guess: f64) -> Result<End, Failed> {
-    let (theta, inv_tau) = if H::NEEDS_INV_TAU || N::NEEDS_INV_TAU { at.theta_inv_tau(u, guess) } else { (at.theta(u, guess), 0.0) };
+    let found = if H::NEEDS_INV_TAU || N::NEEDS_INV_TAU { at.theta_inv_tau(u, guess) } else { (at.theta(u, guess), 0.0) };
+    end(k, p, u, found)
+}
+
+/// [`refresh`] of the two particles of a pair, their solves side by side
+/// ([`AtDensity::theta_pair`]); a failure of the first reported first.
+#[inline(always)]
+fn refresh_pair<A: AtDensity, H: HeatFlow, N: Noise>(at: [&A; 2], k: [usize; 2], p: [Vec3; 2], u: [f64; 2], guess: [f64; 2]) -> Result<(End, End), Failed> {
+    let found = if H::NEEDS_INV_TAU || N::NEEDS_INV_TAU { at[0].theta_inv_tau_pair(at[1], u, guess) } else { at[0].theta_pair(at[1], u, guess).map(|t| (t, 0.0)) };
+    Ok((end(k[0], p[0], u[0], found[0])?, end(k[1], p[1], u[1], found[1])?))
+}
+
+/// Particle `k`'s new state from the (theta, 1/tau) found, or why it has none.
+#[inline(always)]
+fn end(k: usize, p: Vec3, u: f64, (theta, inv_tau): (f64, f64)) -> Result<End, Failed> {
     if !(theta > 0.0 && theta.is_finite()) {
         return Err(Failed { k, u, theta });
     }

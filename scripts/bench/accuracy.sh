@@ -6,4 +6,5 @@ cd "$(dirname "${BASH_SOURCE[0]}")/../.."
 source scripts/deps.sh
 install_build_deps
 cargo build --release --quiet --features mpi
+export GENDPDE="${GENDPDE:-${CARGO_TARGET_DIR:-$PWD/target}/release/gendpde}"
 exec python3 scripts/bench/accuracy.py "$@"

@@ -8,12 +8,13 @@ cd "$(dirname "${BASH_SOURCE[0]}")/../.."
 source scripts/deps.sh
 install_build_deps
 cargo build --release --quiet --features mpi
+GENDPDE="${GENDPDE:-${CARGO_TARGET_DIR:-$PWD/target}/release/gendpde}"
 steps="${STEPS:-50}"
 cd examples/vdw-equilibrium
 printf "%6s %14s %12s %12s\n" ranks atom-steps/s efficiency comm-%
 base=""
 for np in ${RANKS:-1 2}; do
-  out=$(mpirun --oversubscribe -np "$np" ../../target/release/gendpde run in.vdw-equilibrium \
+  out=$(mpirun --oversubscribe -np "$np" "$GENDPDE" run in.vdw-equilibrium \
         -var n 30 -var steps "$steps" -log none)
   rate=$(echo "$out" | awk '/^Performance/ {print $(NF-1)}')     # katom-step/s
   comm=$(echo "$out" | sed -n 's/.*(\([0-9.]*\) % of the loop).*/\1/p')

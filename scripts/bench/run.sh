@@ -7,4 +7,6 @@ source scripts/deps.sh
 install_build_deps
 bash "${LAMMPS_SETUP:-/work/shared/lammps/setup.sh}" >/dev/null
 cargo build --release --quiet --features mpi
+# the binary just built (cargo honours CARGO_TARGET_DIR)
+export GENDPDE="${GENDPDE:-${CARGO_TARGET_DIR:-$PWD/target}/release/gendpde}"
 exec python3 scripts/bench/bench.py "$@"

@@ -17,7 +17,7 @@ pub use mpi::MpiTransport;
 pub use procs::ProcGrid;
 pub use transport::{Local, Transport};
 
-use crate::{CellGrid, Domain, Fields, Particles, Vec3};
+use crate::{CellGrid, Domain, Fields, Particles, SweepPairs, Vec3};
 
 /// One exchange of the ghost layer with a neighbour, recorded for forward and reverse
 /// communication.
@@ -45,6 +45,8 @@ pub struct Comm {
     send: Vec<f64>,
     recv: Vec<f64>,
     written: Vec<bool>,
+    /// Particles whose new values go to their ghosts in [`Comm::after_colour`].
+    fresh: Vec<bool>,
     /// Wall time spent in exchanges and collectives.
     time: std::cell::Cell<std::time::Duration>,
     traffic: Traffic,
@@ -86,6 +88,7 @@ impl Comm {
             send: Vec::new(),
             recv: Vec::new(),
             written: Vec::new(),
+            fresh: Vec::new(),
             time: Default::default(),
             traffic: Traffic::default(),
         }
@@ -296,13 +299,41 @@ impl Comm {
         self.time.set(self.time.get() + start.elapsed());
     }
 
-    /// Copies `fields` of the listed ghosts back to their owners: values, not deltas.
-    /// Within one colour of the sweep each particle has exactly one writer, so only the
-    /// ghosts written travel back, hop by hop through the swaps in reverse order.
-    pub fn reverse(&mut self, store: &mut Particles, ghosts: &[u32], fields: Fields) {
+    /// After colour `colour` of a sweep wrote `fields` of the particles of its pairs
+    /// (`sweep`'s last [`SweepPairs::within`]): the ghosts written return their values to
+    /// their owners, then every particle touched (owned and written, or reached by a
+    /// returning ghost) forwards its values to its ghosts. Ghosts of particles the colour
+    /// left alone keep theirs, which are current, so they do not travel. On one rank every
+    /// swap is a copy, and all ghosts are copied (marking costs more than it saves).
+    pub fn after_colour(&mut self, store: &mut Particles, sweep: &SweepPairs, colour: usize, fields: Fields) {
         let start = std::time::Instant::now();
+        let me = self.t.rank();
+        let remote = self.swaps.iter().any(|s| s.dest != me || s.src != me);
+        self.fresh.clear();
+        if remote {
+            self.fresh.resize(store.len(), false);
+            for &[i, j] in sweep.active() {
+                self.fresh[i as usize] = true;
+                self.fresh[j as usize] = true;
+            }
+        }
+        self.reverse(store, &sweep.ghost_writes[colour], fields);
+        self.time.set(self.time.get() + start.elapsed());
+        if remote {
+            self.forward_fresh(store, fields);
+        } else {
+            self.forward(store, fields);
+        }
+    }
+
+    /// Copies `fields` of the listed ghosts back to their owners (values, not deltas; a
+    /// message leads with one bit per ghost of the swap saying whether its record
+    /// follows), marking the owners reached in `fresh` (when it is in use). Within one
+    /// colour of the sweep each particle has exactly one writer, so only the ghosts
+    /// written travel back, hop by hop through the swaps in reverse order.
+    fn reverse(&mut self, store: &mut Particles, ghosts: &[u32], fields: Fields) {
         let fields = fields.without(Fields::POSITION);
-        let width = 1 + store.comm_width(fields);
+        let width = store.comm_width(fields);
         self.written.clear();
         self.written.resize(store.len(), false);
         for &g in ghosts {
@@ -318,28 +349,77 @@ impl Comm {
                 // sources, ghosts of this swap, lie above every destination)
                 for k in 0..s.recv_count {
                     let i = s.send[k] as usize;
-                    if self.written[s.recv_start + k] && i >= store.nlocal {
-                        self.written[i] = true;
+                    if self.written[s.recv_start + k] {
+                        self.written[i] |= i >= store.nlocal;
+                        if let Some(f) = self.fresh.get_mut(i) {
+                            *f = true;
+                        }
                     }
                 }
                 continue;
             }
-            self.send.clear();
-            for k in 0..s.recv_count {
-                if self.written[s.recv_start + k] {
-                    self.send.push(k as f64);
-                    store.pack_fields(s.recv_start + k, fields, None, &mut self.send);
-                }
+            let written = &self.written;
+            lead_with_mask(&mut self.send, s.recv_count, |k| written[s.recv_start + k]);
+            for k in (0..s.recv_count).filter(|&k| written[s.recv_start + k]) {
+                store.pack_fields(s.recv_start + k, fields, None, &mut self.send);
             }
             self.traffic.sendrecv(self.t.as_ref(), &self.send, s.src, s.dest, &mut self.recv);
-            for rec in self.recv.chunks_exact(width) {
-                let i = s.send[rec[0] as usize] as usize;
-                store.unpack_fields(i, fields, &rec[1..]);
-                if i >= store.nlocal {
-                    self.written[i] = true;
+            for (k, rec) in masked_records(&self.recv, s.send.len(), width) {
+                let i = s.send[k] as usize;
+                store.unpack_fields(i, fields, rec);
+                self.written[i] |= i >= store.nlocal;
+                if let Some(f) = self.fresh.get_mut(i) {
+                    *f = true;
                 }
+            }
+        }
+    }
+
+    /// Copies `fields` from the particles marked in `fresh` to their ghosts, which are
+    /// marked in turn (they travel on in later swaps). A message leads with one bit per
+    /// ghost of the swap saying whether its record follows.
+    fn forward_fresh(&mut self, store: &mut Particles, fields: Fields) {
+        let start = std::time::Instant::now();
+        let width = store.comm_width(fields);
+        let me = self.t.rank();
+        for s in &self.swaps {
+            let fresh = &mut self.fresh;
+            if s.dest == me && s.src == me {
+                // every ghost copied (unchanged values are the same bits), the marks passed on
+                for (k, &i) in s.send.iter().enumerate() {
+                    fresh[s.recv_start + k] = fresh[i as usize];
+                }
+                let moves = s.send.iter().enumerate().map(|(k, &i)| (i as usize, s.recv_start + k));
+                store.copy_fields(moves, fields, Some((s.dim, s.shift)));
+                continue;
+            }
+            lead_with_mask(&mut self.send, s.send.len(), |k| fresh[s.send[k] as usize]);
+            for &i in s.send.iter().filter(|&&i| fresh[i as usize]) {
+                store.pack_fields(i as usize, fields, Some((s.dim, s.shift)), &mut self.send);
+            }
+            self.traffic.sendrecv(self.t.as_ref(), &self.send, s.dest, s.src, &mut self.recv);
+            for (k, rec) in masked_records(&self.recv, s.recv_count, width) {
+                store.unpack_fields(s.recv_start + k, fields, rec);
+                fresh[s.recv_start + k] = true;
             }
         }
         self.time.set(self.time.get() + start.elapsed());
     }
+}
+
+/// Starts message `buf` with one bit per record slot 0..n: slot k's record follows when
+/// `travels(k)` (records in slot order).
+fn lead_with_mask(buf: &mut Vec<f64>, n: usize, travels: impl Fn(usize) -> bool) {
+    buf.clear();
+    for w in 0..n.div_ceil(64) {
+        let bits = (64 * w..n.min(64 * w + 64)).fold(0u64, |m, k| m | (travels(k) as u64) << (k - 64 * w));
+        buf.push(f64::from_bits(bits));
+    }
+}
+
+/// The slots of a [`lead_with_mask`] message of n slots that travelled, each with its
+/// record of `width` values.
+fn masked_records(msg: &[f64], n: usize, width: usize) -> impl Iterator<Item = (usize, &[f64])> {
+    let (mask, records) = msg.split_at(n.div_ceil(64));
+    (0..n).filter(move |&k| mask[k / 64].to_bits() >> (k % 64) & 1 == 1).zip(records.chunks_exact(width))
 }

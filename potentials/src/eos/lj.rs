@@ -244,80 +244,188 @@ impl LjAt {
     /// PREDICTED_TOL of the root by the predicted error; C_V NaN when the solve ended
     /// otherwise).
     fn solve(&self, u: f64, guess: f64) -> (f64, f64) {
-        let n = self.n;
-        if !(u.is_finite() && n.is_finite() && n >= 0.0) {
-            return (f64::NAN, f64::NAN);
+        let mut s = match Newton::new(self, u, guess) {
+            Ok(s) => s,
+            Err(done) => return done,
+        };
+        while let Some(x) = s.pending(self.n) {
+            if let Some(done) = s.take(self.u_and_cv(x)) {
+                return done;
+            }
         }
-        let (lo0, hi0) = (LennardJones::THETA_MIN, LennardJones::THETA_MAX);
-        let (mut lo, mut hi) = (lo0, hi0);
-        // whether an in-domain point with u(x) < u (resp. > u) has been seen
-        let (mut lo_hit, mut hi_hit) = (false, false);
-        let mut x = if guess > 0.0 && guess.is_finite() {
+        s.ended()
+    }
+
+    /// The solves of two particles (`ats[k]` at `u[k]` from `guess[k]`) in lockstep, each
+    /// step's two evaluations side by side: two independent chains the processor overlaps.
+    /// The same bits as two [`LjAt::solve`]s.
+    fn solve_pair(ats: [&Self; 2], u: [f64; 2], guess: [f64; 2]) -> [(f64, f64); 2] {
+        let mut out = [(f64::NAN, f64::NAN); 2];
+        let mut live = [None, None];
+        for k in 0..2 {
+            match Newton::new(ats[k], u[k], guess[k]) {
+                Ok(s) => live[k] = Some(s),
+                Err(done) => out[k] = done,
+            }
+        }
+        loop {
+            let mut xs = [None, None];
+            for k in 0..2 {
+                if let Some(s) = live[k].as_mut() {
+                    xs[k] = s.pending(ats[k].n);
+                    if xs[k].is_none() {
+                        out[k] = s.ended();
+                        live[k] = None;
+                    }
+                }
+            }
+            let evals = match xs {
+                [Some(x0), Some(x1)] => {
+                    let (e0, e1) = (ats[0].u_and_cv(x0), ats[1].u_and_cv(x1));
+                    [Some(e0), Some(e1)]
+                }
+                [Some(x0), None] => [Some(ats[0].u_and_cv(x0)), None],
+                [None, Some(x1)] => [None, Some(ats[1].u_and_cv(x1))],
+                [None, None] => return out,
+            };
+            for k in 0..2 {
+                if let (Some(e), Some(s)) = (evals[k], live[k].as_mut()) {
+                    if let Some(done) = s.take(e) {
+                        out[k] = done;
+                        live[k] = None;
+                    }
+                }
+            }
+        }
+    }
+
+    /// theta and 1/tau = (1 - 1/C_V)/theta from a solve's (theta, C_V), C_V evaluated anew
+    /// when the solve did not end on a Newton step.
+    #[inline]
+    fn with_inv_tau(&self, (theta, cv): (f64, f64)) -> (f64, f64) {
+        let cv = if cv.is_finite() { cv } else { self.u_and_cv(theta).1 };
+        (theta, (1.0 - 1.0 / cv) / theta)
+    }
+}
+
+/// One bracketed Newton solve of u(theta) = u at a fixed density, as a state machine:
+/// [`Newton::pending`] names the next point to evaluate, [`Newton::take`] consumes its
+/// evaluation, [`Newton::ended`] gives the result when no point is left.
+struct Newton {
+    u: f64,
+    lo: f64,
+    hi: f64,
+    /// Whether an in-domain point with u(x) < u (resp. > u) has been seen.
+    lo_hit: bool,
+    hi_hit: bool,
+    x: f64,
+    /// (x, C_V) of the previous evaluation when x is its Newton step.
+    prev: Option<(f64, f64)>,
+    iter: usize,
+}
+
+impl Newton {
+    /// The solve from `guess` (or from a first estimate at theta = 1), or its result for
+    /// invalid input.
+    #[inline(always)]
+    fn new(at: &LjAt, u: f64, guess: f64) -> Result<Self, (f64, f64)> {
+        let n = at.n;
+        if !(u.is_finite() && n.is_finite() && n >= 0.0) {
+            return Err((f64::NAN, f64::NAN));
+        }
+        let (lo, hi) = (LennardJones::THETA_MIN, LennardJones::THETA_MAX);
+        let x = if guess > 0.0 && guess.is_finite() {
             guess
         } else {
             let t1 = 1.0;
             let x0 = if LennardJones::in_domain(t1, n) {
-                let r = self.f_res_t(Jet::var_t(t1));
-                (u - (r.v - t1 * r.t)) / self.cv
+                let r = at.f_res_t(Jet::var_t(t1));
+                (u - (r.v - t1 * r.t)) / at.cv
             } else {
                 f64::NAN
             };
             if x0.is_finite() {
-                x0.max(lo0)
+                x0.max(lo)
             } else {
                 (lo * hi).sqrt()
             }
         };
-        x = x.clamp(lo, hi);
-        // (x, C_V) of the previous evaluation when x is its Newton step
-        let mut prev: Option<(f64, f64)> = None;
-        for _ in 0..LennardJones::MAX_ITER {
-            let mut next = f64::NAN;
-            if LennardJones::in_domain(x, n) {
-                let (ux, cvx) = self.u_and_cv(x);
-                let r = ux - u;
-                if r == 0.0 {
-                    return (x, cvx);
-                }
-                if r < 0.0 {
-                    lo = x;
-                    lo_hit = true;
-                } else {
-                    hi = x;
-                    hi_hit = true;
-                }
-                let step = r / cvx;
-                next = x - step;
-                if step.abs() <= LennardJones::TOL * x && next > 0.0 {
-                    return (next, cvx);
-                }
-                if let Some((xp, cvp)) = prev.filter(|&(xp, _)| (x - xp).abs() <= 0.01 * x) {
-                    // Newton converges quadratically: the error left after this step is
-                    // |u''/(2 u')| step^2, u'' = dC_V/dtheta from the last two evaluations
-                    // (close enough for a local slope); C_V carried to `next` along it
-                    let slope = (cvx - cvp) / (x - xp);
-                    let left = (slope / (2.0 * cvx)).abs() * step * step;
-                    if left <= LennardJones::PREDICTED_TOL * x && next > lo && next < hi {
-                        return (next, cvx - slope * step);
-                    }
-                }
-                prev = Some((x, cvx));
-            } else {
-                // x in [THETA_MIN, THETA_MAX] is out of the domain only by eta > ETA_MAX:
-                // below the floor at this density, so the root lies above
-                lo = x;
+        Ok(Self { u, lo, hi, lo_hit: false, hi_hit: false, x: x.clamp(lo, hi), prev: None, iter: 0 })
+    }
+
+    /// The next point to evaluate (inside the domain at density `n`), or None when the
+    /// solve ended without converging.
+    #[inline(always)]
+    fn pending(&mut self, n: f64) -> Option<f64> {
+        while self.iter < LennardJones::MAX_ITER {
+            if LennardJones::in_domain(self.x, n) {
+                return Some(self.x);
             }
-            if hi - lo <= LennardJones::TOL * lo {
-                break;
-            }
-            if !(next > lo && next < hi) {
-                next = (lo * hi).sqrt(); // bisection in ln theta: the bracket spans decades
-                prev = None;
-            }
-            x = next;
+            // x in [THETA_MIN, THETA_MAX] is out of the domain only by eta > ETA_MAX:
+            // below the floor at this density, so the root lies above
+            self.lo = self.x;
+            self.advance(f64::NAN);
         }
-        let theta = match (lo_hit, hi_hit) {
-            (true, true) => 0.5 * (lo + hi),
+        None
+    }
+
+    /// Takes u and C_V at the pending point: the result when the solve converged.
+    #[inline(always)]
+    fn take(&mut self, (ux, cvx): (f64, f64)) -> Option<(f64, f64)> {
+        let x = self.x;
+        let r = ux - self.u;
+        if r == 0.0 {
+            return Some((x, cvx));
+        }
+        if r < 0.0 {
+            self.lo = x;
+            self.lo_hit = true;
+        } else {
+            self.hi = x;
+            self.hi_hit = true;
+        }
+        let step = r / cvx;
+        let next = x - step;
+        if step.abs() <= LennardJones::TOL * x && next > 0.0 {
+            return Some((next, cvx));
+        }
+        if let Some((xp, cvp)) = self.prev.filter(|&(xp, _)| (x - xp).abs() <= 0.01 * x) {
+            // Newton converges quadratically: the error left after this step is
+            // |u''/(2 u')| step^2, u'' = dC_V/dtheta from the last two evaluations
+            // (close enough for a local slope); C_V carried to `next` along it
+            let slope = (cvx - cvp) / (x - xp);
+            let left = (slope / (2.0 * cvx)).abs() * step * step;
+            if left <= LennardJones::PREDICTED_TOL * x && next > self.lo && next < self.hi {
+                return Some((next, cvx - slope * step));
+            }
+        }
+        self.prev = Some((x, cvx));
+        self.advance(next);
+        None
+    }
+
+    /// Ends an iteration: stops once the bracket is within TOL, else moves to `next`
+    /// (bisection in ln theta when it leaves the bracket: the bracket spans decades).
+    #[inline(always)]
+    fn advance(&mut self, next: f64) {
+        self.iter += 1;
+        if self.hi - self.lo <= LennardJones::TOL * self.lo {
+            self.iter = LennardJones::MAX_ITER;
+            return;
+        }
+        self.x = if next > self.lo && next < self.hi {
+            next
+        } else {
+            self.prev = None;
+            (self.lo * self.hi).sqrt()
+        };
+    }
+
+    /// The result of a solve that ran out of Newton steps: the bracket's middle, or the
+    /// bound the root lies beyond (C_V NaN).
+    fn ended(&self) -> (f64, f64) {
+        let theta = match (self.lo_hit, self.hi_hit) {
+            (true, true) => 0.5 * (self.lo + self.hi),
             (false, true) => 0.0, // u below the ground state at this density
             (true, false) => f64::INFINITY, // u above u(THETA_MAX, n)
             (false, false) => f64::NAN, // eta > ETA_MAX at every theta: n too high
@@ -334,11 +442,16 @@ impl AtDensity for LjAt {
     /// C_V from the solve's last Newton evaluation: one evaluation of f_res saved.
     #[inline]
     fn theta_inv_tau(&self, u: f64, guess: f64) -> (f64, f64) {
-        let (theta, cv) = match self.solve(u, guess) {
-            (theta, cv) if cv.is_finite() => (theta, cv),
-            (theta, _) => (theta, self.u_and_cv(theta).1),
-        };
-        (theta, (1.0 - 1.0 / cv) / theta)
+        self.with_inv_tau(self.solve(u, guess))
+    }
+    #[inline]
+    fn theta_pair(&self, b: &Self, u: [f64; 2], guess: [f64; 2]) -> [f64; 2] {
+        LjAt::solve_pair([self, b], u, guess).map(|(theta, _)| theta)
+    }
+    #[inline]
+    fn theta_inv_tau_pair(&self, b: &Self, u: [f64; 2], guess: [f64; 2]) -> [(f64, f64); 2] {
+        let [x, y] = LjAt::solve_pair([self, b], u, guess);
+        [self.with_inv_tau(x), b.with_inv_tau(y)]
     }
 }
 
@@ -609,6 +722,68 @@ mod tests {
         // theta to round-off; C_V (so 1/tau) carried along the secant slope of C_V, whose
         // error is ~ C_V'' (x - x_prev) step / 2
         assert!(worst[0] < 1e-14 && worst[1] < 1e-9 && worst[2] < 1e-9, "{worst:?}");
+    }
+
+    /// The interleaved solves of two particles give the bits of two single solves, over
+    /// sweep-like refreshes paired with each other (solves of different lengths), without a
+    /// guess, and with input no solve accepts.
+    #[test]
+    fn paired_solves_are_the_single_solves() {
+        let m = LennardJones::new(60.0);
+        let mut cases = Vec::new();
+        for (theta, n) in grid() {
+            for k in 0..=8 {
+                let du = 0.03 * m.cv * theta * (if k % 2 == 0 { 1.0 } else { -1.0 }) * 10f64.powi(-(k / 2));
+                let guess = if k == 8 { f64::NAN } else { theta };
+                cases.push((m.at_density(n), m.u(theta, n) + du, guess));
+            }
+        }
+        cases.push((m.at_density(0.5), f64::NAN, 1.0));
+        cases.push((m.at_density(0.5), -1e9, 1.0));
+        cases.push((m.at_density(0.5), 1e9, 1.0));
+        cases.push((m.at_density(7.0), 1.0, 1.0));
+        let bits = |r: [(f64, f64); 2]| r.map(|(t, c)| (t.to_bits(), c.to_bits()));
+        for (a, b) in cases.iter().zip(cases.iter().rev().chain(cases.iter().skip(7))) {
+            let single = [a.0.solve(a.1, a.2), b.0.solve(b.1, b.2)];
+            let paired = LjAt::solve_pair([&a.0, &b.0], [a.1, b.1], [a.2, b.2]);
+            assert_eq!(bits(paired), bits(single), "u {} and {}", a.1, b.1);
+            let (x, y) = (a.0.theta_inv_tau(a.1, a.2), b.0.theta_inv_tau(b.1, b.2));
+            let pair = a.0.theta_inv_tau_pair(&b.0, [a.1, b.1], [a.2, b.2]);
+            assert_eq!(bits(pair), bits([x, y]));
+        }
+    }
+
+    /// Time per solve of single and paired solves on sweep-like refreshes (minimum over
+    /// repetitions, so that a loaded machine still gives the unloaded cost):
+    /// `cargo test --release -p gendpde-potentials paired_solve_timing -- --ignored --nocapture`.
+    #[test]
+    #[ignore]
+    fn paired_solve_timing() {
+        let m = LennardJones::new(60.0);
+        let mut cases = Vec::new();
+        for (theta, n) in grid().into_iter().filter(|&(_, n)| n <= 0.6) {
+            for k in 0..4 {
+                let du = 0.003 * m.cv * theta * (if k % 2 == 0 { 1.0 } else { -1.0 }) * 10f64.powi(-k);
+                cases.push((m.at_density(n), m.u(theta, n) + du, theta));
+            }
+        }
+        let time = |f: &dyn Fn() -> f64| {
+            (0..30)
+                .map(|_| {
+                    let start = std::time::Instant::now();
+                    std::hint::black_box(f());
+                    start.elapsed().as_secs_f64()
+                })
+                .fold(f64::INFINITY, f64::min)
+                / cases.len() as f64
+        };
+        let single = || cases.iter().map(|c| c.0.theta_inv_tau(std::hint::black_box(c.1), c.2).0).sum::<f64>();
+        let paired = || {
+            cases.chunks_exact(2).map(|c| c[0].0.theta_inv_tau_pair(&c[1].0, std::hint::black_box([c[0].1, c[1].1]), [c[0].2, c[1].2])).map(|[x, y]| x.0 + y.0).sum::<f64>()
+        };
+        for _ in 0..3 {
+            eprintln!("ns per solve: single {:.1}, paired {:.1}", 1e9 * time(&single), 1e9 * time(&paired));
+        }
     }
 
     /// Central five-point first derivative, error O(h^4).

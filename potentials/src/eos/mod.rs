@@ -136,6 +136,17 @@ pub trait AtDensity: Copy {
     fn theta(&self, u: f64, guess: f64) -> f64;
     /// theta(u) and 1/tau = (1 - k_B/C_V)/theta there (eqs 19, 23).
     fn theta_inv_tau(&self, u: f64, guess: f64) -> (f64, f64);
+    /// [`AtDensity::theta`] of two particles, `self` at `u[0]` and `b` at `u[1]`: the same
+    /// bits as two calls (iterative models interleave the two solves).
+    #[inline(always)]
+    fn theta_pair(&self, b: &Self, u: [f64; 2], guess: [f64; 2]) -> [f64; 2] {
+        [self.theta(u[0], guess[0]), b.theta(u[1], guess[1])]
+    }
+    /// [`AtDensity::theta_inv_tau`] of two particles, as [`AtDensity::theta_pair`].
+    #[inline(always)]
+    fn theta_inv_tau_pair(&self, b: &Self, u: [f64; 2], guess: [f64; 2]) -> [(f64, f64); 2] {
+        [self.theta_inv_tau(u[0], guess[0]), b.theta_inv_tau(u[1], guess[1])]
+    }
 }
 
 /// Models that can precompute their density-only parts ([`AtDensity`]).
