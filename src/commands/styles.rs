@@ -79,15 +79,13 @@ pub fn fix(sim: &mut Sim, outputs: &mut Outputs, a: &mut Args) -> Result<(), Scr
     sim.check_density_cap().map_err(|e| a.err(e))
 }
 
-/// A new `fix nph`: the units' pressure conversion, LAMMPS's periodicity check, and its
-/// state at rest with the fixed point (by default the box centre now).
+/// A new `fix nph`: the units' pressure conversion and its state at rest with the fixed
+/// point (by default the box centre now). gendpde's boxes are periodic, as LAMMPS requires
+/// along barostatted dimensions.
 fn define_barostat(sim: &mut Sim, nph: &mut Nph, fixedpoint: Option<[f64; 3]>) -> Result<(), String> {
     nph.nktv2p = sim.units.nktv2p;
     let sys = sim.system.as_mut().ok_or("fix nph before the box exists (create_box, read_data or read_restart)")?;
     let d = &sys.domain;
-    if let Some(k) = (0..3).find(|&k| nph.p_flag[k] && !d.periodic[k]) {
-        return Err(format!("Cannot use fix nph on a non-periodic {} dimension", ["x", "y", "z"][k]));
-    }
     let centre = [0, 1, 2].map(|k| 0.5 * (d.lo[k] + d.hi[k]));
     sys.barostat = Some(NphState::new(&nph.id, nph.pchain, fixedpoint.unwrap_or(centre)));
     Ok(())
