@@ -329,6 +329,21 @@ fn dpd_fdt_energy_of_the_issue_is_bit_identical_on_1_2_3_4_ranks() {
     assert_rank_independent(&dir, "dpd/fdt/energy", scene, 10, &LAYOUTS[..4]);
 }
 
+/// fix nph changes the box every step: the grid is laid again from the box alone (here it
+/// grows from 6 to 8 cells per dimension as the box expands from 10 to about 11.4), so the
+/// decomposition changes with it and the trajectory must not.
+#[test]
+fn nph_with_a_growing_grid_is_bit_identical_on_1_2_3_4_ranks() {
+    let dir = tempdir("nph");
+    std::fs::copy(common::lammps::scripts_dir().join("data.dpde-3000"), dir.join("data.dpde-3000")).unwrap();
+    let scene = "units lj\nboundary p p p\natom_style dpd\ncomm_modify vel yes\nread_data data.dpde-3000\nmass 1 1.0\n\
+                 pair_style dpd/fdt/energy 1.0 245455\npair_coeff 1 1 25.0 3.0 1.0 1.0\nneighbor 0.3 bin\n\
+                 neigh_modify every 1 delay 0 check yes\ntimestep 0.01\ncompute dpdU all dpd\nfix 1 all shardlow\n\
+                 fix 2 all nph aniso 1.0 1.0 0.5\nfix 3 all eos/cv 10.0\n\
+                 thermo_style custom step temp press vol cella cellb cellc ecouple pe ke c_dpdU[1] c_dpdU[2]\n";
+    assert_rank_independent(&dir, "fix nph", scene, 30, &LAYOUTS[..4]);
+}
+
 /// Finding 6: the energy the reservoirs put in (f_hot, f_cold) was a per-rank running
 /// sum and differed in the last digits with the rank count.
 #[test]
