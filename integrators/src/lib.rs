@@ -4,6 +4,7 @@
 //! Equation numbers: 2019 PCCP paper unless stated.
 
 pub mod barostat;
+pub mod barostat_state;
 pub mod classic;
 pub mod edpd;
 pub mod error;
