@@ -197,7 +197,7 @@ fn pairwise(cmd: &Command, p: &Pairwise, fixes: &[Fix], settings: Settings, kb: 
         (true, None) => Integration::Nve,
         (false, Some(lambda)) => Integration::Mvv { lambda },
         (true, Some(_)) => return Err(err("fix mvv/dpd and fix nve (or nph) both integrate: keep one")),
-        (false, None) => return Err(err("no integrator: add fix nve (or fix mvv/dpd for mdpd)")),
+        (false, None) => return Err(err("no integrator: add fix nve or nph (or fix mvv/dpd for mdpd)")),
     };
     let energy = has(|s| matches!(s, FixStyle::DpdEnergy));
     fn table<T>(cmd: &Command, ntypes: usize, v: Vec<T>) -> Result<TypeTable<T>, ScriptError> {
