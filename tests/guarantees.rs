@@ -7,7 +7,7 @@
 mod common;
 
 use common::ranks::{mpirun, tempdir, thermo_rows};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// The rank counts of the matrix, with the processor grid forced (`processors`) or not.
 const LAYOUTS: [(usize, Option<&str>); 5] = [(1, None), (2, None), (3, None), (4, None), (3, Some("1 3 1"))];
@@ -320,13 +320,32 @@ fn tables_and_their_overlay_are_bit_identical_on_1_2_3_4_ranks_and_an_uneven_gri
 /// rebuild (1/theta, which migration does not carry, was read stale).
 #[test]
 fn dpd_fdt_energy_of_the_issue_is_bit_identical_on_1_2_3_4_ranks() {
-    let dir = tempdir("fdt-energy");
+    let (dir, scene) = dpde_3000("fdt-energy", "nve", "");
+    assert_rank_independent(&dir, "dpd/fdt/energy", &scene, 10, &LAYOUTS[..4]);
+}
+
+/// scripts/lammps/data.dpde-3000 (10^3 box, 3000 particles) under dpd/fdt/energy with fix
+/// shardlow, integrated by `fix 2 all INTEGRATOR`, in a fresh directory; `thermo` adds
+/// thermo keywords.
+fn dpde_3000(name: &str, integrator: &str, thermo: &str) -> (PathBuf, String) {
+    let dir = tempdir(name);
     std::fs::copy(common::lammps::scripts_dir().join("data.dpde-3000"), dir.join("data.dpde-3000")).unwrap();
-    let scene = "units lj\nboundary p p p\natom_style dpd\ncomm_modify vel yes\nread_data data.dpde-3000\nmass 1 1.0\n\
-                 pair_style dpd/fdt/energy 1.0 245455\npair_coeff 1 1 25.0 3.0 1.0 1.0\nneighbor 0.3 bin\n\
-                 neigh_modify every 1 delay 0 check yes\ntimestep 0.01\ncompute dpdU all dpd\nfix 1 all shardlow\n\
-                 fix 2 all nve\nfix 3 all eos/cv 10.0\nthermo_style custom step temp press pe ke c_dpdU[1] c_dpdU[2]\n";
-    assert_rank_independent(&dir, "dpd/fdt/energy", scene, 10, &LAYOUTS[..4]);
+    let scene = format!(
+        "units lj\nboundary p p p\natom_style dpd\ncomm_modify vel yes\nread_data data.dpde-3000\nmass 1 1.0\n\
+         pair_style dpd/fdt/energy 1.0 245455\npair_coeff 1 1 25.0 3.0 1.0 1.0\nneighbor 0.3 bin\n\
+         neigh_modify every 1 delay 0 check yes\ntimestep 0.01\ncompute dpdU all dpd\nfix 1 all shardlow\n\
+         fix 2 all {integrator}\nfix 3 all eos/cv 10.0\nthermo_style custom step temp press pe ke c_dpdU[1] c_dpdU[2]{thermo}\n"
+    );
+    (dir, scene)
+}
+
+/// fix nph changes the box every step: the grid is laid again from the box alone (here it
+/// grows from 6 to 8 cells per dimension as the box expands from 10 to about 11.4), so the
+/// decomposition changes with it and the trajectory must not.
+#[test]
+fn nph_with_a_growing_grid_is_bit_identical_on_1_2_3_4_ranks() {
+    let (dir, scene) = dpde_3000("nph", "nph aniso 1.0 1.0 0.5", " vol cella cellb cellc ecouple");
+    assert_rank_independent(&dir, "fix nph", &scene, 30, &LAYOUTS[..4]);
 }
 
 /// Finding 6: the energy the reservoirs put in (f_hot, f_cold) was a per-rank running

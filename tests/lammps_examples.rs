@@ -18,6 +18,8 @@ const SUPPORTED: &[&str] = &[
     "dpd-react/dpd-vv/in.dpd-vv",
     "dpd-react/dpde-shardlow/in.dpde-shardlow",
     "dpd-react/dpde-vv/in.dpde-vv",
+    "dpd-react/dpdh-shardlow/in.dpdh-shardlow",
+    "dpd-react/dpdp-shardlow/in.dpdp-shardlow",
 ];
 
 fn examples() -> Vec<PathBuf> {

@@ -40,6 +40,8 @@ const CASES: &[Case] = &[
     Case { script: "scripts/lammps/in.dpd-fdt", vars: &[], every: 5, k: 10 },
     Case { script: "scripts/lammps/in.dpde-vv-lj", vars: &[("equil", "5")], every: 5, k: 10 },
     Case { script: "scripts/lammps/in.dpd-vv", vars: &[], every: 5, k: 10 },
+    // fix nph: the box, omega, omega_dot, the chain, V0, T0 and the fixed point
+    Case { script: "scripts/lammps/in.nph", vars: &[("sigma", "1.0"), ("kappa", "1.0"), ("baro", "aniso 20.0 20.0 1.0")], every: 5, k: 10 },
     Case { script: "scripts/lammps/in.edpd-gradient", vars: &[], every: 5, k: 10 },
     // per-pair coefficients, cutoffs and kernels, boxes under 4 (cutoff + skin)
     Case { script: "scripts/lammps/in.mix-dpd", vars: &[("T", "1.0")], every: 5, k: 10 },

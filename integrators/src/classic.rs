@@ -24,6 +24,7 @@
 //! Every coefficient and cutoff is per type pair ([`TypeTable`], LAMMPS's `a0[itype][jtype]`);
 //! the lists reach the largest cutoff and each pair is cut at its own.
 
+use crate::barostat::{Nph, NphState};
 use crate::error::{lowest, StepError};
 use crate::heat::{Original, Temps};
 use crate::noise::Arithmetic;
@@ -144,6 +145,9 @@ pub struct ClassicDpd {
     pub cv: Option<f64>,
     /// `fix dpd/energy`: u integrated from the rates of [`PairForce::DpdEnergy`].
     pub energy: bool,
+    /// `fix nph`: velocity Verlet under LAMMPS's Nose-Hoover barostat (its state is
+    /// [`System::barostat`]).
+    pub barostat: Option<Nph>,
     pub kb: f64,
     pub seed: u64,
     pub settings: Settings,
@@ -331,7 +335,15 @@ impl ClassicDpd {
     /// non-finite position (`drifted`) stops the step on every rank.
     fn after_drift(&self, sys: &mut System, drifted: Result<(), StepError>) -> Result<(), StepError> {
         sys.settle(drifted)?;
-        self.relist(sys);
+        if self.barostat.is_some() {
+            // the box changed: the grid is laid again for it (from the box alone, so the
+            // same on every rank count) and the lists rebuilt every step
+            let laid = sys.lay_grid(self.radius()).map_err(|e| StepError::global(sys.step, &format!("fix nph changed the box: {e}")));
+            sys.settle(laid)?;
+            self.rebuild(sys, sys.step + 1);
+        } else {
+            self.relist(sys);
+        }
         sys.comm.forward(&mut sys.store, self.moved());
         if let PairForce::Mdpd(t) = &self.force {
             self.rho(sys, t);
@@ -339,6 +351,51 @@ impl ClassicDpd {
         }
         self.forces(sys, sys.step + 1);
         self.table_forces(sys)
+    }
+
+    /// Velocity Verlet under `fix nph` (after the sweep, as LAMMPS runs fix shardlow's
+    /// initial_integrate before fix nph's): [`Nph::initial`] (chain, P, omega_dot, scaled
+    /// momenta, half kick, remap, drift, remap), the grid and lists for the new box, the
+    /// forces, then [`Nph::last`] (half kick, scaled momenta, T and P, omega_dot, chain);
+    /// the state is [`System::barostat`].
+    fn barostat_step(&self, sys: &mut System, b: &Nph) -> Result<(), StepError> {
+        let Some(mut st) = sys.barostat.take() else {
+            return Err(StepError::global(sys.step, &format!("fix {}: the barostat has no state", b.id)));
+        };
+        let outcome = self.verlet(sys, Some((b, &mut st)));
+        sys.barostat = Some(st);
+        outcome
+    }
+
+    /// fix dpd/energy, fix nve or nph (initial_integrate), fix eos/cv (post_integrate);
+    /// the forces; final_integrate, then fix eos/cv (end_of_step).
+    fn verlet(&self, sys: &mut System, mut barostat: Option<(&Nph, &mut NphState)>) -> Result<(), StepError> {
+        let dt = self.settings.dt;
+        self.energy_half(sys, 0.5 * dt);
+        let mut drifted = match &mut barostat {
+            Some((b, st)) => b.initial(sys, st, dt),
+            None => {
+                verlet::kick(sys, 0.5 * dt);
+                verlet::drift(sys, dt)
+            }
+        };
+        if self.vv_dpde() {
+            drifted = lowest(drifted, self.eos(sys));
+        }
+        self.after_drift(sys, drifted)?;
+        self.energy_half(sys, 0.5 * dt);
+        match barostat {
+            Some((b, st)) => {
+                let outcome = b.last(sys, st, dt);
+                sys.settle(outcome)?;
+            }
+            None => verlet::kick(sys, 0.5 * dt),
+        }
+        if self.vv_dpde() {
+            let state = self.eos(sys);
+            sys.settle(state)?;
+        }
+        Ok(())
     }
 
     /// Whether the pair pass reads theta (velocity-Verlet DPDE).
@@ -414,7 +471,17 @@ impl Physics for ClassicDpd {
         }
         self.forces(sys, sys.step);
         sys.settle(state).map_err(SetupError::State)?;
-        self.table_forces(sys).map_err(SetupError::State)
+        self.table_forces(sys).map_err(SetupError::State)?;
+        if let Some(b) = &self.barostat {
+            let mut st = match sys.barostat.take() {
+                Some(st) if st.id == b.id => st,
+                _ => return Err(SetupError::Grid(format!("fix {}: the barostat has no state (define the fix after the box)", b.id))),
+            };
+            let outcome = b.setup(sys, &mut st, sys.run_span);
+            sys.barostat = Some(st);
+            outcome.map_err(SetupError::Grid)?;
+        }
+        Ok(())
     }
 
     fn step(&self, sys: &mut System) -> Result<(), StepError> {
@@ -425,25 +492,10 @@ impl Physics for ClassicDpd {
             sys.comm.forward(&mut sys.store, SWEPT);
             sys.settle(outcome)?;
         }
-        match self.integration {
-            Integration::Nve => {
-                // fix dpd/energy, fix nve (initial_integrate), fix eos/cv (post_integrate)
-                self.energy_half(sys, 0.5 * dt);
-                verlet::kick(sys, 0.5 * dt);
-                let mut drifted = verlet::drift(sys, dt);
-                if self.vv_dpde() {
-                    drifted = lowest(drifted, self.eos(sys));
-                }
-                self.after_drift(sys, drifted)?;
-                // final_integrate, then fix eos/cv (end_of_step)
-                self.energy_half(sys, 0.5 * dt);
-                verlet::kick(sys, 0.5 * dt);
-                if self.vv_dpde() {
-                    let state = self.eos(sys);
-                    sys.settle(state)?;
-                }
-            }
-            Integration::Mvv { lambda } => {
+        match (self.integration, &self.barostat) {
+            (Integration::Nve, Some(b)) => self.barostat_step(sys, b)?,
+            (Integration::Nve, None) => self.verlet(sys, None)?,
+            (Integration::Mvv { lambda }, _) => {
                 // vest = v + dt/2 f/m; r += dt vest; v += lambda dt f/m (the estimate the
                 // dissipative force reads); after the forces: v = vest + dt/2 f/m
                 // (vest travels with a particle that changes rank)

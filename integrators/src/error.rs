@@ -47,6 +47,11 @@ impl StepError {
         Self { tag: s.tag[i], step, u: s.u[i], n, theta: s.theta[i], what: what.into() }
     }
 
+    /// A failure of the whole system (no particle; tag 0), the same on every rank.
+    pub fn global(step: u64, what: &str) -> Self {
+        Self { tag: 0, step, u: f64::NAN, n: f64::NAN, theta: f64::NAN, what: what.into() }
+    }
+
     /// The error of the first rank that passes `Some`, on every rank (at least one must).
     pub fn agree(t: &dyn Transport, mine: Option<StepError>) -> StepError {
         let words = mine.map(|e| e.to_words()).unwrap_or_default();
@@ -78,6 +83,9 @@ impl StepError {
 
     /// "particle TAG WHEN: what (u, n, theta); advice".
     pub(crate) fn describe(&self, f: &mut fmt::Formatter<'_>, when: fmt::Arguments) -> fmt::Result {
+        if self.tag == 0 {
+            return write!(f, "{when}: {}", self.what);
+        }
         write!(
             f,
             "particle {} {when}: {} (u = {:.9e}, n = {:.9e}, theta = {:.9e}); \

@@ -3,6 +3,8 @@
 //! models, the heat reservoir, and the argon paper's velocity Verlet + Euler scheme.
 //! Equation numbers: 2019 PCCP paper unless stated.
 
+pub mod barostat;
+pub mod barostat_state;
 pub mod classic;
 pub mod edpd;
 pub mod error;
@@ -23,6 +25,7 @@ pub mod type_table;
 pub mod verlet;
 pub mod vv_euler;
 
+pub use barostat::{Couple, Nph, NphState};
 pub use classic::{ClassicDpd, DpdCoeff, DpdEnergyCoeff, Integration, MdpdCoeff, PairForce, ShardlowCoeff, ShardlowDpd};
 pub use edpd::{Edpd, EdpdCoeff, HeatSource, SourceShape};
 pub use error::StepError;

@@ -1,5 +1,6 @@
 //! The simulated system: box, particles, communication and the lists built on them.
 
+use crate::barostat_state::NphState;
 use crate::error::StepError;
 use std::cell::Cell;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -55,6 +56,11 @@ pub struct System {
     /// Energy each `fix heat/reservoir` (by fix ID) has put into the particles since the
     /// fix was defined (all ranks, the same on each).
     pub reservoir_heat: Vec<(String, f64)>,
+    /// The state of the `fix nph` barostat, if one is defined (kept across runs and in
+    /// restart files, as LAMMPS keeps it in the fix).
+    pub barostat: Option<NphState>,
+    /// First and last step of the current run (targets that ramp over a run).
+    pub run_span: (u64, u64),
     /// The particles, cells and build positions were read from a restart: the next
     /// build keeps them as stored, so the lists come out as when it was written.
     pub restored: bool,
@@ -97,6 +103,8 @@ impl System {
             substeps: 0,
             rejected: 0,
             reservoir_heat: Vec::new(),
+            barostat: None,
+            run_span: (0, 0),
             restored: false,
             restored_grid: None,
             min_cell: 0.0,
@@ -213,6 +221,9 @@ pub struct Snapshot {
     step: u64,
     time: f64,
     last_build: u64,
+    /// The box and the barostat (which `fix nph` changes every step).
+    domain: Option<Domain>,
+    barostat: Option<NphState>,
 }
 
 impl System {
@@ -223,6 +234,8 @@ impl System {
             self.store.pack_owned(i, &mut snap.records);
         }
         (snap.step, snap.time, snap.last_build) = (self.step, self.time, self.last_build);
+        snap.domain = Some(self.domain.clone());
+        snap.barostat.clone_from(&self.barostat);
     }
 
     /// Puts back the owned particles and the clock of `snap`; ghosts and lists are
@@ -238,6 +251,10 @@ impl System {
             s.unpack_owned(rec);
         }
         (self.step, self.time, self.last_build) = (snap.step, snap.time, snap.last_build);
+        if let Some(d) = &snap.domain {
+            self.domain = d.clone();
+        }
+        self.barostat.clone_from(&snap.barostat);
         self.restored = true;
         self.restored_grid = self.grid.as_ref().map(|g| g.count);
     }

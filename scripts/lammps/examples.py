@@ -38,7 +38,9 @@ import gendpde  # noqa: E402
 
 GENDPDE = os.environ.get("GENDPDE", str(Path(os.environ.get("CARGO_TARGET_DIR", ROOT / "target")) / "release" / "gendpde"))
 LMP_CANDIDATES = [os.environ.get("LMP", ""), "/work/shared/lammps/lmp", str(ROOT.parent / "shared" / "lammps" / "lmp")]
-EXACT = {"Step", "Time", "Atoms", "Elapsed", "Lx", "Ly", "Lz", "Volume"}
+# the box columns (Lx, Volume, ...) are compared exactly when constant in both runs, and
+# as averages when a barostat moves them (fix nph)
+EXACT = {"Step", "Time", "Atoms", "Elapsed"}
 
 
 def inputs():

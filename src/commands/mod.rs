@@ -166,6 +166,7 @@ impl Interpreter {
             "pair_coeff" => styles::pair_coeff(sim, a)?,
             "fix" => styles::fix(sim, outputs, a)?,
             "unfix" => styles::unfix(sim, outputs, a)?,
+            "fix_modify" => styles::fix_modify(sim, a)?,
             "compute" => styles::compute(sim, a)?,
             "compute_modify" => crate::styles::compute::modify(&mut sim.computes, a)?,
             "thermo" => output::thermo(&mut outputs.thermo, a)?,

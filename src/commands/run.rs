@@ -72,6 +72,9 @@ pub fn run(sim: &mut Sim, outputs: &mut Outputs, out: &mut Output, vars: &Variab
     a.done()?;
     let cmd = a.command();
     let err = |m: String| AppError::Script(ScriptError::at(cmd, m));
+    if let Some(sys) = &mut sim.system {
+        sys.run_span = (sys.step, sys.step + nsteps);
+    }
     let physics = prepare(sim, &outputs.averages, cmd)?;
     if mode == Mode::Check {
         return Ok(());

@@ -1,4 +1,4 @@
-//! Style commands: pair_style, pair_coeff, fix, unfix and compute. The styles parse
+//! Style commands: pair_style, pair_coeff, fix, fix_modify, unfix and compute. The styles parse
 //! themselves (`styles`); these bodies keep the model's lists of them.
 
 use crate::base::args::Args;
@@ -7,9 +7,10 @@ use crate::model::sim::Sim;
 use crate::output::ave_chunk::AveChunk;
 use crate::output::ave_time::AveTime;
 use crate::output::Outputs;
-use crate::styles::compute::{self, Definition};
-use crate::styles::fix::parse_fix_in;
+use crate::styles::compute::{self, ComputeStyle, Definition};
+use crate::styles::fix::{parse_fix_in, FixStyle};
 use crate::styles::pair::{parse_pair_coeff, parse_pair_style};
+use gendpde_integrators::{Nph, NphState};
 use gendpde_io::ScriptError;
 
 /// `pair_style STYLE args...` (before or after the box, as LAMMPS). The style in force
@@ -68,7 +69,10 @@ pub fn fix(sim: &mut Sim, outputs: &mut Outputs, a: &mut Args) -> Result<(), Scr
         }
         return Ok(());
     }
-    let fix = parse_fix_in(cmd, sim.units.kb, &sim.groups, &sim.regions)?;
+    let mut fix = parse_fix_in(cmd, sim.units.kb, &sim.groups, &sim.regions)?;
+    if let FixStyle::Nph { nph, fixedpoint } = &mut fix.style {
+        define_barostat(sim, nph, *fixedpoint).map_err(|e| a.err(e))?;
+    }
     if outputs.has_fix(&fix.id) {
         return Err(a.err(format!("fix ID '{}' is in use by another style (unfix it first)", fix.id)));
     }
@@ -82,6 +86,55 @@ pub fn fix(sim: &mut Sim, outputs: &mut Outputs, a: &mut Args) -> Result<(), Scr
     sim.check_density_cap().map_err(|e| a.err(e))
 }
 
+/// A new `fix nph`: the units' pressure conversion and its state at rest with the fixed
+/// point (by default the box centre now). gendpde's boxes are periodic, as LAMMPS requires
+/// along barostatted dimensions.
+fn define_barostat(sim: &mut Sim, nph: &mut Nph, fixedpoint: Option<[f64; 3]>) -> Result<(), String> {
+    nph.nktv2p = sim.units.nktv2p;
+    let sys = sim.system.as_mut().ok_or("fix nph before the box exists (create_box, read_data or read_restart)")?;
+    let d = &sys.domain;
+    let centre = [0, 1, 2].map(|k| 0.5 * (d.lo[k] + d.hi[k]));
+    sys.barostat = Some(NphState::new(&nph.id, nph.pchain, fixedpoint.unwrap_or(centre)));
+    Ok(())
+}
+
+/// `fix_modify ID temp CID` of a `fix nph`: the compute temp (of a group) whose temperature
+/// sets T0, the MTK term and the kinetic part of the barostat's pressure. Its group and
+/// extra dof are read now (a later compute_modify does not reach the fix).
+pub fn fix_modify(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
+    let id = a.word("a fix ID")?;
+    let Some(fix) = sim.fixes.iter_mut().find(|f| f.id == id) else {
+        return Err(a.err(format!("Could not find fix_modify ID {id}")));
+    };
+    let FixStyle::Nph { nph, .. } = &mut fix.style else {
+        return Err(a.err(format!("fix {id}: gendpde's fix_modify takes temp for fix nph only")));
+    };
+    if a.remaining() == 0 {
+        return Err(a.err("expected a keyword: temp"));
+    }
+    while let Some(k) = a.peek() {
+        a.word("keyword")?;
+        match k {
+            "temp" => {
+                let cid = a.word("a compute temp ID")?;
+                let c = sim.computes.iter().find(|c| c.id == cid).ok_or_else(|| a.err(format!("Could not find fix_modify temperature ID {cid}")))?;
+                let ComputeStyle::Temp { mask, extra_dof } = c.style else {
+                    return Err(a.err(format!("Fix_modify temperature ID {cid} does not compute temperature")));
+                };
+                (nph.temp_mask, nph.extra_dof) = (mask, extra_dof);
+            }
+            "press" => {
+                a.word("a compute pressure ID")?;
+                return Err(a.err(
+                    "fix_modify press: gendpde has no compute pressure; fix nph reads the virial pressure of all particles with the kinetic part of its temperature compute (fix_modify temp)",
+                ));
+            }
+            _ => return Err(a.err(format!("unknown fix_modify keyword '{k}' for fix nph; known: temp, press"))),
+        }
+    }
+    Ok(())
+}
+
 /// `unfix ID`: a style fix, a fix ave/time or a fix ave/chunk.
 pub fn unfix(sim: &mut Sim, outputs: &mut Outputs, a: &mut Args) -> Result<(), ScriptError> {
     let id = a.word("a fix ID")?;
@@ -90,6 +143,11 @@ pub fn unfix(sim: &mut Sim, outputs: &mut Outputs, a: &mut Args) -> Result<(), S
         return Err(a.err(format!("no fix with ID '{id}'")));
     }
     sim.fixes.retain(|f| f.id != id);
+    if let Some(sys) = &mut sim.system {
+        if sys.barostat.as_ref().is_some_and(|b| b.id == id) {
+            sys.barostat = None;
+        }
+    }
     outputs.averages.retain(|f| f.id != id);
     outputs.chunk_averages.retain(|f| f.id != id);
     Ok(())

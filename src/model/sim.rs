@@ -12,12 +12,14 @@ use crate::styles::compute::Compute;
 use crate::styles::fix::{Fix, FixStyle};
 use crate::styles::pair::PairStyle;
 use gendpde_engine::Transport;
-use gendpde_integrators::{RebuildPolicy, System};
+use gendpde_integrators::{NphState, RebuildPolicy, System};
 use gendpde_io::AtomStyle;
 use std::collections::HashMap;
 
 /// Restart state name prefix of a `fix heat/reservoir` energy tally.
 const RESERVOIR_STATE: &str = "heat/reservoir/";
+/// Restart state name prefix of a `fix nph` barostat.
+const NPH_STATE: &str = "nph/";
 
 /// Everything the commands of a script have defined so far.
 pub struct Sim {
@@ -111,18 +113,29 @@ impl Sim {
     }
 
     /// The accumulated state of fixes, for a restart file: each reservoir's energy
-    /// tally (the same on every rank) as `heat/reservoir/ID`.
+    /// tally (the same on every rank) as `heat/reservoir/ID`, the barostat of a `fix nph`
+    /// as `nph/ID` ([`NphState::record`]).
     pub fn fix_state(&self) -> Vec<(String, Vec<f64>)> {
         let Some(sys) = &self.system else { return Vec::new() };
-        sys.reservoir_heat.iter().map(|(id, total)| (format!("{RESERVOIR_STATE}{id}"), vec![*total])).collect()
+        let mut state: Vec<_> = sys.reservoir_heat.iter().map(|(id, total)| (format!("{RESERVOIR_STATE}{id}"), vec![*total])).collect();
+        if let Some(b) = sys.barostat.as_ref().filter(|b| self.fixes.iter().any(|f| f.id == b.id)) {
+            state.push((format!("{NPH_STATE}{}", b.id), b.record()));
+        }
+        state
     }
 
-    /// Puts the reservoir tallies of a restart back.
+    /// Puts the reservoir tallies and the barostat of a restart back (the replayed fix
+    /// nph has just created its state at rest).
     pub fn restore_fix_state(&mut self) {
         let Some(sys) = &mut self.system else { return };
         for (name, v) in &self.restored_state {
             if let (Some(id), [total]) = (name.strip_prefix(RESERVOIR_STATE), v.as_slice()) {
                 *sys.reservoir_tally(id) = *total;
+            }
+            if let Some(b) = name.strip_prefix(NPH_STATE).and_then(|id| NphState::from_record(id, v)) {
+                if sys.barostat.as_ref().is_some_and(|s| s.id == b.id && s.etap.len() == b.etap.len()) {
+                    sys.barostat = Some(b);
+                }
             }
         }
     }

@@ -20,6 +20,7 @@ use crate::output::schedule::{Frame, RunOutput, Span};
 pub use crate::output::thermo_settings::ThermoConfig;
 use crate::output::thermo_settings::Mark;
 use crate::styles::compute::{self, ComputeStyle, Kinetic, Totals};
+use crate::styles::fix::FixStyle;
 use gendpde_engine::exact_sums;
 use gendpde_integrators::System;
 use gendpde_io::{format_printf, Variables};
@@ -206,6 +207,8 @@ impl<'a> ThermoContext<'a> {
             "ke" => per(0.5 * self.kinetic.mv2()),
             "etotal" => per(etotal),
             "enthalpy" => per(etotal + press * o.volume),
+            "ecouple" => self.barostat_energy(),
+            "econserve" => per(etotal) + self.barostat_energy(),
             "edrift" => match self.sim.energy0 {
                 Some(e0) if e0 != 0.0 => (o.energy() - e0) / e0.abs(),
                 _ => 0.0,
@@ -244,6 +247,10 @@ impl<'a> ThermoContext<'a> {
     /// `c_ID[k]` of a compute (`styles::compute`) or `f_ID` of a `fix heat/reservoir`.
     fn compute(&self, name: &str) -> Option<f64> {
         if let Some(id) = name.strip_prefix("f_") {
+            if self.sys.barostat.as_ref().is_some_and(|b| b.id == id) {
+                let e = self.barostat_energy();
+                return Some(if self.norm && self.obs.atoms > 0.0 { e / self.obs.atoms } else { e });
+            }
             return self.reservoir_heat(id);
         }
         let o = &self.obs;
@@ -254,6 +261,16 @@ impl<'a> ThermoContext<'a> {
             let (v, extensive) = compute::reduce_value(&sim.reduces, &sim.computes, sys, sim.units.mvv2e, sim.pe_is_pair(), &variable, name)?;
             Some(if extensive && self.norm && o.atoms > 0.0 { v / o.atoms } else { v })
         })
+    }
+
+    /// The energy of the `fix nph` barostat (LAMMPS's `ecouple`: never per particle).
+    fn barostat_energy(&self) -> f64 {
+        let Some(st) = &self.sys.barostat else { return 0.0 };
+        let nph = self.sim.fixes.iter().find_map(|f| match &f.style {
+            FixStyle::Nph { nph, .. } if nph.id == st.id => Some(nph),
+            _ => None,
+        });
+        nph.map_or(0.0, |b| b.energy(self.sys, st))
     }
 
     /// Energy reservoir `id` has put into the particles since it was defined (extensive:
@@ -280,6 +297,8 @@ pub fn heading(name: &str) -> String {
         "tpcpu" => "T/CPU".into(),
         "spcpu" => "S/CPU".into(),
         "enthalpy" => "Enthalpy".into(),
+        "ecouple" => "Ecouple".into(),
+        "econserve" => "Econserve".into(),
         "xlo" => "Xlo".into(),
         "xhi" => "Xhi".into(),
         "ylo" => "Ylo".into(),

@@ -58,8 +58,8 @@ pub fn build_physics(
     if let Some(f) = fixes.iter().find(|f| f.style == FixStyle::NveSdpd) {
         return Err(err(format!("fix {} (nve/sdpd) integrates pair sdpd/generic", f.id)));
     }
-    if fixes.iter().any(|f| matches!(f.style, FixStyle::Nve | FixStyle::Mvv { .. } | FixStyle::DpdEnergy)) {
-        return Err(err("pair gendpde integrates with fix nve/gendpde or vv/euler (fix nve, mvv/dpd and dpd/energy belong to LAMMPS's pairwise styles)".into()));
+    if fixes.iter().any(|f| matches!(f.style, FixStyle::Nve | FixStyle::Mvv { .. } | FixStyle::DpdEnergy | FixStyle::Nph { .. })) {
+        return Err(err("pair gendpde integrates with fix nve/gendpde or vv/euler (fix nve, nph, mvv/dpd and dpd/energy belong to LAMMPS's pairwise styles)".into()));
     }
     let eos: Vec<&EosModel> = fixes.iter().filter_map(|f| if let FixStyle::Eos(e) = &f.style { Some(e) } else { None }).collect();
     let eos = match eos.as_slice() {
@@ -174,6 +174,11 @@ fn pairwise(cmd: &Command, p: &Pairwise, fixes: &[Fix], settings: Settings, kb: 
         return Err(err("fix shardlow: 'noise' belongs to pair gendpde (dpd/fdt/energy's noise is already the harmonic form on theta)"));
     }
     let nve = has(|s| matches!(s, FixStyle::Nve));
+    let mut barostats = fixes.iter().filter_map(|f| if let FixStyle::Nph { nph, .. } = &f.style { Some((**nph).clone()) } else { None });
+    let barostat = barostats.next();
+    if barostats.next().is_some() {
+        return Err(err("more than one fix nph is defined"));
+    }
     let mvv = fixes.iter().find_map(|f| if let FixStyle::Mvv { lambda } = f.style { Some(lambda) } else { None });
     let cv = fixes.iter().find_map(|f| match &f.style {
         FixStyle::Eos(EosModel::Linear(e)) if !gendpde_potentials::Eos::density_dependent(e) && e.q == 0.0 => Some(e.cv),
@@ -185,11 +190,14 @@ fn pairwise(cmd: &Command, p: &Pairwise, fixes: &[Fix], settings: Settings, kb: 
     if has(|s| matches!(s, FixStyle::Verlet { .. } | FixStyle::VvEuler { .. } | FixStyle::Reservoir { .. } | FixStyle::NveSdpd)) {
         return Err(err("fix nve/gendpde, vv/euler and heat/reservoir belong to pair gendpde; LAMMPS's pairwise styles use fix nve, shardlow, eos/cv, mvv/dpd"));
     }
-    let integration = match (nve, mvv) {
+    if nve && barostat.is_some() {
+        return Err(err("fix nve and fix nph both integrate: keep one"));
+    }
+    let integration = match (nve || barostat.is_some(), mvv) {
         (true, None) => Integration::Nve,
         (false, Some(lambda)) => Integration::Mvv { lambda },
-        (true, Some(_)) => return Err(err("fix nve and fix mvv/dpd both integrate: keep one")),
-        (false, None) => return Err(err("no integrator: add fix nve (or fix mvv/dpd for mdpd)")),
+        (true, Some(_)) => return Err(err("fix mvv/dpd and fix nve (or nph) both integrate: keep one")),
+        (false, None) => return Err(err("no integrator: add fix nve or nph (or fix mvv/dpd for mdpd)")),
     };
     let energy = has(|s| matches!(s, FixStyle::DpdEnergy));
     fn table<T>(cmd: &Command, ntypes: usize, v: Vec<T>) -> Result<TypeTable<T>, ScriptError> {
@@ -235,7 +243,7 @@ fn pairwise(cmd: &Command, p: &Pairwise, fixes: &[Fix], settings: Settings, kb: 
     if matches!(integration, Integration::Mvv { .. }) && !matches!(p.kind, Kind::Mdpd { .. }) {
         return Err(err("fix mvv/dpd integrates pair mdpd"));
     }
-    Ok(ClassicDpd { force, tables: None, shardlow: sweep, integration, cv, energy, kb, seed: p.seed, settings })
+    Ok(ClassicDpd { force, tables: None, shardlow: sweep, integration, cv, energy, barostat, kb, seed: p.seed, settings })
 }
 
 /// The dynamics of an eDPD scene: pair edpd, fix mvv/edpd and any fix edpd/source.
@@ -281,5 +289,5 @@ fn tabulated(cmd: &Command, t: &Tabulated, p: Option<&Pairwise>, fixes: &[Fix], 
     if !fixes.iter().any(|f| f.style == FixStyle::Nve) {
         return Err(err("no integrator: add fix nve"));
     }
-    Ok(Box::new(ClassicDpd { force: PairForce::Off, tables: Some(tables), shardlow: None, integration: Integration::Nve, cv: None, energy: false, kb, seed: 1, settings }))
+    Ok(Box::new(ClassicDpd { force: PairForce::Off, tables: Some(tables), shardlow: None, integration: Integration::Nve, cv: None, energy: false, barostat: None, kb, seed: 1, settings }))
 }

@@ -3,6 +3,7 @@
 //! `fix ave/time` is an output (`output::ave_time`).
 
 pub mod eos;
+pub mod nph;
 
 use self::eos::{parse_eos, EosModel};
 use crate::base::args::Args;
@@ -40,6 +41,9 @@ pub enum FixStyle {
     DpdEnergy,
     /// `fix mvv/edpd [LAMBDA]` (pair edpd): modified velocity Verlet of x, v and T.
     MvvEdpd { lambda: f64 },
+    /// `fix ID all nph ...`: LAMMPS's Nose-Hoover barostat with velocity Verlet; the fixed
+    /// point if given (else the box centre at the definition).
+    Nph { nph: Box<gendpde_integrators::Nph>, fixedpoint: Option<[f64; 3]> },
     /// `fix ID GROUP edpd/source sphere|cuboid|region ... VALUE` (pair edpd).
     EdpdSource { shape: Source, value: f64, mask: u32 },
 }
@@ -103,6 +107,10 @@ pub fn parse_fix_in(cmd: &Command, kb: f64, groups: &[String], regions: &HashMap
         "vv/euler" => FixStyle::VvEuler { heat: heat_keyword(&mut a)?.unwrap_or(HeatModel::Original) },
         "nve/sdpd" => FixStyle::NveSdpd,
         "nve" => FixStyle::Nve,
+        "nph" => {
+            let (nph, fixedpoint) = nph::parse_nph(&id, &mut a, kb, groups)?;
+            FixStyle::Nph { nph: Box::new(nph), fixedpoint }
+        }
         "dpd/energy" => FixStyle::DpdEnergy,
         "mvv/dpd" => FixStyle::Mvv { lambda: if a.remaining() > 0 { a.positive("lambda")? } else { 0.5 } },
         "mvv/edpd" => FixStyle::MvvEdpd { lambda: if a.remaining() > 0 { a.f64("lambda")? } else { 0.5 } },
