@@ -23,7 +23,7 @@ pub mod type_table;
 pub mod verlet;
 pub mod vv_euler;
 
-pub use classic::{ClassicDpd, DpdCoeff, DpdEnergyCoeff, Integration, MdpdCoeff, PairForce, ShardlowCoeff, ShardlowDpd};
+pub use classic::{ClassicDpd, DpdCoeff, DpdEnergyCoeff, DpdExt, DpdExtCoeff, Integration, MdpdCoeff, PairForce, ShardlowCoeff, ShardlowDpd};
 pub use edpd::{Edpd, EdpdCoeff, HeatSource, SourceShape};
 pub use error::StepError;
 pub use heat::HeatModel;

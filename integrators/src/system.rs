@@ -43,6 +43,9 @@ pub struct System {
     /// 1/m of all particles for the sweep (scratch).
     pub inv_mass: Vec<f64>,
     pub step: u64,
+    /// The first and last step of the current run (LAMMPS's beginstep, endstep), over
+    /// which the thermostat pair styles ramp their temperature.
+    pub run: [u64; 2],
     pub time: f64,
     /// Step of the last list build.
     pub last_build: u64,
@@ -91,6 +94,7 @@ impl System {
             velocity: Vec::new(),
             inv_mass: Vec::new(),
             step: 0,
+            run: [0, 0],
             time: 0.0,
             last_build: 0,
             builds: 0,

@@ -66,7 +66,7 @@ impl Interpreter {
     /// programs that step it themselves (tests, benchmarks).
     pub fn dynamics(&mut self) -> Result<Box<dyn Physics>, AppError> {
         let cmd = Command { name: "run".into(), args: vec![], loc: Location { file: "<api>".into(), line: 0 } };
-        run::prepare(&mut self.sim, &self.outputs.averages, &cmd)
+        run::prepare(&mut self.sim, &self.outputs.averages, &cmd, 0)
     }
 
     /// The system built by the script.

@@ -9,7 +9,7 @@ use crate::styles::pair::pairwise::{Kind, Pairwise};
 use crate::styles::pair::table::{tables_for_run, Tabulated};
 use crate::styles::pair::PairStyle;
 use gendpde_integrators::{
-    ClassicDpd, Dissipation, DpdCoeff, DpdEnergyCoeff, Edpd, FixedEntropy, GenDpde, HeatModel, HeatSource, Integration, MdpdCoeff, Motion, NoiseForm, PairForce, Physics,
+    ClassicDpd, Dissipation, DpdCoeff, DpdEnergyCoeff, DpdExt, DpdExtCoeff, Edpd, FixedEntropy, GenDpde, HeatModel, HeatSource, Integration, MdpdCoeff, Motion, NoiseForm, PairForce, Physics,
     RebuildPolicy, Reservoir, Settings, ShardlowCoeff, ShardlowDpd, SourceShape, Species, TypeTable,
 };
 use gendpde_io::{Command, ScriptError};
@@ -203,6 +203,11 @@ fn pairwise(cmd: &Command, p: &Pairwise, fixes: &[Fix], settings: Settings, kb: 
     };
     let (force, sweep) = match p.kind {
         Kind::Dpd { temperature } => (PairForce::Dpd(table(cmd, ntypes, c.iter().map(|c| DpdCoeff::new(c.a, c.rc, c.gamma, sigma_of(temperature, c.gamma))).collect())?), None),
+        Kind::DpdExt { temperature, ramp, .. } => {
+            let coeff = c.iter().map(|c| DpdExtCoeff { a0: c.a, rc: c.rc, gamma_par: c.gamma, gamma_perp: c.gamma_perp, s_par: c.s_par, s_perp: c.s_perp });
+            let (start, stop) = ramp.unwrap_or((temperature, temperature));
+            (PairForce::DpdExt(DpdExt { coeff: table(cmd, ntypes, coeff.collect())?, start, stop }), None)
+        }
         // velocity Verlet (pair_dpd_fdt.cpp without fix shardlow): gamma = sigma^2 / (2 k_B T)
         Kind::DpdFdt { temperature } if !shardlow => {
             let coeff = c.iter().map(|c| DpdCoeff::new(c.a, c.rc, c.sigma * c.sigma / (2.0 * kb * temperature), c.sigma));
@@ -223,7 +228,7 @@ fn pairwise(cmd: &Command, p: &Pairwise, fixes: &[Fix], settings: Settings, kb: 
             (PairForce::Mdpd(table(cmd, ntypes, coeff.collect())?), None)
         }
     };
-    if shardlow && matches!(p.kind, Kind::Dpd { .. } | Kind::Mdpd { .. }) {
+    if shardlow && matches!(p.kind, Kind::Dpd { .. } | Kind::DpdExt { .. } | Kind::Mdpd { .. }) {
         return Err(err("fix shardlow works with pair dpd/fdt and dpd/fdt/energy"));
     }
     if energy && (shardlow || !matches!(p.kind, Kind::DpdFdtEnergy)) {
