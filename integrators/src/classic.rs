@@ -270,28 +270,39 @@ impl ClassicDpd {
                 Terms::conservative(fp, 0.25 * (a * rc * wc * wc + b * rd * rho * wd * wd))
             }),
             PairForce::DpdExt(e) => {
-                let t = e.temperature(step, sys.run);
-                let (kb, normals) = (self.kb, Normals::get());
-                let key = move |s: &Particles, i: usize, j: usize| (s.tag[i].min(s.tag[j]), s.tag[i].max(s.tag[j]));
-                tally::<false, false, true>(s, pairs, |s, k| e.coeff.get(s.kind[k[0]], s.kind[k[1]]).rc, |s, i, j, d, r| {
+                let (t, kb, normals) = (e.temperature(step, sys.run), self.kb, Normals::get());
+                let noise = move |s: &Particles, i: usize, j: usize, stream| normals.pair(seed, step, s.tag[i].min(s.tag[j]), s.tag[i].max(s.tag[j]), stream);
+                let ext_pair = move |s: &Particles, i: usize, j: usize, d: Vec3, r: f64, perp: bool| {
                     let c = *e.coeff.get(s.kind[i], s.kind[j]);
                     let w = 1.0 - r / c.rc;
-                    let (w_par, w_perp) = (w.powf(c.s_par), w.powf(c.s_perp));
+                    // pow(w, 1) is w: the common exponent skips the call
+                    let pow = |s: f64| if s == 1.0 { w } else { w.powf(s) };
                     let dv = sub(velocity(s, i), velocity(s, j));
                     let inv_r = 1.0 / r;
-                    let e_ij = [d[0] * inv_r, d[1] * inv_r, d[2] * inv_r];
-                    let (lo, hi) = key(s, i, j);
-                    let (xi, xi_x) = normals.pair(seed, step, lo, hi, stream::FORCE);
-                    let (xi_y, xi_z) = normals.pair(seed, step, lo, hi, stream::FORCE_PERP);
-                    let (sigma_par, sigma_perp) = ((2.0 * kb * t * c.gamma_par).sqrt(), (2.0 * kb * t * c.gamma_perp).sqrt());
+                    let (xi, xi_x) = noise(s, i, j, stream::FORCE);
+                    let w_par = pow(c.s_par);
+                    let sigma_par = (2.0 * kb * t * c.gamma_par).sqrt();
                     let force = c.a0 * w - c.gamma_par * w_par * w_par * dot(d, dv) * inv_r + sigma_par * w_par * xi * inv_sqrt_dt;
-                    // P x = x - e (e.x): the perpendicular friction on v_ij and noise on xi_vec
-                    let (g, n) = (c.gamma_perp * w_perp * w_perp, sigma_perp * w_perp * inv_sqrt_dt);
-                    let xi_v = [xi_x, xi_y, xi_z];
-                    let (ev, exi) = (dot(e_ij, dv), dot(e_ij, xi_v));
-                    let perp = std::array::from_fn(|k| -g * (dv[k] - e_ij[k] * ev) + n * (xi_v[k] - e_ij[k] * exi));
-                    Terms { perp, ..Terms::conservative(force, 0.25 * c.a0 * c.rc * w * w) }
-                })
+                    let mut terms = Terms::conservative(force, 0.25 * c.a0 * c.rc * w * w);
+                    if perp {
+                        // P x = x - e (e.x): the perpendicular friction on v_ij and noise on xi_vec
+                        let w_perp = pow(c.s_perp);
+                        let (xi_y, xi_z) = noise(s, i, j, stream::FORCE_PERP);
+                        let sigma_perp = (2.0 * kb * t * c.gamma_perp).sqrt();
+                        let (g, n) = (c.gamma_perp * w_perp * w_perp, sigma_perp * w_perp * inv_sqrt_dt);
+                        let (e_ij, xi_v) = ([d[0] * inv_r, d[1] * inv_r, d[2] * inv_r], [xi_x, xi_y, xi_z]);
+                        let (ev, exi) = (dot(e_ij, dv), dot(e_ij, xi_v));
+                        terms.perp = std::array::from_fn(|k| -g * (dv[k] - e_ij[k] * ev) + n * (xi_v[k] - e_ij[k] * exi));
+                    }
+                    terms
+                };
+                let rc = |s: &Particles, k: [usize; 2]| e.coeff.get(s.kind[k[0]], s.kind[k[1]]).rc;
+                // dpd/tstat (no perpendicular terms) draws one pair of normals and skips them
+                if e.coeff.iter().all(|c| c.gamma_perp == 0.0) {
+                    tally::<false, false, false>(s, pairs, rc, |s, i, j, d, r| ext_pair(s, i, j, d, r, false))
+                } else {
+                    tally::<false, false, true>(s, pairs, rc, |s, i, j, d, r| ext_pair(s, i, j, d, r, true))
+                }
             }
             PairForce::Off => tally::<false, false, false>(s, &[], |_, _| 0.0, |_, _, _, _, _| Terms::conservative(0.0, 0.0)),
             PairForce::DpdEnergy(t) => {
