@@ -27,9 +27,10 @@ use gendpde_io::{Command, PairCoeffs, ScriptError};
 #[derive(Clone, Debug, PartialEq)]
 pub enum Kind {
     Dpd { temperature: f64 },
-    /// dpd/ext (`ramp` None: a0 and the fixed T) and the thermostats dpd/tstat,
-    /// dpd/ext/tstat (no a0; `ramp` TSTART, TSTOP; `ext` false for dpd/tstat).
-    DpdExt { ext: bool, temperature: f64, ramp: Option<(f64, f64)> },
+    DpdExt { temperature: f64 },
+    /// The thermostats: no a0, T ramped from `start` to `stop` over each run.
+    DpdTstat { start: f64, stop: f64 },
+    DpdExtTstat { start: f64, stop: f64 },
     DpdFdt { temperature: f64 },
     DpdFdtEnergy,
     Mdpd { temperature: f64 },
@@ -148,11 +149,15 @@ impl Pairwise {
 pub fn parse_style(style: &str, a: &mut Args) -> Result<Pairwise, ScriptError> {
     let kind = match style {
         "dpd" => Kind::Dpd { temperature: a.non_negative("the temperature T")? },
-        "dpd/ext" => Kind::DpdExt { ext: true, temperature: a.non_negative("the temperature T")?, ramp: None },
+        "dpd/ext" => Kind::DpdExt { temperature: a.non_negative("the temperature T")? },
         "dpd/tstat" | "dpd/ext/tstat" => {
             let start = a.non_negative("the start temperature TSTART")?;
             let stop = a.non_negative("the stop temperature TSTOP")?;
-            Kind::DpdExt { ext: style == "dpd/ext/tstat", temperature: start, ramp: Some((start, stop)) }
+            if style == "dpd/tstat" {
+                Kind::DpdTstat { start, stop }
+            } else {
+                Kind::DpdExtTstat { start, stop }
+            }
         }
         "dpd/fdt" => Kind::DpdFdt { temperature: a.positive("the temperature T")? },
         "dpd/fdt/energy" => Kind::DpdFdtEnergy,
@@ -196,10 +201,11 @@ pub fn parse_coeff(p: &mut Pairwise, cmd: &Command, ntypes: usize) -> Result<(),
             c.gamma = a.non_negative("gamma")?;
             c.rc = optional_cutoff(&mut a, p.cutoff)?;
         }
-        Kind::DpdExt { ext, ramp, .. } => {
+        Kind::DpdExt { .. } | Kind::DpdTstat { .. } | Kind::DpdExtTstat { .. } => {
             // LAMMPS's allocate(): s_par = s_perp = 1, gamma_perp = 0 (dpd/tstat)
             (c.s_par, c.s_perp) = (1.0, 1.0);
-            if ramp.is_none() {
+            let ext = !matches!(p.kind, Kind::DpdTstat { .. });
+            if matches!(p.kind, Kind::DpdExt { .. }) {
                 c.a = a.f64("A (a0)")?;
             }
             c.gamma = a.non_negative(if ext { "gamma_par" } else { "gamma" })?;
