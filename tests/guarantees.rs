@@ -256,6 +256,14 @@ fn thin_box_mixtures_are_bit_identical_on_1_2_3_4_ranks() {
             ) + dpd_thermo,
         ),
         (
+            "thin-dpd-ext-mixture",
+            thin_mixture(
+                "atomic",
+                "pair_style dpd/ext 1.0 1.0 3854262\npair_coeff * * 25.0 4.5 4.53 0.5 0.53 1.2\npair_coeff 1 2 25.1 4.51 4.54 0.51 0.54 1.21\n\
+                 pair_coeff 2 2 25.2 4.52 4.55 0.52 0.55\nfix 1 all nve\n",
+            ) + "thermo_style custom step temp press pe ke\n",
+        ),
+        (
             "thin-mdpd-mixture",
             thin_mixture(
                 "mdpd",
@@ -283,8 +291,9 @@ fn thin_box_mixtures_are_bit_identical_on_1_2_3_4_ranks() {
     assert!(stderr.contains("4 ranks along x need at least 8 cells of side cutoff + skin = 1.500000 / 2, the box holds 6"), "{stderr}");
 }
 
-/// `pair_style table` alone and overlaid on `pair dpd` with noise (hybrid/overlay): two
-/// types, a table per type pair, lists rebuilt as the lattice melts.
+/// `pair_style table` alone and overlaid on `pair dpd` with noise, or on the ramped
+/// thermostat dpd/ext/tstat (hybrid/overlay): two types, a table per type pair, lists
+/// rebuilt as the lattice melts.
 #[test]
 fn tables_and_their_overlay_are_bit_identical_on_1_2_3_4_ranks_and_an_uneven_grid() {
     let fluid = |pair: &str| {
@@ -305,6 +314,10 @@ fn tables_and_their_overlay_are_bit_identical_on_1_2_3_4_ranks_and_an_uneven_gri
         (
             "table-spline-overlay-dpd",
             fluid(&format!("pair_style hybrid/overlay table spline 400 dpd 1.0 1.0 4928\n{}pair_coeff * * dpd 0.5 1.0 1.0\n", tables("table "))),
+        ),
+        (
+            "table-spline-overlay-dpd-ext-tstat-ramp",
+            fluid(&format!("pair_style hybrid/overlay table spline 400 dpd/ext/tstat 1.0 2.0 1.0 4928\n{}pair_coeff * * dpd/ext/tstat 1.0 0.5 1.0 0.5\n", tables("table "))),
         ),
     ];
     for (name, scene) in &scenes {

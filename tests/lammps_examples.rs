@@ -11,6 +11,9 @@ use std::process::Command;
 /// Examples that run unchanged (folder under scripts/lammps/examples/, input).
 const SUPPORTED: &[&str] = &[
     "dpd-basic/dpd/in.dpd",
+    "dpd-basic/dpd_tstat/in.dpd_tstat",
+    "dpd-basic/dpdext/in.dpdext",
+    "dpd-basic/dpdext_tstat/in.dpdext_tstat",
     "dpd-meso/edpd/in.edpd",
     "dpd-meso/edpd/in.edpd-region",
     "dpd-meso/mdpd/in.mdpd",

@@ -8,7 +8,10 @@
 //! 4. LAMMPS's own DPDE example in metal units runs unchanged and conserves energy;
 //! 5. two-type mixtures with coefficients and cutoffs per type pair (dpd, mdpd): forces
 //!    at step 0 to round-off, particles after 100 (dpd) or 50 (mdpd) steps as in 1.;
-//!    the mixture's `write_data pair ij` file of each code read by the other.
+//!    the mixture's `write_data pair ij` file of each code read by the other;
+//! 6. DPD-BASIC's dpd/ext (two-type mixture) and the thermostats dpd/tstat, dpd/ext/tstat
+//!    overlaid on a spline table (real units) with the noise off (T = 0): forces at step
+//!    0 to round-off, thermo rows and particles after a few steps as in 1.
 
 mod common;
 
@@ -84,6 +87,37 @@ fn pair_style_named_again_keeps_coefficients_as_lammps() {
     // the cutoffs did change: the forces after differ from those before
     let (a, b) = (read_dump_snapshot(&dg.join("restyle-f0.dump")), read_dump_snapshot(&dg.join("restyle-f1.dump")));
     assert!(a.atoms.iter().zip(&b.atoms).any(|((_, x), (_, y))| x != y), "the new global cutoff changed nothing");
+}
+
+/// A DPD-BASIC scene of scripts/lammps with T = 0 (sigma = 0; the friction acts on the
+/// velocities of `velocity create`): step-0 forces `DUMP-f0.dump`, the thermo rows and the
+/// particles `DUMP.dump` after the script's steps.
+fn dpd_basic_matches_lammps(input: &str, dump: &str, extra: &[&str]) {
+    let ((dl, l), (dg, g)) = run_both(dump, input, &[], extra);
+    let f0 = format!("{dump}-f0.dump");
+    let df = compare_forces(&dl.join(&f0), &dg.join(&f0));
+    let end = format!("{dump}.dump");
+    let (dr, dp) = compare_dumps(&dl.join(&end), &dg.join(&end));
+    let (rl, rg) = (parse_thermo_blocks(&l, "Step"), parse_thermo_blocks(&g, "Step"));
+    let rows = |b: &[ThermoBlock]| b.iter().flat_map(|b| b.rows.clone()).collect::<Vec<_>>();
+    let (rl, rg) = (rows(&rl), rows(&rg));
+    assert_eq!(rl.len(), rg.len(), "{input}: thermo rows");
+    let worst = rl.iter().zip(&rg).flat_map(|(a, b)| a.iter().zip(b).map(|(x, y)| (x - y).abs() / x.abs().max(1.0))).fold(0.0, f64::max);
+    eprintln!("{input}: step-0 forces max |df|/max|f| = {df:.2e}; thermo rows max rel. diff {worst:.2e}; at the end max |dr|/L = {dr:.2e}, max |dp|/|p| = {dp:.2e}");
+    assert!(df < 1e-12, "{input}: forces at step 0 differ by {df:e}");
+    assert!(worst < 1e-10, "{input}: thermo rows differ by {worst:e}");
+    assert!(dr < 1e-12 && dp < 1e-10, "{input}: dr {dr:e}, dp {dp:e}");
+}
+
+#[test]
+fn dpd_ext_mixture_without_noise_matches_lammps() {
+    dpd_basic_matches_lammps("in.dpd-ext", "dpd-ext", &[]);
+}
+
+#[test]
+fn dpd_tstat_and_dpd_ext_tstat_over_a_table_without_noise_match_lammps() {
+    dpd_basic_matches_lammps("in.dpd-tstat", "tstat", &["cg_spce_table.pot"]);
+    dpd_basic_matches_lammps("in.dpdext-tstat", "dpdext-tstat", &["cg_spce_table.pot"]);
 }
 
 /// `write_data pair ij` of either code, read by the other with only `pair_style` in the

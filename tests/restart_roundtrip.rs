@@ -49,6 +49,11 @@ const CASES: &[Case] = &[
     Case { script: "scripts/lammps/in.dpd-basic", vars: &[], every: 5, k: 10 },
     Case { script: "scripts/lammps/in.table-lj", vars: &[("tstyle", "spline")], every: 5, k: 10 },
     Case { script: "scripts/lammps/in.table-water", vars: &[("gamma", "10.0")], every: 5, k: 10 },
+    // dpd/ext with noise; the thermostats at a fixed T (a ramp spans its own run, as in
+    // LAMMPS, so a run cut in two ramps differently)
+    Case { script: "scripts/lammps/in.dpd-ext", vars: &[("T", "1.0")], every: 5, k: 10 },
+    Case { script: "scripts/lammps/in.dpd-tstat", vars: &[("T", "300.0")], every: 5, k: 10 },
+    Case { script: "scripts/lammps/in.dpdext-tstat", vars: &[("T", "300.0")], every: 5, k: 10 },
 ];
 
 /// Commands of the original script a continuation repeats: the output settings (the

@@ -10,7 +10,11 @@
 //! Formulas (LAMMPS documentation and sources): w = 1 - r/rc;
 //! dpd: F = [a0 w - gamma w^2 (e.v) + sigma w xi / sqrt(dt)] e, sigma = sqrt(2 k_B T gamma);
 //! mdpd: F = [A w_c + B (rho_i + rho_j) w_d - gamma w_c^2 (e.v) + sigma w_c xi / sqrt(dt)] e
-//! with rho_i = sum_j m_j W_Lucy(r_ij; h); pair energy a0 rc w^2 / 2 (dpd).
+//! with rho_i = sum_j m_j W_Lucy(r_ij; h); pair energy a0 rc w^2 / 2 (dpd);
+//! dpd/ext (and the thermostats dpd/tstat, dpd/ext/tstat without a0): with P = I - e e,
+//! F = [a0 w - gamma_par w^(2 s_par) (e.v) + sigma_par w^s_par xi / sqrt(dt)] e
+//! - gamma_perp w^(2 s_perp) P v + sigma_perp w^s_perp P xi_vec / sqrt(dt),
+//! sigma = sqrt(2 k_B T gamma) each, T ramped linearly over the run for the thermostats.
 //! Shardlow DPDE pair update: gamma = sigma^2 / (2 k_B theta_ij), 1/theta_ij the mean of
 //! 1/theta_i and 1/theta_j; heat kappa w^2 (1/theta_i - 1/theta_j) dt + sqrt(2 k_B kappa)
 //! w xibar sqrt(dt) into i (uCond); -dK/2 into each u (uMech).
@@ -57,6 +61,37 @@ impl DpdCoeff {
     }
 }
 
+/// `pair dpd/ext` (and dpd/tstat, dpd/ext/tstat: a0 = 0) coefficients of one type pair:
+/// a0 w(rc), parallel and perpendicular friction and their weight exponents; the noise
+/// amplitudes sqrt(2 k_B T gamma) follow from the temperature of the step.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DpdExtCoeff {
+    pub a0: f64,
+    pub rc: f64,
+    pub gamma_par: f64,
+    pub gamma_perp: f64,
+    pub s_par: f64,
+    pub s_perp: f64,
+}
+
+/// The dpd/ext family's force: its coefficients and the target temperature, fixed
+/// (dpd/ext) or ramped from `start` to `stop` over each run (pair_dpd_tstat.cpp compute:
+/// T = start + (step - first)/(last - first) (stop - start) at the step of the forces).
+#[derive(Clone, Debug)]
+pub struct DpdExt {
+    pub coeff: TypeTable<DpdExtCoeff>,
+    pub start: f64,
+    pub stop: f64,
+}
+
+impl DpdExt {
+    /// The target temperature of the forces of `step` in the run `[first, last]`.
+    pub fn temperature(&self, step: u64, [first, last]: [u64; 2]) -> f64 {
+        let delta = if step > first && last > first { (step - first) as f64 / (last - first) as f64 } else { 0.0 };
+        self.start + delta * (self.stop - self.start)
+    }
+}
+
 /// Velocity-Verlet `pair dpd/fdt/energy` coefficients of one type pair: a0 w(rc),
 /// friction from `sigma` and theta_ij, heat `kappa`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -86,6 +121,8 @@ pub enum PairForce {
     Dpd(TypeTable<DpdCoeff>),
     /// Warren's many-body DPD; rho from the Lucy kernels.
     Mdpd(TypeTable<MdpdCoeff>),
+    /// dpd/ext, dpd/tstat, dpd/ext/tstat.
+    DpdExt(DpdExt),
     /// Velocity-Verlet DPDE (dpd/fdt/energy without fix shardlow).
     DpdEnergy(TypeTable<DpdEnergyCoeff>),
     /// No pairwise DPD force: the tables alone (`pair_style table`).
@@ -98,6 +135,7 @@ impl PairForce {
             Self::Dpd(t) => t.max_of(|c| c.rc),
             Self::Mdpd(t) => t.max_of(|c| c.rc.max(c.rd).max(c.kernel.cutoff())),
             Self::DpdEnergy(t) => t.max_of(|c| c.rc),
+            Self::DpdExt(e) => e.coeff.max_of(|c| c.rc),
             Self::Off => 0.0,
         }
     }
@@ -213,18 +251,18 @@ impl ClassicDpd {
         let noise = move |s: &Particles, i: usize, j: usize| normals.pair(seed, step, s.tag[i].min(s.tag[j]), s.tag[i].max(s.tag[j]), stream::FORCE);
         match &self.force {
             // w = 0 beyond rc: no branch to mispredict on the skin's pairs
-            PairForce::Dpd(t) if t.iter().all(|c| c.gamma == 0.0 && c.sigma == 0.0) => tally::<true, false>(s, pairs, |_, _| f64::INFINITY, |s, i, j, _, r| {
+            PairForce::Dpd(t) if t.iter().all(|c| c.gamma == 0.0 && c.sigma == 0.0) => tally::<true, false, false>(s, pairs, |_, _| f64::INFINITY, |s, i, j, _, r| {
                 let DpdCoeff { a0, rc, inv_rc, .. } = *t.get(s.kind[i], s.kind[j]);
                 let w = (1.0 - r * inv_rc).max(0.0);
                 Terms::conservative(a0 * w, 0.25 * a0 * rc * w * w)
             }),
-            PairForce::Dpd(t) => tally::<false, false>(s, pairs, |s, k| t.get(s.kind[k[0]], s.kind[k[1]]).rc, |s, i, j, d, r| {
+            PairForce::Dpd(t) => tally::<false, false, false>(s, pairs, |s, k| t.get(s.kind[k[0]], s.kind[k[1]]).rc, |s, i, j, d, r| {
                 let DpdCoeff { a0, rc, gamma, sigma, inv_rc } = *t.get(s.kind[i], s.kind[j]);
                 let w = 1.0 - r * inv_rc;
                 let fp = a0 * w - gamma * w * w * dot(d, sub(velocity(s, i), velocity(s, j))) / r + sigma * w * noise(s, i, j).0 * inv_sqrt_dt;
                 Terms::conservative(fp, 0.25 * a0 * rc * w * w)
             }),
-            PairForce::Mdpd(t) => tally::<false, false>(s, pairs, |s, k| t.get(s.kind[k[0]], s.kind[k[1]]).rc, |s, i, j, d, r| {
+            PairForce::Mdpd(t) => tally::<false, false, false>(s, pairs, |s, k| t.get(s.kind[k[0]], s.kind[k[1]]).rc, |s, i, j, d, r| {
                 let MdpdCoeff { a, b, rc, rd, gamma, sigma, .. } = *t.get(s.kind[i], s.kind[j]);
                 let wc = 1.0 - r * (1.0 / rc);
                 let wd = (1.0 - r / rd).max(0.0);
@@ -235,10 +273,45 @@ impl ClassicDpd {
                 }
                 Terms::conservative(fp, 0.25 * (a * rc * wc * wc + b * rd * rho * wd * wd))
             }),
-            PairForce::Off => tally::<false, false>(s, &[], |_, _| 0.0, |_, _, _, _, _| Terms::conservative(0.0, 0.0)),
+            PairForce::DpdExt(e) => {
+                let (t, kb, normals) = (e.temperature(step, sys.run), self.kb, Normals::get());
+                let noise = move |s: &Particles, i: usize, j: usize, stream| normals.pair(seed, step, s.tag[i].min(s.tag[j]), s.tag[i].max(s.tag[j]), stream);
+                let ext_pair = move |s: &Particles, i: usize, j: usize, d: Vec3, r: f64, perp: bool| {
+                    let c = *e.coeff.get(s.kind[i], s.kind[j]);
+                    let w = 1.0 - r / c.rc;
+                    // pow(w, 1) is w: the common exponent skips the call
+                    let pow = |s: f64| if s == 1.0 { w } else { w.powf(s) };
+                    let dv = sub(velocity(s, i), velocity(s, j));
+                    let inv_r = 1.0 / r;
+                    let (xi, xi_x) = noise(s, i, j, stream::FORCE);
+                    let w_par = pow(c.s_par);
+                    let sigma_par = (2.0 * kb * t * c.gamma_par).sqrt();
+                    let force = c.a0 * w - c.gamma_par * w_par * w_par * dot(d, dv) * inv_r + sigma_par * w_par * xi * inv_sqrt_dt;
+                    let mut terms = Terms::conservative(force, 0.25 * c.a0 * c.rc * w * w);
+                    if perp {
+                        // P x = x - e (e.x): the perpendicular friction on v_ij and noise on xi_vec
+                        let w_perp = pow(c.s_perp);
+                        let (xi_y, xi_z) = noise(s, i, j, stream::FORCE_PERP);
+                        let sigma_perp = (2.0 * kb * t * c.gamma_perp).sqrt();
+                        let (g, n) = (c.gamma_perp * w_perp * w_perp, sigma_perp * w_perp * inv_sqrt_dt);
+                        let (e_ij, xi_v) = ([d[0] * inv_r, d[1] * inv_r, d[2] * inv_r], [xi_x, xi_y, xi_z]);
+                        let (ev, exi) = (dot(e_ij, dv), dot(e_ij, xi_v));
+                        terms.perp = std::array::from_fn(|k| -g * (dv[k] - e_ij[k] * ev) + n * (xi_v[k] - e_ij[k] * exi));
+                    }
+                    terms
+                };
+                let rc = |s: &Particles, k: [usize; 2]| e.coeff.get(s.kind[k[0]], s.kind[k[1]]).rc;
+                // dpd/tstat (no perpendicular terms) draws one pair of normals and skips them
+                if e.coeff.iter().all(|c| c.gamma_perp == 0.0) {
+                    tally::<false, false, false>(s, pairs, rc, |s, i, j, d, r| ext_pair(s, i, j, d, r, false))
+                } else {
+                    tally::<false, false, true>(s, pairs, rc, |s, i, j, d, r| ext_pair(s, i, j, d, r, true))
+                }
+            }
+            PairForce::Off => tally::<false, false, false>(s, &[], |_, _| 0.0, |_, _, _, _, _| Terms::conservative(0.0, 0.0)),
             PairForce::DpdEnergy(t) => {
                 let kb = self.kb;
-                tally::<false, true>(s, pairs, |s, k| t.get(s.kind[k[0]], s.kind[k[1]]).rc, |s, i, j, d, r| {
+                tally::<false, true, false>(s, pairs, |s, k| t.get(s.kind[k[0]], s.kind[k[1]]).rc, |s, i, j, d, r| {
                     let DpdEnergyCoeff { a0, rc, sigma, kappa } = *t.get(s.kind[i], s.kind[j]);
                     let w = 1.0 - r * (1.0 / rc);
                     let wd = w * w;
@@ -252,6 +325,7 @@ impl ClassicDpd {
                     let xibar = if s.tag[i] < s.tag[j] { xibar } else { -xibar };
                     Terms {
                         force: a0 * w - gamma * wd * ev + random,
+                        perp: [0.0; 3],
                         energy: 0.25 * a0 * rc * wd,
                         du_mech: 0.5 * (gamma * wd * ev * ev - 0.5 * sigma * sigma * mu * wd - ev * random),
                         du_cond: kappa * (inv_i - inv_j) * wd + (2.0 * kb * kappa).sqrt() * w * xibar * inv_sqrt_dt,
@@ -477,7 +551,7 @@ impl Physics for ClassicDpd {
                 Some(st) if st.id == b.id => st,
                 _ => return Err(SetupError::Grid(format!("fix {}: the barostat has no state (define the fix after the box)", b.id))),
             };
-            let outcome = b.setup(sys, &mut st, sys.run_span);
+            let outcome = b.setup(sys, &mut st, (sys.run[0], sys.run[1]));
             sys.barostat = Some(st);
             outcome.map_err(SetupError::Grid)?;
         }
@@ -529,10 +603,12 @@ fn velocity(s: &gendpde_engine::Particles, i: usize) -> [f64; 3] {
     [s.p[i][0] * k, s.p[i][1] * k, s.p[i][2] * k]
 }
 
-/// What a pair adds to its particles: the scalar force F (f_ij = F e_ij), the pair
-/// energy, and for velocity-Verlet DPDE duMech (to both) and duCond (+ to i, - to j).
+/// What a pair adds to its particles: the scalar force F (f_ij = F e_ij) and a force
+/// across the pair axis (dpd/ext), the pair energy, and for velocity-Verlet DPDE duMech
+/// (to both) and duCond (+ to i, - to j).
 struct Terms {
     force: f64,
+    perp: Vec3,
     energy: f64,
     du_mech: f64,
     du_cond: f64,
@@ -541,7 +617,7 @@ struct Terms {
 impl Terms {
     #[inline(always)]
     fn conservative(force: f64, energy: f64) -> Self {
-        Self { force, energy, du_mech: 0.0, du_cond: 0.0 }
+        Self { force, perp: [0.0; 3], energy, du_mech: 0.0, du_cond: 0.0 }
     }
 }
 
@@ -549,9 +625,9 @@ impl Terms {
 /// list into the owned particles (see [`gendpde_engine::NeighborList::pairs`]).
 /// `pair(s, i, j, r_ij, r)` gives the [`Terms`] of a pair closer than its cutoff
 /// `rc(s, [i, j])`; with `CLAMPED` it is called for every pair of the list and must give
-/// zeros beyond the cutoff.
+/// zeros beyond the cutoff; with `PERP` its force across the axis is added.
 #[inline(always)]
-fn tally<const CLAMPED: bool, const DU: bool>(
+fn tally<const CLAMPED: bool, const DU: bool, const PERP: bool>(
     s: &mut Particles,
     pairs: &[[u32; 2]],
     rc: impl Fn(&Particles, [usize; 2]) -> f64,
@@ -576,7 +652,12 @@ fn tally<const CLAMPED: bool, const DU: bool>(
         let inv_r = 1.0 / r;
         let t = pair(s, i, j, d, r);
         let fpair = t.force * inv_r;
-        let df = [fpair * d[0], fpair * d[1], fpair * d[2]];
+        let mut df = [fpair * d[0], fpair * d[1], fpair * d[2]];
+        if PERP {
+            for c in 0..3 {
+                df[c] += t.perp[c];
+            }
+        }
         let virial = [0.5 * df[0] * d[0], 0.5 * df[1] * d[1], 0.5 * df[2] * d[2]];
         for (k, sign) in [(i, 1.0), (j, -1.0)] {
             if k < n {

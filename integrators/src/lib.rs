@@ -26,7 +26,7 @@ pub mod verlet;
 pub mod vv_euler;
 
 pub use barostat::{Couple, Nph, NphState};
-pub use classic::{ClassicDpd, DpdCoeff, DpdEnergyCoeff, Integration, MdpdCoeff, PairForce, ShardlowCoeff, ShardlowDpd};
+pub use classic::{ClassicDpd, DpdCoeff, DpdEnergyCoeff, DpdExt, DpdExtCoeff, Integration, MdpdCoeff, PairForce, ShardlowCoeff, ShardlowDpd};
 pub use edpd::{Edpd, EdpdCoeff, HeatSource, SourceShape};
 pub use error::StepError;
 pub use heat::HeatModel;

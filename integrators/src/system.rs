@@ -44,6 +44,9 @@ pub struct System {
     /// 1/m of all particles for the sweep (scratch).
     pub inv_mass: Vec<f64>,
     pub step: u64,
+    /// The first and last step of the current run (LAMMPS's beginstep, endstep), over
+    /// which the thermostat pair styles ramp their temperature.
+    pub run: [u64; 2],
     pub time: f64,
     /// Step of the last list build.
     pub last_build: u64,
@@ -59,8 +62,6 @@ pub struct System {
     /// The state of the `fix nph` barostat, if one is defined (kept across runs and in
     /// restart files, as LAMMPS keeps it in the fix).
     pub barostat: Option<NphState>,
-    /// First and last step of the current run (targets that ramp over a run).
-    pub run_span: (u64, u64),
     /// The particles, cells and build positions were read from a restart: the next
     /// build keeps them as stored, so the lists come out as when it was written.
     pub restored: bool,
@@ -97,6 +98,7 @@ impl System {
             velocity: Vec::new(),
             inv_mass: Vec::new(),
             step: 0,
+            run: [0, 0],
             time: 0.0,
             last_build: 0,
             builds: 0,
@@ -104,7 +106,6 @@ impl System {
             rejected: 0,
             reservoir_heat: Vec::new(),
             barostat: None,
-            run_span: (0, 0),
             restored: false,
             restored_grid: None,
             min_cell: 0.0,

@@ -63,10 +63,11 @@ impl Interpreter {
     }
 
     /// The dynamics of the styles defined so far, set up on the current system, for
-    /// programs that step it themselves (tests, benchmarks).
+    /// programs that step it themselves (tests, benchmarks), as for `run 0` (a ramped
+    /// thermostat holds its TSTART).
     pub fn dynamics(&mut self) -> Result<Box<dyn Physics>, AppError> {
         let cmd = Command { name: "run".into(), args: vec![], loc: Location { file: "<api>".into(), line: 0 } };
-        run::prepare(&mut self.sim, &self.outputs.averages, &cmd)
+        run::prepare(&mut self.sim, &self.outputs.averages, &cmd, 0)
     }
 
     /// The system built by the script.

@@ -20,14 +20,15 @@ use indicatif::ProgressBar;
 use std::time::Instant;
 
 /// Builds the dynamics of the current styles and sets the system up for it (lists,
-/// densities, forces); errors name `cmd`.
-pub fn prepare(sim: &mut Sim, averages: &[AveTime], cmd: &Command) -> Result<Box<dyn Physics>, AppError> {
+/// densities, forces) for a run of `nsteps`; errors name `cmd`.
+pub fn prepare(sim: &mut Sim, averages: &[AveTime], cmd: &Command, nsteps: u64) -> Result<Box<dyn Physics>, AppError> {
     let err = |m: String| AppError::Script(ScriptError::at(cmd, m));
     let physics = build_physics(cmd, sim.pair.as_ref(), &sim.fixes, sim.dt, sim.skin, sim.rebuild.clone(), sim.units.kb, sim.ntypes)?;
     let sys = sim.system.as_mut().ok_or_else(|| err("run before create_box".into()))?;
     if sys.store.nlocal == 0 {
         return Err(err("the box holds no particles (create_atoms)".into()));
     }
+    sys.run = [sys.step, sys.step + nsteps];
     // the cells must reach the pairs that the computes read by fix ave/time count
     sys.min_cell = 0.0;
     for rdf in sim.rdfs.iter().filter(|r| averages.iter().any(|f| f.computes().any(|c| c == r.id))) {
@@ -72,10 +73,7 @@ pub fn run(sim: &mut Sim, outputs: &mut Outputs, out: &mut Output, vars: &Variab
     a.done()?;
     let cmd = a.command();
     let err = |m: String| AppError::Script(ScriptError::at(cmd, m));
-    if let Some(sys) = &mut sim.system {
-        sys.run_span = (sys.step, sys.step + nsteps);
-    }
-    let physics = prepare(sim, &outputs.averages, cmd)?;
+    let physics = prepare(sim, &outputs.averages, cmd, nsteps)?;
     if mode == Mode::Check {
         return Ok(());
     }

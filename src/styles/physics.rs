@@ -9,7 +9,7 @@ use crate::styles::pair::pairwise::{Kind, Pairwise};
 use crate::styles::pair::table::{tables_for_run, Tabulated};
 use crate::styles::pair::PairStyle;
 use gendpde_integrators::{
-    ClassicDpd, Dissipation, DpdCoeff, DpdEnergyCoeff, Edpd, FixedEntropy, GenDpde, HeatModel, HeatSource, Integration, MdpdCoeff, Motion, NoiseForm, PairForce, Physics,
+    ClassicDpd, Dissipation, DpdCoeff, DpdEnergyCoeff, DpdExt, DpdExtCoeff, Edpd, FixedEntropy, GenDpde, HeatModel, HeatSource, Integration, MdpdCoeff, Motion, NoiseForm, PairForce, Physics,
     RebuildPolicy, Reservoir, Settings, ShardlowCoeff, ShardlowDpd, SourceShape, Species, TypeTable,
 };
 use gendpde_io::{Command, ScriptError};
@@ -209,8 +209,15 @@ fn pairwise(cmd: &Command, p: &Pairwise, fixes: &[Fix], settings: Settings, kb: 
         let kappa = |k: f64| if temperature.is_some() { 0.0 } else { k };
         table(cmd, ntypes, c.iter().map(|c| ShardlowCoeff { sigma: c.sigma, kappa: kappa(c.kappa), rc: c.rc }).collect()).map(|coeff| ShardlowDpd { coeff, temperature })
     };
+    // dpd/ext and the thermostats (a0 = 0, gamma_perp = 0 and s = 1 for dpd/tstat)
+    let ext = |start: f64, stop: f64| {
+        let coeff = c.iter().map(|c| DpdExtCoeff { a0: c.a, rc: c.rc, gamma_par: c.gamma, gamma_perp: c.gamma_perp, s_par: c.s_par, s_perp: c.s_perp });
+        table(cmd, ntypes, coeff.collect()).map(|coeff| DpdExt { coeff, start, stop })
+    };
     let (force, sweep) = match p.kind {
         Kind::Dpd { temperature } => (PairForce::Dpd(table(cmd, ntypes, c.iter().map(|c| DpdCoeff::new(c.a, c.rc, c.gamma, sigma_of(temperature, c.gamma))).collect())?), None),
+        Kind::DpdExt { temperature } => (PairForce::DpdExt(ext(temperature, temperature)?), None),
+        Kind::DpdTstat { start, stop } | Kind::DpdExtTstat { start, stop } => (PairForce::DpdExt(ext(start, stop)?), None),
         // velocity Verlet (pair_dpd_fdt.cpp without fix shardlow): gamma = sigma^2 / (2 k_B T)
         Kind::DpdFdt { temperature } if !shardlow => {
             let coeff = c.iter().map(|c| DpdCoeff::new(c.a, c.rc, c.sigma * c.sigma / (2.0 * kb * temperature), c.sigma));
@@ -231,7 +238,7 @@ fn pairwise(cmd: &Command, p: &Pairwise, fixes: &[Fix], settings: Settings, kb: 
             (PairForce::Mdpd(table(cmd, ntypes, coeff.collect())?), None)
         }
     };
-    if shardlow && matches!(p.kind, Kind::Dpd { .. } | Kind::Mdpd { .. }) {
+    if shardlow && matches!(p.kind, Kind::Dpd { .. } | Kind::DpdExt { .. } | Kind::DpdTstat { .. } | Kind::DpdExtTstat { .. } | Kind::Mdpd { .. }) {
         return Err(err("fix shardlow works with pair dpd/fdt and dpd/fdt/energy"));
     }
     if energy && (shardlow || !matches!(p.kind, Kind::DpdFdtEnergy)) {

@@ -1,7 +1,7 @@
 //! `pair_style hybrid/overlay S1 args S2 args ...` with `pair_coeff I J STYLE args`
 //! (LAMMPS's pair_hybrid_overlay): the forces, energies and virials of the sub-styles
 //! add up on every type pair each one is given. gendpde overlays `table` and one of
-//! LAMMPS's pairwise DPD styles (dpd, dpd/fdt, dpd/fdt/energy, ...); many-body DPD keeps
+//! LAMMPS's pairwise DPD styles (dpd, dpd/ext, dpd/tstat, dpd/ext/tstat, dpd/fdt, ...); many-body DPD keeps
 //! its own `hybrid/overlay mdpd/rhosum mdpd` line ([`super::pairwise`]), and GenDPDE
 //! does not combine. `pair_style hybrid` (one sub-style per type pair) is refused.
 

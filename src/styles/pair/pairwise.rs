@@ -5,6 +5,12 @@
 //!   `fix shardlow` + `fix nve`;
 //! - `pair_style dpd/fdt/energy CUTOFF SEED`, `pair_coeff I J A SIGMA KAPPA [CUTOFF]` with
 //!   `fix shardlow` + `fix nve` + `fix eos/cv CV`;
+//! - `pair_style dpd/ext T CUTOFF SEED`, `pair_coeff I J A GAMMA_PAR GAMMA_PERP S_PAR
+//!   S_PERP [CUTOFF]` with `fix nve` (DPD-BASIC);
+//! - `pair_style dpd/tstat TSTART TSTOP CUTOFF SEED`, `pair_coeff I J GAMMA [CUTOFF]` and
+//!   `pair_style dpd/ext/tstat TSTART TSTOP CUTOFF SEED`, `pair_coeff I J GAMMA_PAR
+//!   GAMMA_PERP S_PAR S_PERP [CUTOFF]`: the thermostats alone (no conservative force),
+//!   the target temperature ramped from TSTART to TSTOP over each run;
 //! - `pair_style hybrid/overlay mdpd/rhosum mdpd T CUTOFF SEED`,
 //!   `pair_coeff I J mdpd/rhosum H`, `pair_coeff I J mdpd A B GAMMA CUTOFF CUTOFF_R` with
 //!   `fix mvv/dpd [LAMBDA]`.
@@ -21,6 +27,10 @@ use gendpde_io::{Command, PairCoeffs, ScriptError};
 #[derive(Clone, Debug, PartialEq)]
 pub enum Kind {
     Dpd { temperature: f64 },
+    DpdExt { temperature: f64 },
+    /// The thermostats: no a0, T ramped from `start` to `stop` over each run.
+    DpdTstat { start: f64, stop: f64 },
+    DpdExtTstat { start: f64, stop: f64 },
     DpdFdt { temperature: f64 },
     DpdFdtEnergy,
     Mdpd { temperature: f64 },
@@ -31,7 +41,8 @@ pub struct Pairwise {
     pub kind: Kind,
     pub cutoff: f64,
     pub seed: u64,
-    /// A (a0), B (mdpd), gamma (dpd, mdpd) or sigma (dpd/fdt*), kappa, cutoff, cutoff_r.
+    /// A (a0), B (mdpd), gamma (dpd, mdpd, the parallel one of dpd/ext) or sigma
+    /// (dpd/fdt*), kappa, cutoff, cutoff_r; dpd/ext's gamma_perp, s_par, s_perp.
     pub coeff: TypePairs<Coeff>,
     /// Kernel support h of `mdpd/rhosum`.
     pub rhosum: TypePairs<f64>,
@@ -46,6 +57,9 @@ pub struct Coeff {
     pub kappa: f64,
     pub rc: f64,
     pub rd: f64,
+    pub gamma_perp: f64,
+    pub s_par: f64,
+    pub s_perp: f64,
 }
 
 /// One value per unordered pair of types 1..=n (LAMMPS's `setflag` with its
@@ -140,6 +154,16 @@ impl Pairwise {
 pub fn parse_style(style: &str, a: &mut Args) -> Result<Pairwise, ScriptError> {
     let kind = match style {
         "dpd" => Kind::Dpd { temperature: a.non_negative("the temperature T")? },
+        "dpd/ext" => Kind::DpdExt { temperature: a.non_negative("the temperature T")? },
+        "dpd/tstat" | "dpd/ext/tstat" => {
+            let start = a.non_negative("the start temperature TSTART")?;
+            let stop = a.non_negative("the stop temperature TSTOP")?;
+            if style == "dpd/tstat" {
+                Kind::DpdTstat { start, stop }
+            } else {
+                Kind::DpdExtTstat { start, stop }
+            }
+        }
         "dpd/fdt" => Kind::DpdFdt { temperature: a.positive("the temperature T")? },
         "dpd/fdt/energy" => Kind::DpdFdtEnergy,
         "hybrid/overlay" => {
@@ -180,6 +204,21 @@ pub fn parse_coeff(p: &mut Pairwise, cmd: &Command, ntypes: usize) -> Result<(),
         Kind::Dpd { .. } => {
             c.a = a.f64("A (a0)")?;
             c.gamma = a.non_negative("gamma")?;
+            c.rc = optional_cutoff(&mut a, p.cutoff)?;
+        }
+        Kind::DpdExt { .. } | Kind::DpdTstat { .. } | Kind::DpdExtTstat { .. } => {
+            // LAMMPS's allocate(): s_par = s_perp = 1, gamma_perp = 0 (dpd/tstat)
+            (c.s_par, c.s_perp) = (1.0, 1.0);
+            let ext = !matches!(p.kind, Kind::DpdTstat { .. });
+            if matches!(p.kind, Kind::DpdExt { .. }) {
+                c.a = a.f64("A (a0)")?;
+            }
+            c.gamma = a.non_negative(if ext { "gamma_par" } else { "gamma" })?;
+            if ext {
+                c.gamma_perp = a.non_negative("gamma_perp")?;
+                c.s_par = a.f64("s_par")?;
+                c.s_perp = a.f64("s_perp")?;
+            }
             c.rc = optional_cutoff(&mut a, p.cutoff)?;
         }
         Kind::DpdFdt { .. } => {
