@@ -25,8 +25,9 @@ impl PairTables {
         self.tables.iter().map(|t| t.cut).fold(0.0, f64::max)
     }
 
+    /// The table of types `ti`, `tj`, if they have one.
     #[inline(always)]
-    fn of(&self, ti: u32, tj: u32) -> Option<&PairTable> {
+    pub(crate) fn of(&self, ti: u32, tj: u32) -> Option<&PairTable> {
         let k = (ti as usize - 1) * self.ntypes + tj as usize - 1;
         self.index.get(k).copied().flatten().map(|m| &self.tables[m])
     }
