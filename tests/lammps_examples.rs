@@ -18,6 +18,7 @@ const SUPPORTED: &[&str] = &[
     "dpd-react/dpd-vv/in.dpd-vv",
     "dpd-react/dpde-shardlow/in.dpde-shardlow",
     "dpd-react/dpde-vv/in.dpde-vv",
+    "dpd-react/multi-lucy/in.multi-lucy",
 ];
 
 fn examples() -> Vec<PathBuf> {

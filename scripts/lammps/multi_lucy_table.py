@@ -27,6 +27,7 @@ log (this table: Temp 294.34, Press 1281.0, PotEng -19.199; log: 294.26, 1271.5,
 """
 import argparse
 import math
+import random
 
 RC = 16.0
 PE0, P0 = -22.12267153, 1214.85216295  # reference log, step 0
@@ -55,6 +56,47 @@ def write(path, n, rho_hi, rho_star, e_star, f_star, b):
             out.write(f"{i + 1} {rho:.10e} {e_star + f_star * d + 0.5 * b * d * d:.10e} {f_star + b * d:.10e}\n")
 
 
+def parity_files(outdir):
+    """The inputs of tests/multi_lucy.rs (in.multi-lucy-parity): data.multi-lucy (atom_style
+    dpd, metal, N = 1000 on a 10^3 lattice of spacing 6 A with every site moved by
+    uniform(-1.5, 1.5) A, types 1 and 2 alternating, v ~ N(0, kT/m) for m = 100 g/mol at
+    300 K) and multi-lucy.table with three sections of e(rho) and f = de/drho: ML_RSQ
+    (N 400 RSQ 0 0.02, used as given by `linear 400`), ML_R (N 300 R 0 0.02, splined) and
+    ML_FP (N 250 R 0.0005 0.025 with FP end slopes)."""
+    rng = random.Random(20261202)
+    n_side, a = 10, 6.0
+    sd = math.sqrt(KB_METAL * 300.0 / 100.0 * 9648.53)
+    lines = []
+    for k in range(n_side ** 3):
+        ix, iy, iz = k // 100, (k // 10) % 10, k % 10
+        x = [(c + 0.5) * a + rng.uniform(-1.5, 1.5) for c in (ix, iy, iz)]
+        lines.append((k + 1, 1 + k % 2, x, [rng.gauss(0.0, sd) for _ in range(3)]))
+    with open(f"{outdir}/data.multi-lucy", "w") as out:
+        out.write("LAMMPS data file: pair multi/lucy parity, metal, N=1000, L=60 A (scripts/lammps/multi_lucy_table.py --parity)\n\n")
+        out.write("1000 atoms\n2 atom types\n\n0.0 60.0 xlo xhi\n0.0 60.0 ylo yhi\n0.0 60.0 zlo zhi\n\nAtoms # dpd\n\n")
+        for i, t, x, _ in lines:
+            out.write(f"{i} {t} 300.0 {x[0]:.8f} {x[1]:.8f} {x[2]:.8f}\n")
+        out.write("\nVelocities\n\n")
+        for i, _, _, v in lines:
+            out.write(f"{i} {v[0]:.8f} {v[1]:.8f} {v[2]:.8f}\n")
+    sections = [
+        ("ML_RSQ", 400, "RSQ", 0.0, 0.02, "", lambda r: (1e-3 * (r - 0.005) ** 2 * 1e4 - 2e-6, 20.0 * (r - 0.005))),
+        ("ML_R", 300, "R", 0.0, 0.02, "", lambda r: (0.3 * r ** 3 - 0.01 * r, 0.9 * r ** 2 - 0.01)),
+        ("ML_FP", 250, "R", 0.0005, 0.025, " FP 0.002 0.0", lambda r: (1e-4 * math.exp(-r / 0.005), -0.02 * math.exp(-r / 0.005))),
+    ]
+    with open(f"{outdir}/multi-lucy.table", "w") as out:
+        out.write("# pair multi/lucy sections for tests/multi_lucy.rs (scripts/lammps/multi_lucy_table.py --parity)\n")
+        for key, n, spacing, lo, hi, fp, ef in sections:
+            out.write(f"\n{key}\nN {n} {spacing} {lo} {hi}{fp}\n\n")
+            for i in range(n):
+                if spacing == "R":
+                    rho = lo + (hi - lo) * i / (n - 1)
+                else:
+                    rho = math.sqrt(lo * lo + (hi * hi - lo * lo) * i / (n - 1))
+                e, f = ef(rho)
+                out.write(f"{i + 1} {rho:.12e} {e:.12e} {f:.12e}\n")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--out", default="table.multibody")
@@ -63,7 +105,11 @@ def main():
     ap.add_argument("--rho-star", type=float, default=3.966693e-3, help="density of the lattice (A^-3)")
     ap.add_argument("--virial-per-f", type=float, default=94540.73, help="virial pressure (bar) of the lattice with f = 1")
     ap.add_argument("--b", type=float, default=115.0, help="curvature d^2e/drho^2")
+    ap.add_argument("--parity", metavar="DIR", help="write the parity test's data.multi-lucy and multi-lucy.table into DIR instead")
     args = ap.parse_args()
+    if args.parity:
+        parity_files(args.parity)
+        return
     e_star, f_star = model(args.rho_star, args.virial_per_f)
     write(args.out, args.n, args.rho_hi, args.rho_star, e_star, f_star, args.b)
 
