@@ -274,14 +274,22 @@ impl ClassicDpd {
                 }
                 Terms::conservative(fp, 0.25 * (a * rc * wc * wc + b * rd * rho * wd * wd))
             }),
-            PairForce::MultiLucy(t) => tally::<false, false>(s, pairs, |s, k| t.of(s.kind[k[0]], s.kind[k[1]]).map_or(0.0, |t| t.cut), |s, i, j, _, r| {
-                let Some(table) = t.of(s.kind[i], s.kind[j]) else { return Terms::conservative(0.0, 0.0) };
-                // densities outside the table are reported by many_body_energy
-                let a = |k: usize| table.eval(s.rho[k] * s.rho[k]).map_or(f64::NAN, |v| v.0);
-                let x = r / table.cut;
-                let w = 1.0 - x;
-                Terms::conservative(0.5 * (a(i) + a(j)) * (1.0 + 3.0 * x) * w * w * w, 0.0)
-            }),
+            PairForce::MultiLucy(t) => {
+                // A = f(rho) of every particle (owned and ghost) in each table, read once;
+                // densities outside a table (NaN here) are reported by many_body_energy
+                let (nt, a) = (t.tables.len(), &mut sys.pair_sums);
+                a.clear();
+                for &rho in &s.rho {
+                    a.extend(t.tables.iter().map(|table| table.eval(rho * rho).map_or(f64::NAN, |v| v.0)));
+                }
+                let a = &*a;
+                tally::<false, false>(s, pairs, |s, k| t.of(s.kind[k[0]], s.kind[k[1]]).map_or(0.0, |t| t.cut), |s, i, j, _, r| {
+                    let Some(m) = t.slot(s.kind[i], s.kind[j]) else { return Terms::conservative(0.0, 0.0) };
+                    let x = r / t.tables[m].cut;
+                    let w = 1.0 - x;
+                    Terms::conservative(0.5 * (a[i * nt + m] + a[j * nt + m]) * (1.0 + 3.0 * x) * w * w * w, 0.0)
+                })
+            }
             PairForce::Off => tally::<false, false>(s, &[], |_, _| 0.0, |_, _, _, _, _| Terms::conservative(0.0, 0.0)),
             PairForce::DpdEnergy(t) => {
                 let kb = self.kb;
