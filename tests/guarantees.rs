@@ -329,6 +329,24 @@ fn tables_and_their_overlay_are_bit_identical_on_1_2_3_4_ranks_and_an_uneven_gri
     }
 }
 
+/// `pair_style multi/lucy`: two types, a pressure-density table per type pair, the
+/// densities of ghosts sent after the density pass; a hot sc lattice (metal units)
+/// melting, so the lists are rebuilt.
+#[test]
+fn multi_lucy_is_bit_identical_on_1_2_3_4_ranks_and_an_uneven_grid() {
+    let scene = "units metal\natom_style dpd\ncomm_modify vel yes\nlattice sc 6.0\nregion box block 0 10 0 10 0 10\n\
+                 create_box 2 box\ncreate_atoms 1 box\nset group all type/fraction 2 0.5 4242\nmass 1 100.0\nmass 2 150.0\n\
+                 velocity all create 3000.0 4928 loop geom\npair_style multi/lucy linear 400\n\
+                 pair_coeff 1 1 multi-lucy.table ML_RSQ 12.0\npair_coeff 1 2 multi-lucy.table ML_R 10.0\npair_coeff 2 2 multi-lucy.table ML_FP 12.0\n\
+                 fix 1 all nve\nneighbor 1.0 bin\nneigh_modify every 1 delay 0 check yes\ntimestep 0.01\n\
+                 thermo_style custom step temp press pe ke etotal pxx\n";
+    let dir = tempdir("multi-lucy");
+    std::fs::copy(common::lammps::scripts_dir().join("multi-lucy.table"), dir.join("multi-lucy.table")).unwrap();
+    let start = std::time::Instant::now();
+    assert_rank_independent(&dir, "multi-lucy", scene, 30, &LAYOUTS);
+    eprintln!("multi-lucy: identical on 1, 2, 3, 4 ranks and processors 1 3 1 ({:.1} s)", start.elapsed().as_secs_f64());
+}
+
 /// Finding 1: `pair dpd/fdt/energy` changed with the rank count from the first list
 /// rebuild (1/theta, which migration does not carry, was read stale).
 #[test]

@@ -23,6 +23,7 @@ const SUPPORTED: &[&str] = &[
     "dpd-react/dpde-vv/in.dpde-vv",
     "dpd-react/dpdh-shardlow/in.dpdh-shardlow",
     "dpd-react/dpdp-shardlow/in.dpdp-shardlow",
+    "dpd-react/multi-lucy/in.multi-lucy",
 ];
 
 fn examples() -> Vec<PathBuf> {

@@ -12,8 +12,8 @@
 
 mod common;
 
-use common::lammps::{parse_dump, parse_thermo, run_both, run_gendpde, scripts_dir};
-use std::path::{Path, PathBuf};
+use common::lammps::{compare_with_lammps, run_gendpde, scripts_dir};
+use std::path::PathBuf;
 
 /// The potential files the inputs read.
 const POTENTIALS: [&str; 2] = ["table-lj.pot", "cg_spce_table.pot"];
@@ -27,64 +27,24 @@ fn dir(name: &str) -> PathBuf {
 }
 
 
-/// Runs `input` in both codes; compares the step-0 forces, every thermo row and the
-/// final positions, and returns the worst deviations (force, thermo, position).
-fn compare(name: &str, input: &str, dump: &str, vars: &[(&str, &str)]) -> (f64, f64, f64) {
-    let ((dl, l), (dg, g)) = run_both(name, input, vars, &POTENTIALS);
-    let (tl, tg) = (parse_thermo(&l, "Step"), parse_thermo(&g, "Step"));
-    assert_eq!(tl.len(), tg.len(), "thermo rows");
-    let mut thermo: f64 = 0.0;
-    for (a, b) in tl.iter().zip(&tg) {
-        for (x, y) in a.iter().zip(b) {
-            thermo = thermo.max((x - y).abs() / x.abs().max(1e-300));
-        }
-    }
-    let read = |d: &Path| parse_dump(&std::fs::read_to_string(d.join(dump)).unwrap());
-    let (sl, sg) = (read(&dl), read(&dg));
-    assert_eq!((sl.len(), sg.len()), (2, 2), "two dump frames");
-    let col = |s: &common::lammps::DumpSnapshot, c: &str| s.column_index(c).unwrap();
-    let fmax = sl[0].atoms.iter().flat_map(|(_, v)| ["fx", "fy", "fz"].map(|c| v[col(&sl[0], c)].abs())).fold(0.0, f64::max);
-    let (mut force, mut position): (f64, f64) = (0.0, 0.0);
-    let box_len = sl[1].bounds[0][1] - sl[1].bounds[0][0];
-    for ((ia, va), (ib, vb)) in sl[0].atoms.iter().zip(&sg[0].atoms) {
-        assert_eq!(ia, ib);
-        for c in ["fx", "fy", "fz"] {
-            force = force.max((va[col(&sl[0], c)] - vb[col(&sg[0], c)]).abs() / fmax);
-        }
-    }
-    for ((ia, va), (ib, vb)) in sl[1].atoms.iter().zip(&sg[1].atoms) {
-        assert_eq!(ia, ib);
-        for c in ["x", "y", "z"] {
-            let mut d = va[col(&sl[1], c)] - vb[col(&sg[1], c)];
-            d -= box_len * (d / box_len).round();
-            position = position.max(d.abs() / box_len);
-        }
-    }
-    eprintln!("{name}: forces at step 0 {force:.2e} of the largest, thermo rows {thermo:.2e} relative, positions {position:.2e} of the box");
-    assert!(force < 1e-12, "{name}: step-0 forces differ by {force:e} of the largest");
-    assert!(thermo < 1e-11, "{name}: thermo rows differ by {thermo:e}");
-    assert!(position < 1e-10, "{name}: final positions differ by {position:e} of the box");
-    (force, thermo, position)
-}
-
 #[test]
 fn table_linear_forces_and_energies_match_lammps() {
-    compare("table-linear", "in.table-lj", "table-lj.dump", &[("tstyle", "linear")]);
+    compare_with_lammps("table-linear", "in.table-lj", "table-lj.dump", &[("tstyle", "linear")], &POTENTIALS);
 }
 
 #[test]
 fn table_lookup_forces_and_energies_match_lammps() {
-    compare("table-lookup", "in.table-lj", "table-lj.dump", &[("tstyle", "lookup")]);
+    compare_with_lammps("table-lookup", "in.table-lj", "table-lj.dump", &[("tstyle", "lookup")], &POTENTIALS);
 }
 
 #[test]
 fn table_spline_forces_and_energies_match_lammps() {
-    compare("table-spline", "in.table-lj", "table-lj.dump", &[("tstyle", "spline")]);
+    compare_with_lammps("table-spline", "in.table-lj", "table-lj.dump", &[("tstyle", "spline")], &POTENTIALS);
 }
 
 #[test]
 fn hybrid_overlay_of_table_and_dpd_matches_lammps() {
-    compare("table-water", "in.table-water", "table-water.dump", &[]);
+    compare_with_lammps("table-water", "in.table-water", "table-water.dump", &[], &POTENTIALS);
 }
 
 /// A directory with a two-particle scene at distance `r` (types 1 and 1): data.pair and

@@ -4,7 +4,8 @@
 //! in the sweep, theta from `fix eos/cv`; without it, velocity Verlet with every force in
 //! the pair pass and, for `dpd/fdt/energy`, the rates duCond and duMech that `fix
 //! dpd/energy` integrates by half steps), and many-body DPD (`pair mdpd/rhosum` + `mdpd`,
-//! integrated by `fix mvv/dpd`). As in LAMMPS the sweep runs at the start of the step and
+//! integrated by `fix mvv/dpd`), and DPD-REACT's many-body `pair multi/lucy` (fix nve).
+//! As in LAMMPS the sweep runs at the start of the step and
 //! theta is not refreshed between pairs (it follows the sweep through eos/cv).
 //!
 //! Formulas (LAMMPS documentation and sources): w = 1 - r/rc;
@@ -15,6 +16,10 @@
 //! F = [a0 w - gamma_par w^(2 s_par) (e.v) + sigma_par w^s_par xi / sqrt(dt)] e
 //! - gamma_perp w^(2 s_perp) P v + sigma_perp w^s_perp P xi_vec / sqrt(dt),
 //! sigma = sqrt(2 k_B T gamma) each, T ramped linearly over the run for the thermostats.
+//! multi/lucy (pair_multi_lucy.cpp; Moore et al., J. Chem. Phys. 144, 104501 (2016)):
+//! rho_i = sum_{j != i} 84/(5 pi rc^3) (1 + 3r/2rc)(1 - r/rc)^4, F = (A(rho_i) + A(rho_j))/2
+//! (1 + 3r/rc)(1 - r/rc)^3 with A the table's f column at rho (read in rho^2), and the
+//! energy of particle i e(rho_i) pi rc_ii^4 / 84 from the table's e column.
 //! Shardlow DPDE pair update: gamma = sigma^2 / (2 k_B theta_ij), 1/theta_ij the mean of
 //! 1/theta_i and 1/theta_j; heat kappa w^2 (1/theta_i - 1/theta_j) dt + sqrt(2 k_B kappa)
 //! w xibar sqrt(dt) into i (uCond); -dK/2 into each u (uMech).
@@ -42,6 +47,7 @@ use crate::type_table::TypeTable;
 use crate::tables::PairTables;
 use crate::verlet;
 use gendpde_engine::{dot, sub, Fields, Particles, Vec3};
+use gendpde_potentials::pair_table::Outside;
 use gendpde_potentials::{Lucy, Weight};
 
 /// `pair dpd` coefficients of one type pair: a0 w(rc) with in-force friction `gamma`
@@ -125,6 +131,8 @@ pub enum PairForce {
     DpdExt(DpdExt),
     /// Velocity-Verlet DPDE (dpd/fdt/energy without fix shardlow).
     DpdEnergy(TypeTable<DpdEnergyCoeff>),
+    /// `pair multi/lucy`: pressure-density tables of the type pairs, each with its cutoff.
+    MultiLucy(PairTables),
     /// No pairwise DPD force: the tables alone (`pair_style table`).
     Off,
 }
@@ -136,6 +144,7 @@ impl PairForce {
             Self::Mdpd(t) => t.max_of(|c| c.rc.max(c.rd).max(c.kernel.cutoff())),
             Self::DpdEnergy(t) => t.max_of(|c| c.rc),
             Self::DpdExt(e) => e.coeff.max_of(|c| c.rc),
+            Self::MultiLucy(t) => t.cutoff(),
             Self::Off => 0.0,
         }
     }
@@ -218,29 +227,63 @@ impl ClassicDpd {
         outcome
     }
 
-    /// MDPD density: rho_i = sum_{j != i} m_j W(r_ij; h_ij), without a self term, as the
-    /// reference LAMMPS (22 Jul 2025) sums it. One pass over the half list (see
-    /// [`gendpde_engine::NeighborList::pairs`]).
-    fn rho(&self, sys: &mut System, table: &TypeTable<MdpdCoeff>) {
+    /// The many-body densities of owned particles, then of ghosts: MDPD's rho_i = sum_{j
+    /// != i} m_j W(r_ij; h_ij), or multi/lucy's rho_i = sum_{j != i} W(r_ij; rc_ij), without
+    /// a self term, as the reference LAMMPS (22 Jul 2025) sums them. One pass over the
+    /// half list (see [`gendpde_engine::NeighborList::pairs`]).
+    fn rho(&self, sys: &mut System) {
+        match &self.force {
+            PairForce::Mdpd(t) => density(sys, |s, i, j, r2| {
+                let w = &t.get(s.kind[i], s.kind[j]).kernel;
+                let h = w.cutoff();
+                if r2 < h * h {
+                    let wij = w.eval(r2.sqrt()).0;
+                    (s.mass[j] * wij, s.mass[i] * wij)
+                } else {
+                    (0.0, 0.0)
+                }
+            }),
+            PairForce::MultiLucy(t) => density(sys, |s, i, j, r2| {
+                let Some(table) = t.of(s.kind[i], s.kind[j]) else { return (0.0, 0.0) };
+                let rc = table.cut;
+                if r2 < rc * rc {
+                    let x = r2.sqrt() / rc;
+                    let w = 84.0 / (5.0 * std::f64::consts::PI * rc * rc * rc) * (1.0 + 1.5 * x) * (1.0 - x).powi(4);
+                    (w, w)
+                } else {
+                    (0.0, 0.0)
+                }
+            }),
+            _ => return,
+        }
+        sys.comm.forward(&mut sys.store, Fields::RHO);
+    }
+
+    /// multi/lucy: the energy e(rho_i) pi rc_ii^4 / 84 of each owned particle added to its
+    /// pair energy; a density outside a table of its type (LAMMPS: "Density < table
+    /// inner cutoff", "Density > table outer cutoff") stops the step on every rank.
+    fn many_body_energy(&self, sys: &mut System) -> Result<(), StepError> {
+        let PairForce::MultiLucy(t) = &self.force else { return Ok(()) };
         let s = &mut sys.store;
-        let n = s.nlocal;
-        s.rho[..n].fill(0.0);
-        for &[i, j] in &sys.nlist.pairs {
-            let (i, j) = (i as usize, j as usize);
-            let d = sub(s.r[i], s.r[j]);
-            let r2 = dot(d, d);
-            let w = &table.get(s.kind[i], s.kind[j]).kernel;
-            let h = w.cutoff();
-            if r2 < h * h {
-                let wij = w.eval(r2.sqrt()).0;
-                if i < n {
-                    s.rho[i] += s.mass[j] * wij;
-                }
-                if j < n {
-                    s.rho[j] += s.mass[i] * wij;
-                }
+        let mut outcome = Ok(());
+        for i in 0..s.nlocal {
+            let rsq = s.rho[i] * s.rho[i];
+            let outside = (1..=t.ntypes as u32).filter_map(|tj| t.of(s.kind[i], tj)).find_map(|table| table.eval(rsq).err().map(|side| (side, table)));
+            if let Some((side, table)) = outside {
+                let (limit, bound) = match side {
+                    Outside::Inner => ("< table inner", table.innersq.sqrt()),
+                    Outside::Outer => ("> table outer", table.rsq_max().sqrt()),
+                };
+                let what = format!("density {:.9e} {limit} bound {bound}", s.rho[i]);
+                outcome = lowest(outcome, Err(StepError::state(s, i, sys.step, &what)));
+                continue;
+            }
+            if let Some(table) = t.of(s.kind[i], s.kind[i]) {
+                let rc2 = table.cut * table.cut;
+                s.epair[i] += table.density_energy(rsq).unwrap_or(f64::NAN) * std::f64::consts::PI * rc2 * rc2 / 84.0;
             }
         }
+        sys.settle(outcome)
     }
 
     /// Pair forces at the current positions and velocities; the noise of step `step`.
@@ -307,6 +350,22 @@ impl ClassicDpd {
                 } else {
                     tally::<false, false, true>(s, pairs, rc, |s, i, j, d, r| ext_pair(s, i, j, d, r, true))
                 }
+            }
+            PairForce::MultiLucy(t) => {
+                // A = f(rho) of every particle (owned and ghost) in each table, read once;
+                // densities outside a table (NaN here) are reported by many_body_energy
+                let (nt, a) = (t.tables.len(), &mut sys.pair_sums);
+                a.clear();
+                for &rho in &s.rho {
+                    a.extend(t.tables.iter().map(|table| table.eval(rho * rho).map_or(f64::NAN, |v| v.0)));
+                }
+                let a = &*a;
+                tally::<false, false, false>(s, pairs, |s, k| t.of(s.kind[k[0]], s.kind[k[1]]).map_or(0.0, |t| t.cut), |s, i, j, _, r| {
+                    let Some(m) = t.slot(s.kind[i], s.kind[j]) else { return Terms::conservative(0.0, 0.0) };
+                    let x = r / t.tables[m].cut;
+                    let w = 1.0 - x;
+                    Terms::conservative(0.5 * (a[i * nt + m] + a[j * nt + m]) * (1.0 + 3.0 * x) * w * w * w, 0.0)
+                })
             }
             PairForce::Off => tally::<false, false, false>(s, &[], |_, _| 0.0, |_, _, _, _, _| Terms::conservative(0.0, 0.0)),
             PairForce::DpdEnergy(t) => {
@@ -419,11 +478,9 @@ impl ClassicDpd {
             self.relist(sys);
         }
         sys.comm.forward(&mut sys.store, self.moved());
-        if let PairForce::Mdpd(t) = &self.force {
-            self.rho(sys, t);
-            sys.comm.forward(&mut sys.store, Fields::RHO);
-        }
+        self.rho(sys);
         self.forces(sys, sys.step + 1);
+        self.many_body_energy(sys)?;
         self.table_forces(sys)
     }
 
@@ -519,7 +576,7 @@ impl Physics for ClassicDpd {
         if self.vv_dpde() {
             fields = fields | Fields::U_COND | Fields::DU;
         }
-        if matches!(self.force, PairForce::Mdpd(_)) {
+        if matches!(self.force, PairForce::Mdpd(_) | PairForce::MultiLucy(_)) {
             fields = fields | Fields::RHO;
         }
         sys.store.enable(fields);
@@ -539,12 +596,10 @@ impl Physics for ClassicDpd {
         }
         let state = self.eos(sys);
         sys.comm.forward(&mut sys.store, SWEPT | Fields::U_COND);
-        if let PairForce::Mdpd(t) = &self.force {
-            self.rho(sys, t);
-            sys.comm.forward(&mut sys.store, Fields::RHO);
-        }
+        self.rho(sys);
         self.forces(sys, sys.step);
         sys.settle(state).map_err(SetupError::State)?;
+        self.many_body_energy(sys).map_err(SetupError::State)?;
         self.table_forces(sys).map_err(SetupError::State)?;
         if let Some(b) = &self.barostat {
             let mut st = match sys.barostat.take() {
@@ -671,6 +726,26 @@ fn tally<const CLAMPED: bool, const DU: bool, const PERP: bool>(
                     s.du_cond[k] += sign * t.du_cond;
                 }
             }
+        }
+    }
+}
+
+/// rho of owned particles from the half list: `w(s, i, j, r^2)` gives what the pair adds
+/// to rho_i and to rho_j.
+#[inline(always)]
+fn density(sys: &mut System, w: impl Fn(&Particles, usize, usize, f64) -> (f64, f64)) {
+    let s = &mut sys.store;
+    let n = s.nlocal;
+    s.rho[..n].fill(0.0);
+    for &[i, j] in &sys.nlist.pairs {
+        let (i, j) = (i as usize, j as usize);
+        let d = sub(s.r[i], s.r[j]);
+        let (to_i, to_j) = w(s, i, j, dot(d, d));
+        if i < n {
+            s.rho[i] += to_i;
+        }
+        if j < n {
+            s.rho[j] += to_j;
         }
     }
 }

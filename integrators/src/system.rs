@@ -30,7 +30,7 @@ pub struct System {
     pub active: Vec<u32>,
     /// r_ij^2 of the pairs in `active` (scratch of the density pass).
     pub active_r2: Vec<f64>,
-    /// Per-particle sums of the pair passes (scratch).
+    /// Per-particle sums of the pair passes, or multi/lucy's table values (scratch).
     pub pair_sums: Vec<f64>,
     /// zeta_i = dn_i/dn^b_i of the owned particles at the last density pass (corrected
     /// particle volume only; empty otherwise).

@@ -25,10 +25,16 @@ impl PairTables {
         self.tables.iter().map(|t| t.cut).fold(0.0, f64::max)
     }
 
+    /// The index into `tables` of types `ti`, `tj`, if they have a table.
     #[inline(always)]
-    fn of(&self, ti: u32, tj: u32) -> Option<&PairTable> {
-        let k = (ti as usize - 1) * self.ntypes + tj as usize - 1;
-        self.index.get(k).copied().flatten().map(|m| &self.tables[m])
+    pub(crate) fn slot(&self, ti: u32, tj: u32) -> Option<usize> {
+        self.index.get((ti as usize - 1) * self.ntypes + tj as usize - 1).copied().flatten()
+    }
+
+    /// The table of types `ti`, `tj`, if they have one.
+    #[inline(always)]
+    pub(crate) fn of(&self, ti: u32, tj: u32) -> Option<&PairTable> {
+        self.slot(ti, tj).map(|m| &self.tables[m])
     }
 
     /// Adds the table forces, energies (`epair`) and virials of the half list `pairs` to

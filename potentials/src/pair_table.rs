@@ -52,6 +52,12 @@ impl FileTable {
     /// skipped (LAMMPS's TableFileReader), the line after the parameter line is skipped
     /// and must be blank.
     pub fn parse(text: &str, keyword: &str) -> Result<Self, ReadError> {
+        Self::parse_section(text, keyword, "FPRIME")
+    }
+
+    /// As [`Self::parse`], with `fprime` the word of the end slopes (pair multi/lucy's
+    /// files write `FP`).
+    pub fn parse_section(text: &str, keyword: &str, fprime: &str) -> Result<Self, ReadError> {
         let all: Vec<&str> = text.lines().collect();
         let mut pos = 0;
         let content = |l: &str| l.split('#').next().unwrap_or("").trim().to_string();
@@ -94,9 +100,9 @@ impl FileTable {
                     t.rlo = number(&mut words, "rlo")?;
                     t.rhi = number(&mut words, "rhi")?;
                 }
-                "FPRIME" => t.fprime = Some((number(&mut words, "fplo")?, number(&mut words, "fphi")?)),
+                w if w == fprime => t.fprime = Some((number(&mut words, "fplo")?, number(&mut words, "fphi")?)),
                 "BITMAP" => return Err(err(pline, "BITMAP tables are not supported (pair_style table linear or spline)".into())),
-                other => return Err(err(pline, format!("invalid keyword {other} in pair table parameters (N, R, RSQ, FPRIME)"))),
+                other => return Err(err(pline, format!("invalid keyword {other} in pair table parameters (N, R, RSQ, {fprime})"))),
             }
         }
         if n == 0 {
@@ -178,28 +184,80 @@ impl PairTable {
         if rlo <= 0.0 {
             return Err(format!("invalid pair table lower boundary {rlo}: must be positive"));
         }
-        let ninput = file.r.len();
         // match: the file's points are the ones needed (linear, RSQ, N equal, rhi = cut)
-        let matched = style == TableStyle::Linear && ninput == n && file.spacing == Spacing::Rsq && file.rhi == cut;
-        let (mut e2file, mut f2file) = (vec![0.0; ninput], vec![0.0; ninput]);
-        if !matched {
-            // spline_table
-            spline(&file.r, &file.e, -file.f[0], -file.f[ninput - 1], &mut e2file);
-            let (fplo, fphi) = file.fprime.unwrap_or_else(|| {
-                (
-                    (file.f[1] - file.f[0]) / (file.r[1] - file.r[0]),
-                    (file.f[ninput - 1] - file.f[ninput - 2]) / (file.r[ninput - 1] - file.r[ninput - 2]),
-                )
-            });
-            spline(&file.r, &file.f, fplo, fphi, &mut f2file);
+        let matched = style == TableStyle::Linear && file.r.len() == n && file.spacing == Spacing::Rsq && file.rhi == cut;
+        let (e2file, f2file) = file_splines(file, matched);
+        let splint_f = |r| splint(&file.r, &file.f, &f2file, r);
+        // spline: F here, F/r after the e spline's end slopes are taken
+        let mut t = Self::sampled(style, n, file, (rlo, cut), matched, (&e2file, &f2file), style != TableStyle::Spline);
+        if style != TableStyle::Spline {
+            return Ok(t);
         }
+        let (ninput, tlm1, innersq, delta) = (file.r.len(), n - 1, t.innersq, t.delta);
+        t.deltasq6 = delta * delta / 6.0;
+        // end slopes in g = r^2: dh/dg = -f/2r for h = e
+        let ep0 = -t.f[0] / (2.0 * innersq.sqrt());
+        let epn = -t.f[tlm1] / (2.0 * cut);
+        t.e_aux = vec![0.0; n];
+        spline(&t.rsq, &t.e, ep0, epn, &mut t.e_aux);
+        // h = f/r: FPRIME, else a secant over a tenth of a bin
+        let secant = 0.1;
+        let fp0 = match file.fprime {
+            Some((fplo, _)) => (fplo / innersq.sqrt() - t.f[0] / innersq) / (2.0 * innersq.sqrt()),
+            None => {
+                let (rsq1, rsq2) = (innersq, innersq + secant * delta);
+                (splint_f(rsq2.sqrt()) / rsq2.sqrt() - t.f[0] / rsq1.sqrt()) / (secant * delta)
+            }
+        };
+        let fpn = match file.fprime {
+            Some((_, fphi)) if cut == file.r[ninput - 1] => (fphi / cut - t.f[tlm1] / (cut * cut)) / (2.0 * cut),
+            _ => {
+                let rsq2 = cut * cut;
+                let rsq1 = rsq2 - secant * delta;
+                (t.f[tlm1] / rsq2.sqrt() - splint_f(rsq1.sqrt()) / rsq1.sqrt()) / (secant * delta)
+            }
+        };
+        for i in 0..n {
+            t.f[i] /= t.rsq[i].sqrt();
+        }
+        t.f_aux = vec![0.0; n];
+        spline(&t.rsq, &t.f, fp0, fpn, &mut t.f_aux);
+        Ok(t)
+    }
+
+    /// LAMMPS's `pair_style multi/lucy` re-tabulation of a pressure-density section
+    /// (pair_multi_lucy.cpp `compute_table`): the file's r column holds densities rho,
+    /// re-tabulated on `n` points evenly spaced in rho^2 between the file's bounds (rlo,
+    /// rhi of `R`/`RSQ`, else its first and last rho; LAMMPS reads an unset rhi there),
+    /// f kept as read (not divided by rho); lookup or linear only. `cut` is the pair
+    /// cutoff the table is used within.
+    pub fn density(style: TableStyle, n: usize, file: &FileTable, cut: f64) -> Result<Self, String> {
+        if style == TableStyle::Spline {
+            return Err("only lookup and linear table styles are implemented for pair multi/lucy".into());
+        }
+        let (lo, hi) = file.bounds();
+        if !(lo >= 0.0 && hi > lo) {
+            return Err(format!("invalid density range of the table: [{lo}, {hi}]"));
+        }
+        // match: linear, RSQ and N equal (the upper bound needs no match here)
+        let matched = style == TableStyle::Linear && file.r.len() == n && file.spacing == Spacing::Rsq;
+        let (e2file, f2file) = file_splines(file, matched);
+        let mut t = Self::sampled(style, n, file, (lo, hi), matched, (&e2file, &f2file), false);
+        t.cut = cut;
+        Ok(t)
+    }
+
+    /// The values on `n` points evenly spaced in r^2 over `(inner, outer)` (LAMMPS's
+    /// `compute_table`): at the middles of the N-1 bins (lookup), else at the lower edges
+    /// with the differences to the next (linear); file values where `matched`, else the
+    /// splines `e2f` of [`file_splines`]; f divided by r with `over_r`.
+    fn sampled(style: TableStyle, n: usize, file: &FileTable, (inner, outer): (f64, f64), matched: bool, (e2file, f2file): (&[f64], &[f64]), over_r: bool) -> Self {
         let tlm1 = n - 1;
-        let inner = rlo;
         let innersq = inner * inner;
-        let delta = (cut * cut - innersq) / tlm1 as f64;
+        let delta = (outer * outer - innersq) / tlm1 as f64;
         let mut t = PairTable {
             style,
-            cut,
+            cut: outer,
             innersq,
             delta,
             invdelta: 1.0 / delta,
@@ -210,68 +268,29 @@ impl PairTable {
             e_aux: Vec::new(),
             f_aux: Vec::new(),
         };
-        let splint_e = |r| splint(&file.r, &file.e, &e2file, r);
-        let splint_f = |r| splint(&file.r, &file.f, &f2file, r);
+        let splint_e = |r| splint(&file.r, &file.e, e2file, r);
+        let splint_f = |r| splint(&file.r, &file.f, f2file, r);
+        let per = |r: f64| if over_r { r } else { 1.0 };
         if style == TableStyle::Lookup {
             // N-1 bins, values at their middles
             for i in 0..tlm1 {
                 let rsq = innersq + (i as f64 + 0.5) * delta;
                 let r = rsq.sqrt();
-                (t.e[i], t.f[i]) = (splint_e(r), splint_f(r) / r);
+                (t.e[i], t.f[i]) = (splint_e(r), splint_f(r) / per(r));
             }
-            return Ok(t);
+            return t;
         }
         for i in 0..n {
             let rsq = innersq + i as f64 * delta;
             let r = rsq.sqrt();
             t.rsq[i] = rsq;
-            if matched {
-                t.e[i] = file.e[i];
-                t.f[i] = file.f[i] / r;
-            } else {
-                t.e[i] = splint_e(r);
-                // spline: F here, F/r after the e spline's end slopes are taken
-                t.f[i] = if style == TableStyle::Linear { splint_f(r) / r } else { splint_f(r) };
-            }
+            (t.e[i], t.f[i]) = if matched { (file.e[i], file.f[i] / per(r)) } else { (splint_e(r), splint_f(r) / per(r)) };
         }
-        match style {
-            TableStyle::Lookup => {}
-            TableStyle::Linear => {
-                t.e_aux = (0..tlm1).map(|i| t.e[i + 1] - t.e[i]).collect();
-                t.f_aux = (0..tlm1).map(|i| t.f[i + 1] - t.f[i]).collect();
-            }
-            TableStyle::Spline => {
-                t.deltasq6 = delta * delta / 6.0;
-                // end slopes in g = r^2: dh/dg = -f/2r for h = e
-                let ep0 = -t.f[0] / (2.0 * innersq.sqrt());
-                let epn = -t.f[tlm1] / (2.0 * cut);
-                t.e_aux = vec![0.0; n];
-                spline(&t.rsq, &t.e, ep0, epn, &mut t.e_aux);
-                // h = f/r: FPRIME, else a secant over a tenth of a bin
-                let secant = 0.1;
-                let fp0 = match file.fprime {
-                    Some((fplo, _)) => (fplo / innersq.sqrt() - t.f[0] / innersq) / (2.0 * innersq.sqrt()),
-                    None => {
-                        let (rsq1, rsq2) = (innersq, innersq + secant * delta);
-                        (splint_f(rsq2.sqrt()) / rsq2.sqrt() - t.f[0] / rsq1.sqrt()) / (secant * delta)
-                    }
-                };
-                let fpn = match file.fprime {
-                    Some((_, fphi)) if cut == file.r[ninput - 1] => (fphi / cut - t.f[tlm1] / (cut * cut)) / (2.0 * cut),
-                    _ => {
-                        let rsq2 = cut * cut;
-                        let rsq1 = rsq2 - secant * delta;
-                        (t.f[tlm1] / rsq2.sqrt() - splint_f(rsq1.sqrt()) / rsq1.sqrt()) / (secant * delta)
-                    }
-                };
-                for i in 0..n {
-                    t.f[i] /= t.rsq[i].sqrt();
-                }
-                t.f_aux = vec![0.0; n];
-                spline(&t.rsq, &t.f, fp0, fpn, &mut t.f_aux);
-            }
+        if style == TableStyle::Linear {
+            t.e_aux = (0..tlm1).map(|i| t.e[i + 1] - t.e[i]).collect();
+            t.f_aux = (0..tlm1).map(|i| t.f[i + 1] - t.f[i]).collect();
         }
-        Ok(t)
+        t
     }
 
     /// F/r and the pair energy at `rsq` < cut^2 (LAMMPS's PairTable::compute).
@@ -300,6 +319,40 @@ impl PairTable {
             }
         })
     }
+}
+
+impl PairTable {
+    /// The end of the re-tabulated range in r^2 (the last point's).
+    pub fn rsq_max(&self) -> f64 {
+        self.innersq + (self.rsq.len() - 1) as f64 * self.delta
+    }
+
+    /// The energy of pair multi/lucy at rho^2 = `rsq` (pair_multi_lucy.cpp `compute`): as
+    /// [`Self::eval`] but, linear, the first bin's value without interpolation (LAMMPS
+    /// sets the fraction to 0 when the bin index is 0).
+    pub fn density_energy(&self, rsq: f64) -> Result<f64, Outside> {
+        let e = self.eval(rsq)?.1;
+        let first = self.style == TableStyle::Linear && ((rsq - self.innersq) * self.invdelta) as usize == 0;
+        Ok(if first { self.e[0] } else { e })
+    }
+}
+
+/// The spline second derivatives of the file's e (end slopes -f) and f (end slopes
+/// FPRIME, else secants) over r (LAMMPS's `spline_table`); zeros where `matched` (unused).
+fn file_splines(file: &FileTable, matched: bool) -> (Vec<f64>, Vec<f64>) {
+    let ninput = file.r.len();
+    let (mut e2file, mut f2file) = (vec![0.0; ninput], vec![0.0; ninput]);
+    if !matched {
+        spline(&file.r, &file.e, -file.f[0], -file.f[ninput - 1], &mut e2file);
+        let (fplo, fphi) = file.fprime.unwrap_or_else(|| {
+            (
+                (file.f[1] - file.f[0]) / (file.r[1] - file.r[0]),
+                (file.f[ninput - 1] - file.f[ninput - 2]) / (file.r[ninput - 1] - file.r[ninput - 2]),
+            )
+        });
+        spline(&file.r, &file.f, fplo, fphi, &mut f2file);
+    }
+    (e2file, f2file)
 }
 
 /// Second derivatives of the cubic spline through (x, y) with end slopes yp1, ypn

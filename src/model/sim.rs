@@ -107,9 +107,9 @@ impl Sim {
         self.transport.take().ok_or_else(|| "the box exists already".into())
     }
 
-    /// Whether thermo `pe` is a pair energy (LAMMPS's pairwise styles and edpd).
+    /// Whether thermo `pe` is a pair energy (LAMMPS's pairwise styles, tables and edpd).
     pub fn pe_is_pair(&self) -> bool {
-        matches!(self.pair, Some(PairStyle::Pairwise(_) | PairStyle::Edpd(_) | PairStyle::Table(_) | PairStyle::Overlay(_)))
+        matches!(self.pair, Some(PairStyle::Pairwise(_) | PairStyle::Edpd(_) | PairStyle::Table(_) | PairStyle::MultiLucy(_) | PairStyle::Overlay(_)))
     }
 
     /// The accumulated state of fixes, for a restart file: each reservoir's energy

@@ -38,7 +38,7 @@ pub fn build_physics(
             let settings = Settings { dt, skin, rebuild, motion: Motion::Fixed, dissipation: None, reservoirs: Vec::new() };
             return edpd(cmd, p, fixes, settings, kb);
         }
-        PairStyle::Table(t) => {
+        PairStyle::Table(t) | PairStyle::MultiLucy(t) => {
             let settings = Settings { dt, skin, rebuild, motion: Motion::Fixed, dissipation: None, reservoirs: Vec::new() };
             return tabulated(cmd, t, None, fixes, settings, kb, ntypes);
         }
@@ -278,8 +278,8 @@ fn edpd(cmd: &Command, p: &PairEdpd, fixes: &[Fix], settings: Settings, kb: f64)
     Ok(Box::new(Edpd { coeff, ntypes: p.ntypes, seed: p.seed, kb, lambda, sources, settings }))
 }
 
-/// `pair_style table` alone (integrated by fix nve), or overlaid on the pairwise style
-/// `p` (which sets the fixes it works with).
+/// `pair_style table` or `multi/lucy` alone (integrated by fix nve), or a table overlaid
+/// on the pairwise style `p` (which sets the fixes it works with).
 fn tabulated(cmd: &Command, t: &Tabulated, p: Option<&Pairwise>, fixes: &[Fix], settings: Settings, kb: f64, ntypes: usize) -> Result<Box<dyn Physics>, ScriptError> {
     let err = |m: &str| ScriptError::at(cmd, m);
     let tables = tables_for_run(t, p.is_some()).map_err(|e| err(&e))?;
@@ -290,11 +290,13 @@ fn tabulated(cmd: &Command, t: &Tabulated, p: Option<&Pairwise>, fixes: &[Fix], 
     for f in fixes {
         match f.style {
             FixStyle::Nve | FixStyle::Eos(_) => {}
+            _ if t.multi_lucy => return Err(err(&format!("fix {} does not work with pair multi/lucy (fix nve integrates it)", f.id))),
             _ => return Err(err(&format!("fix {} does not work with pair table alone (fix nve integrates it; overlay dpd/fdt for fix shardlow)", f.id))),
         }
     }
     if !fixes.iter().any(|f| f.style == FixStyle::Nve) {
         return Err(err("no integrator: add fix nve"));
     }
-    Ok(Box::new(ClassicDpd { force: PairForce::Off, tables: Some(tables), shardlow: None, integration: Integration::Nve, cv: None, energy: false, barostat: None, kb, seed: 1, settings }))
+    let (force, tables) = if t.multi_lucy { (PairForce::MultiLucy(tables), None) } else { (PairForce::Off, Some(tables)) };
+    Ok(Box::new(ClassicDpd { force, tables, shardlow: None, integration: Integration::Nve, cv: None, energy: false, barostat: None, kb, seed: 1, settings }))
 }

@@ -146,6 +146,49 @@ pub fn run_both(name: &str, input: &str, vars: &[(&str, &str)], extra: &[&str]) 
     ((dl, l), (dg, String::from_utf8_lossy(&out.stdout).into_owned()))
 }
 
+/// Runs `input` (with the `extra` files of scripts/lammps/) in both codes; compares the
+/// step-0 forces, every thermo row and the final positions (a dump `dump` of two frames:
+/// step 0 and the last), and returns the
+/// worst deviations (force, thermo, position). Tolerances: forces 1e-12 of the largest,
+/// every thermo value 1e-11 relative, positions 1e-10 of the box.
+pub fn compare_with_lammps(name: &str, input: &str, dump: &str, vars: &[(&str, &str)], extra: &[&str]) -> (f64, f64, f64) {
+    let ((dl, l), (dg, g)) = run_both(name, input, vars, extra);
+    let (tl, tg) = (parse_thermo(&l, "Step"), parse_thermo(&g, "Step"));
+    assert_eq!(tl.len(), tg.len(), "thermo rows");
+    let mut thermo: f64 = 0.0;
+    for (a, b) in tl.iter().zip(&tg) {
+        for (x, y) in a.iter().zip(b) {
+            thermo = thermo.max((x - y).abs() / x.abs().max(1e-300));
+        }
+    }
+    let read = |d: &Path| parse_dump(&std::fs::read_to_string(d.join(dump)).unwrap());
+    let (sl, sg) = (read(&dl), read(&dg));
+    assert_eq!((sl.len(), sg.len()), (2, 2), "two dump frames");
+    let col = |s: &DumpSnapshot, c: &str| s.column_index(c).unwrap();
+    let fmax = sl[0].atoms.iter().flat_map(|(_, v)| ["fx", "fy", "fz"].map(|c| v[col(&sl[0], c)].abs())).fold(0.0, f64::max);
+    let (mut force, mut position): (f64, f64) = (0.0, 0.0);
+    let box_len = sl[1].bounds[0][1] - sl[1].bounds[0][0];
+    for ((ia, va), (ib, vb)) in sl[0].atoms.iter().zip(&sg[0].atoms) {
+        assert_eq!(ia, ib);
+        for c in ["fx", "fy", "fz"] {
+            force = force.max((va[col(&sl[0], c)] - vb[col(&sg[0], c)]).abs() / fmax);
+        }
+    }
+    for ((ia, va), (ib, vb)) in sl[1].atoms.iter().zip(&sg[1].atoms) {
+        assert_eq!(ia, ib);
+        for c in ["x", "y", "z"] {
+            let mut d = va[col(&sl[1], c)] - vb[col(&sg[1], c)];
+            d -= box_len * (d / box_len).round();
+            position = position.max(d.abs() / box_len);
+        }
+    }
+    eprintln!("{name}: forces at step 0 {force:.2e} of the largest, thermo rows {thermo:.2e} relative, positions {position:.2e} of the box");
+    assert!(force < 1e-12, "{name}: step-0 forces differ by {force:e} of the largest");
+    assert!(thermo < 1e-11, "{name}: thermo rows differ by {thermo:e}");
+    assert!(position < 1e-10, "{name}: final positions differ by {position:e} of the box");
+    (force, thermo, position)
+}
+
 /// Stages `input` (as [`stage_inputs`]) and writes it as `name` with `before` in front
 /// of its `run` line, `after` behind it and its `write_dump` lines left out.
 pub fn stage_with(dir: &Path, input: &str, name: &str, before: &str, after: &str) {

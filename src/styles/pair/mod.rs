@@ -1,10 +1,12 @@
 //! Pair styles: `pair_style` and `pair_coeff` of GenDPDE ([`gendpde`]), of LAMMPS's
 //! pairwise DPD styles ([`pairwise`]), tabulated potentials ([`table`]), their
-//! overlays ([`hybrid`]) and eDPD ([`edpd`]).
+//! overlays ([`hybrid`]), eDPD ([`edpd`]) and DPD-REACT's many-body `multi/lucy`
+//! ([`multi_lucy`]).
 
 pub mod edpd;
 pub mod gendpde;
 pub mod hybrid;
+pub mod multi_lucy;
 pub mod pairwise;
 pub mod table;
 pub mod sdpd;
@@ -28,6 +30,8 @@ pub enum PairStyle {
     Edpd(PairEdpd),
     /// `pair_style table`.
     Table(Tabulated),
+    /// `pair_style multi/lucy` (its pressure-density tables).
+    MultiLucy(Tabulated),
     /// `pair_style hybrid/overlay` of table and a pairwise style.
     Overlay(Overlay),
     /// Thermal SDPD (Serrano-Espanol Sec VII).
@@ -43,7 +47,7 @@ impl PairStyle {
             Self::Gendpde(p) => p.coeff.as_ref().map_or(p.cutoff, |c| p.cutoff.max(c.rc_friction).max(c.rc_heat)),
             Self::Pairwise(p) => pairwise_cutoff(p),
             Self::Edpd(p) => p.cutoff(),
-            Self::Table(t) => t.cutoff(),
+            Self::Table(t) | Self::MultiLucy(t) => t.cutoff(),
             Self::Overlay(o) => o.table.as_ref().map_or(0.0, Tabulated::cutoff).max(o.pairwise.as_ref().map_or(0.0, |(_, p)| pairwise_cutoff(p))),
             Self::Sdpd(p) => p.cutoff,
         }
@@ -89,6 +93,7 @@ pub fn parse_pair_style(cmd: &Command) -> Result<PairStyle, ScriptError> {
         "gendpde" => self::gendpde::parse_style(&mut a).map(PairStyle::Gendpde),
         "edpd" => self::edpd::parse_style(&mut a).map(PairStyle::Edpd),
         "table" => self::table::parse_style(&mut a).map(PairStyle::Table),
+        "multi/lucy" => self::multi_lucy::parse_style(&mut a).map(PairStyle::MultiLucy),
         name @ ("hybrid" | "hybrid/overlay") if !self::hybrid::is_mdpd(&a) => self::hybrid::parse_style(name, &mut a).map(PairStyle::Overlay),
         "sdpd/generic" => self::sdpd::parse_style(&mut a).map(PairStyle::Sdpd),
         other => self::pairwise::parse_style(other, &mut a).map(PairStyle::Pairwise),
@@ -104,7 +109,7 @@ pub fn parse_pair_coeff(cmd: &Command, pair: &mut PairStyle, ntypes: usize) -> R
         }
         PairStyle::Pairwise(p) => self::pairwise::parse_coeff(p, cmd, ntypes),
         PairStyle::Edpd(p) => self::edpd::parse_coeff(p, cmd, ntypes),
-        PairStyle::Table(t) => {
+        PairStyle::Table(t) | PairStyle::MultiLucy(t) => {
             let mut a = Args::new(cmd);
             let types = (a.types(ntypes)?, a.types(ntypes)?);
             self::table::parse_coeff(t, &mut a, types, ntypes)

@@ -1,7 +1,8 @@
 //! LAMMPS's `pair_style table STYLE N` and `pair_coeff I J FILE KEYWORD [CUTOFF]`
 //! (src/pair_table.cpp): each pair_coeff reads one section of a table file and
 //! re-tabulates it on N points in r^2 at once, so a bad file or cutoff is refused at
-//! its pair_coeff, as in LAMMPS.
+//! its pair_coeff, as in LAMMPS. `pair_style multi/lucy` ([`super::multi_lucy`]) reads
+//! its pressure-density tables through the same pair_coeff.
 
 use crate::base::args::Args;
 use gendpde_integrators::PairTables;
@@ -11,7 +12,7 @@ use gendpde_potentials::pair_table::{FileTable, PairTable, TableStyle};
 type Types = std::ops::RangeInclusive<usize>;
 
 /// The most points a table may have (5 arrays of 8 bytes per point per table).
-const MAX_POINTS: u64 = 1 << 24;
+pub(super) const MAX_POINTS: u64 = 1 << 24;
 
 /// `pair_style table` and the tables its pair_coeff lines read.
 #[derive(Clone, Debug, PartialEq)]
@@ -21,6 +22,8 @@ pub struct Tabulated {
     pub n: usize,
     /// The tables of the type pairs (allocated at the first pair_coeff, like LAMMPS).
     pub tables: Option<PairTables>,
+    /// `pair_style multi/lucy`: the tables give pressure against density.
+    pub multi_lucy: bool,
 }
 
 impl Tabulated {
@@ -50,7 +53,7 @@ pub fn parse_style(a: &mut Args) -> Result<Tabulated, ScriptError> {
             _ => Err(a.err(format!("unexpected '{w}' after N"))),
         };
     }
-    Ok(Tabulated { style, n: n as usize, tables: None })
+    Ok(Tabulated { style, n: n as usize, tables: None, multi_lucy: false })
 }
 
 /// `pair_coeff I J FILE KEYWORD [CUTOFF]` (`a` positioned after I J): reads the section
@@ -61,12 +64,14 @@ pub fn parse_coeff(t: &mut Tabulated, a: &mut Args, types: (Types, Types), ntype
     let cut = if a.remaining() > 0 { Some(a.positive("the cutoff")?) } else { None };
     a.done()?;
     let text = std::fs::read_to_string(file).map_err(|e| a.err(format!("cannot open table file {file}: {e}")))?;
-    let section = FileTable::parse(&text, keyword).map_err(|e| match e.line {
+    let section = FileTable::parse_section(&text, keyword, if t.multi_lucy { "FP" } else { "FPRIME" }).map_err(|e| match e.line {
         0 => a.err(format!("{file}: {}", e.why)),
         line => a.err(format!("{file}:{line}: {}", e.why)),
     })?;
+    // LAMMPS's default cutoff: rhi of R/RSQ, else the last r (multi/lucy: a density)
     let cut = cut.unwrap_or(section.bounds().1);
-    let table = PairTable::new(t.style, t.n, &section, cut).map_err(|e| a.err(format!("{file} {keyword}: {e}")))?;
+    let table = if t.multi_lucy { PairTable::density(t.style, t.n, &section, cut) } else { PairTable::new(t.style, t.n, &section, cut) };
+    let table = table.map_err(|e| a.err(format!("{file} {keyword}: {e}")))?;
     let tables = t.tables.get_or_insert_with(|| PairTables { tables: Vec::new(), index: vec![None; ntypes * ntypes], ntypes });
     // numeric I > J are swapped (LAMMPS's Input::pair_coeff); else the pairs I <= J count
     let (ti, tj) = match types {
