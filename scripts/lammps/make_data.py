@@ -22,7 +22,11 @@ Files (periodic orthogonal boxes starting at 0, one atom type unless stated):
   data.edpd-small   atom_style edpd, lj,    N = 2048, L = 8      (rho = 4), 2 types (alternating),
                     T ~ U(0.7, 1.3), cv ~ U(5, 15), uniform random positions, v ~ N(0, 1)
 
-Atoms lines: edpd `id type edpd_temp edpd_cv x y z`; dpd  `id type dpdTheta x y z`;  mdpd `id type rho x y z`;  atomic `id type x y z` (rho is recomputed by
+  data.sdpd-taitwater  atom_style sph, micro, N = 512, L = 0.8 um (8^3 jittered lattice, +-0.2
+                    spacings), 2 types (alternating, masses 1e-3 and 1.2e-3 pg), rho ~ U(0.98, 1.02)
+                    rho0 of the type (rho0 = 1.0, 1.2), v ~ N(0, 0.05 um/us)
+
+Atoms lines: sph `id type rho esph cv x y z`; edpd `id type edpd_temp edpd_cv x y z`; dpd  `id type dpdTheta x y z`;  mdpd `id type rho x y z`;  atomic `id type x y z` (rho is recomputed by
 pair mdpd/rhosum before the first force, the column is written as 0).
 Positions: data.dpde-3000 is uniform random in the box (soft potential: overlaps are harmless,
 the statistical scene equilibrates first); the three 13^3 files are simple-cubic lattices with
@@ -206,6 +210,26 @@ def main():
           gaussian_velocities(rng, len(pos), 1.0), None, ".10f", types)
     with open(os.path.join(out, "table-lj.pot"), "w") as fh:
         fh.write(table_sections())
+
+    # j. isothermal Tait-water SDPD (micro): 8^3 = 512 particles of two types
+    rng = random.Random(2003)
+    n, length = 8 ** 3, 0.8
+    pos = jittered_lattice(rng, 8, length, 0.2)
+    vel = gaussian_velocities(rng, n, 0.05)
+    lines = ["LAMMPS data file: SDPD Tait water micro N=512 two types (scripts/lammps/make_data.py)", "",
+             f"{n} atoms", "2 atom types", ""]
+    for ax in "xyz":
+        lines.append(f"0.0 {length!r} {ax}lo {ax}hi")
+    lines += ["", "Masses", "", "1 0.001", "2 0.0012", "", "Atoms # sph", ""]
+    for i, (x, y, z) in enumerate(pos, start=1):
+        t = 1 + i % 2
+        rho = (1.0 if t == 1 else 1.2) * rng.uniform(0.98, 1.02)
+        lines.append(f"{i} {t} {rho:.10f} 0.0 1.0 {x:.10f} {y:.10f} {z:.10f}")
+    lines += ["", "Velocities", ""]
+    for i, (a, b, c) in enumerate(vel, start=1):
+        lines.append(f"{i} {a:.10f} {b:.10f} {c:.10f}")
+    with open(os.path.join(out, "data.sdpd-taitwater"), "w") as fh:
+        fh.write("\n".join(lines) + "\n")
 
     # i. coarse-grained water (real): 13^3 = 2197 particles, L = 40.31 A, 300 K
     rng = random.Random(2180)

@@ -40,6 +40,9 @@ pub enum FixStyle {
     DpdEnergy,
     /// `fix mvv/edpd [LAMBDA]` (pair edpd): modified velocity Verlet of x, v and T.
     MvvEdpd { lambda: f64 },
+    /// `fix sph` (atom_style sph, pair sdpd/taitwater/isothermal): velocity Verlet of x
+    /// and v with the velocity estimate v + dt f/m, and of the density.
+    Sph,
     /// `fix ID GROUP edpd/source sphere|cuboid|region ... VALUE` (pair edpd).
     EdpdSource { shape: Source, value: f64, mask: u32 },
 }
@@ -102,6 +105,7 @@ pub fn parse_fix_in(cmd: &Command, kb: f64, groups: &[String], regions: &HashMap
         }
         "vv/euler" => FixStyle::VvEuler { heat: heat_keyword(&mut a)?.unwrap_or(HeatModel::Original) },
         "nve/sdpd" => FixStyle::NveSdpd,
+        "sph" => FixStyle::Sph,
         "nve" => FixStyle::Nve,
         "dpd/energy" => FixStyle::DpdEnergy,
         "mvv/dpd" => FixStyle::Mvv { lambda: if a.remaining() > 0 { a.positive("lambda")? } else { 0.5 } },

@@ -1,6 +1,6 @@
 //! Pair styles: `pair_style` and `pair_coeff` of GenDPDE ([`gendpde`]), of LAMMPS's
 //! pairwise DPD styles ([`pairwise`]), tabulated potentials ([`table`]), their
-//! overlays ([`hybrid`]) and eDPD ([`edpd`]).
+//! overlays ([`hybrid`]), eDPD ([`edpd`]) and SDPD ([`sdpd`], [`sdpd_taitwater`]).
 
 pub mod edpd;
 pub mod gendpde;
@@ -8,6 +8,7 @@ pub mod hybrid;
 pub mod pairwise;
 pub mod table;
 pub mod sdpd;
+pub mod sdpd_taitwater;
 
 use self::edpd::PairEdpd;
 use self::gendpde::PairGendpde;
@@ -15,6 +16,7 @@ use self::hybrid::Overlay;
 use self::pairwise::Pairwise;
 use self::table::Tabulated;
 use self::sdpd::PairSdpd;
+use self::sdpd_taitwater::PairTaitwater;
 use crate::base::args::Args;
 use gendpde_io::{Command, ScriptError};
 
@@ -32,6 +34,8 @@ pub enum PairStyle {
     Overlay(Overlay),
     /// Thermal SDPD (Serrano-Espanol Sec VII).
     Sdpd(PairSdpd),
+    /// DPD-SMOOTH's isothermal SDPD of Tait water.
+    Taitwater(PairTaitwater),
 }
 
 impl PairStyle {
@@ -46,6 +50,7 @@ impl PairStyle {
             Self::Table(t) => t.cutoff(),
             Self::Overlay(o) => o.table.as_ref().map_or(0.0, Tabulated::cutoff).max(o.pairwise.as_ref().map_or(0.0, |(_, p)| pairwise_cutoff(p))),
             Self::Sdpd(p) => p.cutoff,
+            Self::Taitwater(p) => p.cutoff(),
         }
     }
 }
@@ -64,6 +69,7 @@ pub fn parse_pair_style(cmd: &Command) -> Result<PairStyle, ScriptError> {
         "table" => self::table::parse_style(&mut a).map(PairStyle::Table),
         name @ ("hybrid" | "hybrid/overlay") if !self::hybrid::is_mdpd(&a) => self::hybrid::parse_style(name, &mut a).map(PairStyle::Overlay),
         "sdpd/generic" => self::sdpd::parse_style(&mut a).map(PairStyle::Sdpd),
+        "sdpd/taitwater/isothermal" => self::sdpd_taitwater::parse_style(&mut a).map(PairStyle::Taitwater),
         other => self::pairwise::parse_style(other, &mut a).map(PairStyle::Pairwise),
     }
 }
@@ -87,5 +93,6 @@ pub fn parse_pair_coeff(cmd: &Command, pair: &mut PairStyle, ntypes: usize) -> R
             p.coeff = Some(self::sdpd::parse_coeff(cmd, ntypes)?);
             Ok(())
         }
+        PairStyle::Taitwater(p) => self::sdpd_taitwater::parse_coeff(p, cmd, ntypes),
     }
 }
