@@ -13,7 +13,7 @@
 //! - drho_i/dt = sum_j m_j F (R_ij . v_ij).
 //!
 //! The velocities the forces read are fix sph's estimates v + dt f/m. The virial is that
-//! of the pressure force only, as LAMMPS tallies it (the pair energy is zero).
+//! of the whole pair force, as LAMMPS's f.r sum gives it (the pair energy is zero).
 //!
 //! Where gendpde differs: the noise is Philox keyed by the pair's tags and the step, the
 //! same on any rank count (LAMMPS: a Marsaglia stream per rank, seeded by SEED plus the
@@ -52,7 +52,7 @@ impl SdpdTaitwater {
         self.kernel.iter().map(Lucy::cutoff).fold(0.0, f64::max) + self.settings.skin
     }
 
-    /// Forces, pressure virials and drho/dt of the owned particles at the current
+    /// Forces, virials and drho/dt of the owned particles at the current
     /// positions, densities and (estimated) velocities; the noise of step `step`.
     fn forces(&self, sys: &mut System, step: u64) {
         let normals = Normals::get();
@@ -98,7 +98,7 @@ impl SdpdTaitwater {
             ];
             let along = dv / r2;
             let df: [f64; 3] = std::array::from_fn(|k| d[k] * fpair + (vel[k] + d[k] * along) * fvisc + random[k]);
-            let virial = [0.5 * fpair * d[0] * d[0], 0.5 * fpair * d[1] * d[1], 0.5 * fpair * d[2] * d[2]];
+            let virial = [0.5 * df[0] * d[0], 0.5 * df[1] * d[1], 0.5 * df[2] * d[2]];
             for (k, sign, m_other) in [(i, 1.0, mj), (j, -1.0, mi)] {
                 if k < n {
                     for c in 0..3 {
