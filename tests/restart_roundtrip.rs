@@ -47,6 +47,7 @@ const CASES: &[Case] = &[
     Case { script: "scripts/lammps/in.dpd-basic", vars: &[], every: 5, k: 10 },
     Case { script: "scripts/lammps/in.table-lj", vars: &[("tstyle", "spline")], every: 5, k: 10 },
     Case { script: "scripts/lammps/in.table-water", vars: &[("gamma", "10.0")], every: 5, k: 10 },
+    Case { script: "scripts/lammps/in.sdpd-taitwater", vars: &[("T", "300.0"), ("every", "5")], every: 5, k: 10 },
 ];
 
 /// Commands of the original script a continuation repeats: the output settings (the
