@@ -113,9 +113,7 @@ impl SdpdTaitwater {
 
     /// The owned particle of lowest tag whose density is not finite and positive.
     fn check_densities(sys: &System) -> Result<(), StepError> {
-        let s = &sys.store;
-        let bad = (0..s.nlocal).filter(|&i| !(s.rho[i] > 0.0 && s.rho[i].is_finite())).min_by_key(|&i| s.tag[i]);
-        bad.map_or(Ok(()), |i| Err(StepError::state(s, i, sys.step, &format!("SPH density {} is not positive (set sph/rho)", s.rho[i]))))
+        sys.check_positive(&sys.store.rho, |rho| format!("SPH density {rho} is not positive (set sph/rho)"))
     }
 }
 
