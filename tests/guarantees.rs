@@ -215,6 +215,19 @@ fn every_style_is_bit_identical_on_1_2_3_4_ranks_and_an_uneven_grid() {
             ) + "thermo_style custom step temp press pe ke c_Tm\n",
             30,
         ),
+        (
+            // isothermal Tait-water SDPD (DPD-SMOOTH), two types, per-pair kernels; started
+            // hot (3e5 K) with a thin skin: 8 list builds in the 30 steps
+            "sdpd-taitwater",
+            "units micro\natom_style sph\nlattice sc 0.1\nregion box block 0 10 0 10 0 10\ncreate_box 2 box\n\
+             create_atoms 1 box\nset group all type/fraction 2 0.5 4242\nmass 1 0.001\nmass 2 0.0012\n\
+             set group all sph/rho 1.0\nvelocity all create 3.0e5 4928 loop geom\n\
+             pair_style sdpd/taitwater/isothermal 300.0 1.0 4928\npair_coeff 1 1 1.0 10.0 0.25\n\
+             pair_coeff 1 2 1.0 10.0 0.22\npair_coeff 2 2 1.2 8.0 0.2\nfix 1 all sph\nneighbor 0.005 bin\n\
+             neigh_modify every 1 delay 0 check yes\ntimestep 5e-4\nthermo_style custom step temp press pe ke\n"
+                .to_string(),
+            30,
+        ),
     ];
     for (name, scene, steps) in &scenes {
         let start = std::time::Instant::now();

@@ -55,6 +55,7 @@ const CASES: &[Case] = &[
     Case { script: "scripts/lammps/in.dpd-tstat", vars: &[("T", "300.0")], every: 5, k: 10 },
     Case { script: "scripts/lammps/in.dpdext-tstat", vars: &[("T", "300.0")], every: 5, k: 10 },
     Case { script: "scripts/lammps/in.multi-lucy-parity", vars: &[("tstyle", "lookup")], every: 5, k: 10 },
+    Case { script: "scripts/lammps/in.sdpd-taitwater", vars: &[("T", "300.0"), ("every", "5")], every: 5, k: 10 },
 ];
 
 /// Commands of the original script a continuation repeats: the output settings (the

@@ -29,6 +29,9 @@ impl Fields {
     pub const SDPD_STRESS: Self = Self(4096);
     /// The heat-flux increment of one SDPD step (pair sdpd/generic), owners to ghosts.
     pub const SDPD_FLUX: Self = Self(8192);
+    /// The SPH density rate drho/dt of atom_style sph (pair sdpd/taitwater/isothermal;
+    /// not exchanged). The density itself is [`Fields::RHO`].
+    pub const SPH: Self = Self(16384);
 
     pub const fn union(self, other: Self) -> Self {
         Self(self.0 | other.0)

@@ -277,8 +277,12 @@ particle_fields! {
     pn2: f64, "pn2", gate Fields::PRESSURE, comm Fields::PRESSURE, stages GHOST;
     /// 1/tau (eq 19); only for the original heat-flow model.
     inv_tau: f64, "inv_tau", gate Fields::INV_TAU, comm Fields::INV_TAU, stages GHOST;
-    /// MDPD density rho_i = sum_j m_j W(r_ij) (LAMMPS mdpd/rhosum).
-    rho: f64, "rho", gate Fields::RHO, comm Fields::RHO, stages GHOST;
+    /// MDPD density rho_i = sum_j m_j W(r_ij) (LAMMPS mdpd/rhosum), or the SPH density
+    /// of atom_style sph, integrated from drho (a dynamic variable: it migrates and
+    /// restarts; mdpd recomputes it every step).
+    rho: f64, "rho", gate Fields::RHO, comm Fields::RHO, stages MIGRATE | GHOST | RESTART;
+    /// drho/dt of owned particles from the last force pass (atom_style sph's drho).
+    drho: f64, "drho", gate Fields::SPH, comm NONE, stages RESTART | RESUME;
     /// eDPD temperature T (LAMMPS atom_style edpd's edpd_temp).
     edpd_temp: f64, "edpd_temp", gate Fields::EDPD, comm Fields::EDPD, stages MIGRATE | GHOST | RESTART;
     /// eDPD heat capacity C_V (edpd_cv).

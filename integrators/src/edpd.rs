@@ -183,9 +183,7 @@ impl Edpd {
 
     /// The owned particle of lowest tag whose temperature is not finite and positive.
     fn check_temperatures(sys: &System) -> Result<(), StepError> {
-        let s = &sys.store;
-        let bad = (0..s.nlocal).filter(|&i| !(s.edpd_temp[i] > 0.0 && s.edpd_temp[i].is_finite())).min_by_key(|&i| s.tag[i]);
-        bad.map_or(Ok(()), |i| Err(StepError::state(s, i, sys.step, &format!("eDPD temperature {} is not positive", s.edpd_temp[i]))))
+        sys.check_positive(&sys.store.edpd_temp, |t| format!("eDPD temperature {t} is not positive"))
     }
 }
 

@@ -164,6 +164,14 @@ impl System {
         Ok(())
     }
 
+    /// The owned particle of lowest tag whose value in `values` is not finite and
+    /// positive, as the error `what(value)` of this rank.
+    pub fn check_positive(&self, values: &[f64], what: impl Fn(f64) -> String) -> Result<(), StepError> {
+        let s = &self.store;
+        let bad = (0..s.nlocal).filter(|&i| !(values[i] > 0.0 && values[i].is_finite())).min_by_key(|&i| s.tag[i]);
+        bad.map_or(Ok(()), |i| Err(StepError::state(s, i, self.step, &what(values[i]))))
+    }
+
     /// Agrees over all ranks whether the step failed: if any did, every rank returns the
     /// same error, that of the failing particle of lowest tag. The same reduction agrees
     /// on `interrupted` (the largest signal number any rank received).

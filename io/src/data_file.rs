@@ -41,6 +41,9 @@ pub enum AtomStyle {
     Mdpd,
     /// `id type edpd_temp edpd_cv x y z [ix iy iz]` (LAMMPS atom_style edpd).
     Edpd,
+    /// `id type rho esph cv x y z [ix iy iz]` (LAMMPS atom_style sph; esph and cv are
+    /// read and checked but not kept: no gendpde style uses them).
+    Sph,
 }
 
 impl AtomStyle {
@@ -51,6 +54,7 @@ impl AtomStyle {
             AtomStyle::Dpd => "dpd",
             AtomStyle::Mdpd => "mdpd",
             AtomStyle::Edpd => "edpd",
+            AtomStyle::Sph => "sph",
         }
     }
 
@@ -61,6 +65,7 @@ impl AtomStyle {
             "dpd" => Some(AtomStyle::Dpd),
             "mdpd" => Some(AtomStyle::Mdpd),
             "edpd" => Some(AtomStyle::Edpd),
+            "sph" => Some(AtomStyle::Sph),
             _ => None,
         }
     }
@@ -72,6 +77,7 @@ impl AtomStyle {
             AtomStyle::Dpd => &["id", "type", "dpdTheta", "x", "y", "z"],
             AtomStyle::Mdpd => &["id", "type", "rho", "x", "y", "z"],
             AtomStyle::Edpd => &["id", "type", "edpd_temp", "edpd_cv", "x", "y", "z"],
+            AtomStyle::Sph => &["id", "type", "rho", "esph", "cv", "x", "y", "z"],
         }
     }
 }
@@ -87,6 +93,8 @@ pub struct DataAtom {
     pub theta: Option<f64>,
     /// eDPD temperature and heat capacity (`Some` exactly for [`AtomStyle::Edpd`]).
     pub edpd: Option<[f64; 2]>,
+    /// SPH density (`Some` exactly for [`AtomStyle::Sph`]).
+    pub sph_rho: Option<f64>,
     /// Position.
     pub r: [f64; 3],
     /// Image flags (zero when the line has none).
@@ -274,6 +282,12 @@ fn render(data: &DataFile, style: AtomStyle) -> Result<String, String> {
                 return Err(format!("atom {} has no edpd_temp and edpd_cv", a.tag));
             };
             let _ = write!(out, " {:?} {:?}", finite("edpd_temp", t)?, finite("edpd_cv", cv)?);
+        }
+        if style == AtomStyle::Sph {
+            let Some(rho) = a.sph_rho else {
+                return Err(format!("atom {} has no rho", a.tag));
+            };
+            let _ = write!(out, " {:?} 0.0 1.0", finite("rho", rho)?);
         }
         for x in a.r {
             let _ = write!(out, " {:?}", finite("position", x)?);
@@ -781,6 +795,7 @@ impl<'a> Parser<'a> {
             let kind = atom_type(words[1], ntypes).map_err(err)?;
             let mut col = 2;
             let mut edpd = None;
+            let mut sph_rho = None;
             let theta = match self.style {
                 AtomStyle::Atomic => None,
                 AtomStyle::Edpd => {
@@ -801,6 +816,13 @@ impl<'a> Parser<'a> {
                 AtomStyle::Mdpd => {
                     number(words[col]).map_err(|e| err(format!("rho: {e}")))?;
                     col += 1;
+                    None
+                }
+                AtomStyle::Sph => {
+                    sph_rho = Some(number(words[col]).map_err(|e| err(format!("rho: {e}")))?);
+                    number(words[col + 1]).map_err(|e| err(format!("esph: {e}")))?;
+                    number(words[col + 2]).map_err(|e| err(format!("cv: {e}")))?;
+                    col += 3;
                     None
                 }
             };
@@ -831,6 +853,7 @@ impl<'a> Parser<'a> {
                 kind,
                 theta,
                 edpd,
+                sph_rho,
                 r,
                 image,
             });

@@ -12,6 +12,6 @@ pub mod weight;
 
 pub use eos::{
     AffineAt, AtDensity, AtN, Eos, EosError, EosState, FixedDensity, ErrorAt, LennardJones, LinearTheta, TableError, TableErrors, TableGrid,
-    Tabulated, ISOLATED_DENSITY,
+    Tabulated, Tait, ISOLATED_DENSITY,
 };
 pub use weight::{CubicSpline, Linear, Lucy, Quadratic, Weight, WeightKind};

@@ -22,7 +22,11 @@ Files (periodic orthogonal boxes starting at 0, one atom type unless stated):
   data.edpd-small   atom_style edpd, lj,    N = 2048, L = 8      (rho = 4), 2 types (alternating),
                     T ~ U(0.7, 1.3), cv ~ U(5, 15), uniform random positions, v ~ N(0, 1)
 
-Atoms lines: edpd `id type edpd_temp edpd_cv x y z`; dpd  `id type dpdTheta x y z`;  mdpd `id type rho x y z`;  atomic `id type x y z` (rho is recomputed by
+  data.sdpd-taitwater  atom_style sph, micro, N = 512, L = 0.8 um (8^3 jittered lattice, +-0.2
+                    spacings), 2 types (alternating, masses 1e-3 and 1.2e-3 pg), rho ~ U(0.98, 1.02)
+                    rho0 of the type (rho0 = 1.0, 1.2), v ~ N(0, 0.05 um/us)
+
+Atoms lines: sph `id type rho esph cv x y z`; edpd `id type edpd_temp edpd_cv x y z`; dpd  `id type dpdTheta x y z`;  mdpd `id type rho x y z`;  atomic `id type x y z` (rho is recomputed by
 pair mdpd/rhosum before the first force, the column is written as 0).
 Positions: data.dpde-3000 is uniform random in the box (soft potential: overlaps are harmless,
 the statistical scene equilibrates first); the three 13^3 files are simple-cubic lattices with
@@ -130,6 +134,20 @@ def table_sections():
     return "\n".join(out) + "\n"
 
 
+def write_typed(path, title, style, length, masses, atoms, vel):
+    """A data file with a Masses section (one mass string per type) and ready Atoms lines."""
+    lines = [f"LAMMPS data file: {title} (scripts/lammps/make_data.py)", "",
+             f"{len(atoms)} atoms", f"{len(masses)} atom types", ""]
+    for ax in "xyz":
+        lines.append(f"0.0 {length!r} {ax}lo {ax}hi")
+    lines += ["", "Masses", ""] + [f"{t} {m}" for t, m in enumerate(masses, start=1)]
+    lines += ["", f"Atoms # {style}", ""] + atoms + ["", "Velocities", ""]
+    for i, (a, b, c) in enumerate(vel, start=1):
+        lines.append(f"{i} {a:.10f} {b:.10f} {c:.10f}")
+    with open(path, "w") as fh:
+        fh.write("\n".join(lines) + "\n")
+
+
 def main():
     out = sys.argv[1] if len(sys.argv) > 1 else os.path.dirname(os.path.abspath(__file__))
     os.makedirs(out, exist_ok=True)
@@ -175,19 +193,12 @@ def main():
     n, length = 2048, 8.0
     pos = uniform_positions(rng, n, length)
     vel = gaussian_velocities(rng, n, 1.0)
-    lines = ["LAMMPS data file: eDPD lj rho=4 N=2048 two types (scripts/lammps/make_data.py)", "",
-             f"{n} atoms", "2 atom types", ""]
-    for ax in "xyz":
-        lines.append(f"0.0 {length!r} {ax}lo {ax}hi")
-    lines += ["", "Masses", "", "1 1.0", "2 1.0", "", "Atoms # edpd", ""]
+    atoms = []
     for i, (x, y, z) in enumerate(pos, start=1):
         t, cv = rng.uniform(0.7, 1.3), rng.uniform(5.0, 15.0)
-        lines.append(f"{i} {1 + i % 2} {t:.10f} {cv:.10f} {x:.10f} {y:.10f} {z:.10f}")
-    lines += ["", "Velocities", ""]
-    for i, (a, b, c) in enumerate(vel, start=1):
-        lines.append(f"{i} {a:.10f} {b:.10f} {c:.10f}")
-    with open(os.path.join(out, "data.edpd-small"), "w") as fh:
-        fh.write("\n".join(lines) + "\n")
+        atoms.append(f"{i} {1 + i % 2} {t:.10f} {cv:.10f} {x:.10f} {y:.10f} {z:.10f}")
+    write_typed(os.path.join(out, "data.edpd-small"), "eDPD lj rho=4 N=2048 two types", "edpd", length,
+                ["1.0", "1.0"], atoms, vel)
     # g. two-type mixtures on small boxes (per-pair coefficients): 9^3 = 729 particles in a
     # 6.0 cube (2 cells of cutoff + skin per dimension), and 2197 MDPD particles at rho = 6
     rng = random.Random(1212)
@@ -206,6 +217,19 @@ def main():
           gaussian_velocities(rng, len(pos), 1.0), None, ".10f", types)
     with open(os.path.join(out, "table-lj.pot"), "w") as fh:
         fh.write(table_sections())
+
+    # j. isothermal Tait-water SDPD (micro): 8^3 = 512 particles of two types
+    rng = random.Random(2003)
+    n, length = 8 ** 3, 0.8
+    pos = jittered_lattice(rng, 8, length, 0.2)
+    vel = gaussian_velocities(rng, n, 0.05)
+    atoms = []
+    for i, (x, y, z) in enumerate(pos, start=1):
+        t = 1 + i % 2
+        rho = (1.0 if t == 1 else 1.2) * rng.uniform(0.98, 1.02)
+        atoms.append(f"{i} {t} {rho:.10f} 0.0 1.0 {x:.10f} {y:.10f} {z:.10f}")
+    write_typed(os.path.join(out, "data.sdpd-taitwater"), "SDPD Tait water micro N=512 two types", "sph", length,
+                ["0.001", "0.0012"], atoms, vel)
 
     # i. coarse-grained water (real): 13^3 = 2197 particles, L = 40.31 A, 300 K
     rng = random.Random(2180)

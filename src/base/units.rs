@@ -1,4 +1,4 @@
-//! `units lj`, `units real` and `units metal`, with LAMMPS's constants.
+//! `units lj`, `units real`, `units metal` and `units micro`, with LAMMPS's constants.
 //!
 //! Internally masses are kept in energy * time^2 / length^2 (m * mvv2e), so that
 //! momenta p = m v give K = p^2 / 2m in energy units and dp/dt = f directly: every
@@ -62,11 +62,26 @@ impl Units {
         default_norm: false,
     };
 
+    /// picogram, micrometer, microsecond, picogram-micrometer^2/microsecond^2, K,
+    /// picogram/(micrometer-microsecond^2) (LAMMPS's update.cpp and force.cpp values).
+    pub const MICRO: Self = Self {
+        name: "micro",
+        kb: 1.3806504e-8,
+        mvv2e: 1.0,
+        nktv2p: 1.0,
+        mv2d: 1.0,
+        femtosecond: 1.0e-9,
+        default_dt: 2.0,
+        default_skin: 0.1,
+        default_norm: false,
+    };
+
     pub fn parse(name: &str) -> Option<Self> {
         match name {
             "lj" => Some(Self::LJ),
             "real" => Some(Self::REAL),
             "metal" => Some(Self::METAL),
+            "micro" => Some(Self::MICRO),
             _ => None,
         }
     }

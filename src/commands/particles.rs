@@ -11,7 +11,7 @@ use crate::output::restart;
 use crate::styles::pair::PairStyle;
 use gendpde_engine::{Comm, Domain, Fields, ProcGrid};
 use gendpde_integrators::System;
-use gendpde_io::{AtomStyle, Command, DataAtom, DataFile, Location, PairCoeffs, ScriptError};
+use gendpde_io::{Command, DataAtom, DataFile, Location, PairCoeffs, ScriptError};
 use std::path::Path;
 
 /// `read_data FILE`: creates the box, the types' masses and the particles of a data
@@ -27,9 +27,7 @@ pub fn read_data(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     let domain = Domain::new(data.lo, data.hi);
     let procs = ProcGrid::choose(transport.size(), domain.len(), sim.procs).map_err(|e| a.err(e))?;
     let mut sys = System::new(domain, Comm::new(transport, procs));
-    if sim.atom_style == AtomStyle::Edpd {
-        sys.store.enable(Fields::EDPD);
-    }
+    sys.store.enable(sim.atom_style_fields());
     let max_tag = data.atoms.iter().map(|at| at.tag).max().unwrap_or(0);
     if max_tag > u32::MAX as u64 {
         return Err(a.err(format!("particle ID {max_tag} in '{file}' does not fit in 32 bits")));
@@ -53,6 +51,9 @@ pub fn read_data(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
         }
         if let Some([t, cv]) = at.edpd {
             (sys.store.edpd_temp[i], sys.store.edpd_cv[i], sys.store.vest_temp[i]) = (t, cv, t);
+        }
+        if let Some(rho) = at.sph_rho {
+            sys.store.rho[i] = rho;
         }
     }
     sim.ntypes = data.ntypes;
@@ -116,24 +117,27 @@ pub fn write_data(sim: &Sim, a: &mut Args) -> Result<(), ScriptError> {
     }
     let s = &sys.store;
     let edpd = s.has(Fields::EDPD);
-    let mut local = Vec::with_capacity(s.nlocal * 14);
+    let sph = s.has(Fields::SPH);
+    let mut local = Vec::with_capacity(s.nlocal * 15);
     for i in 0..s.nlocal {
         let v = s.p[i].map(|c| c / s.mass[i]);
         local.extend_from_slice(&[s.tag[i] as f64, s.kind[i] as f64, s.theta[i], s.r[i][0], s.r[i][1], s.r[i][2]]);
         local.extend(s.image[i].iter().map(|&x| x as f64));
         local.extend_from_slice(&v);
         local.extend_from_slice(&if edpd { [s.edpd_temp[i], s.edpd_cv[i]] } else { [0.0; 2] });
+        local.push(if sph { s.rho[i] } else { 0.0 });
     }
     let mut atoms = Vec::new();
     let mut velocities = Vec::new();
     sys.comm.transport().gather_to_root(&local, &mut |buf| {
-        for row in buf.chunks_exact(14) {
+        for row in buf.chunks_exact(15) {
             let tag = row[0] as u64;
             atoms.push(DataAtom {
                 tag,
                 kind: row[1] as u32,
                 theta: Some(row[2]),
                 edpd: edpd.then_some([row[12], row[13]]),
+                sph_rho: sph.then_some(row[14]),
                 r: [row[3], row[4], row[5]],
                 image: [row[6] as i32, row[7] as i32, row[8] as i32],
             });

@@ -23,7 +23,7 @@ use std::time::Instant;
 /// densities, forces) for a run of `nsteps`; errors name `cmd`.
 pub fn prepare(sim: &mut Sim, averages: &[AveTime], cmd: &Command, nsteps: u64) -> Result<Box<dyn Physics>, AppError> {
     let err = |m: String| AppError::Script(ScriptError::at(cmd, m));
-    let physics = build_physics(cmd, sim.pair.as_ref(), &sim.fixes, sim.dt, sim.skin, sim.rebuild.clone(), sim.units.kb, sim.ntypes)?;
+    let physics = build_physics(cmd, sim.pair.as_ref(), &sim.fixes, sim.dt, sim.skin, sim.rebuild.clone(), sim.units.kb, sim.units.mvv2e, sim.ntypes)?;
     let sys = sim.system.as_mut().ok_or_else(|| err("run before create_box".into()))?;
     if sys.store.nlocal == 0 {
         return Err(err("the box holds no particles (create_atoms)".into()));

@@ -13,7 +13,7 @@ use crate::output::thermo::ThermoConfig;
 use gendpde_engine::{Fields, Particles};
 use gendpde_io::{ScriptError, Variables};
 
-const KEYWORDS: &str = "type, type/fraction, x, y, z, vx, vy, vz, image, dpd/theta (theta), u, edpd/temp, edpd/cv";
+const KEYWORDS: &str = "type, type/fraction, x, y, z, vx, vy, vz, image, dpd/theta (theta), u, edpd/temp, edpd/cv, sph/rho";
 
 /// Gives owned particle `i` type `kind` and that type's mass (NaN while unset), keeping
 /// its velocity (p holds the velocity while the mass is unknown, as after read_data).
@@ -207,6 +207,16 @@ pub fn set(sim: &mut Sim, vars: &Variables, thermo: &ThermoConfig, a: &mut Args)
                     } else {
                         s.edpd_cv[i] = x;
                     }
+                }
+            }
+            "sph/rho" => {
+                let v = value(a, sim, "the SPH density")?;
+                let s = &mut sim.system.as_mut().ok_or_else(|| a.err("set before create_box"))?.store;
+                if !s.has(Fields::SPH) {
+                    return Err(a.err("set sph/rho needs atom_style sph"));
+                }
+                for &i in &selected {
+                    s.rho[i] = v.at(i);
                 }
             }
             "mass" => return Err(a.err(format!("keyword mass: atom style {} has no per-particle mass (as in LAMMPS; use the mass command)", sim.atom_style.name()))),

@@ -13,11 +13,11 @@ use gendpde_engine::{Comm, Domain, Fields, ProcGrid, Vec3};
 use gendpde_integrators::System;
 use gendpde_io::{AtomStyle, ScriptError};
 
-/// `units lj|real|metal`: before the box; resets the timestep, skin and thermo norm to the
+/// `units lj|real|metal|micro`: before the box; resets the timestep, skin and thermo norm to the
 /// units' defaults.
 pub fn units(sim: &mut Sim, thermo: &mut ThermoConfig, a: &mut Args) -> Result<(), ScriptError> {
-    let w = a.word("a unit style (lj, real or metal)")?;
-    let units = Units::parse(w).ok_or_else(|| a.err(format!("units {w}: known are lj, real and metal")))?;
+    let w = a.word("a unit style (lj, real, metal or micro)")?;
+    let units = Units::parse(w).ok_or_else(|| a.err(format!("units {w}: known are lj, real, metal and micro")))?;
     a.done()?;
     if sim.system.is_some() && units != sim.units {
         return Err(a.err("units must come before the box is created"));
@@ -50,15 +50,17 @@ pub fn boundary(a: &mut Args) -> Result<(), ScriptError> {
     a.done()
 }
 
-/// `atom_style atomic|dpd|gendpde|mdpd|edpd`: the columns of data files (edpd: and the
-/// per-particle temperature, heat capacity and flux of eDPD).
+/// `atom_style atomic|dpd|gendpde|mdpd|edpd|sph`: the columns of data files (edpd: and
+/// the per-particle temperature, heat capacity and flux of eDPD; sph: the SPH density
+/// and its rate).
 pub fn atom_style(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     sim.atom_style = match a.word("an atom style")? {
         "atomic" => AtomStyle::Atomic,
         "dpd" | "gendpde" => AtomStyle::Dpd,
         "mdpd" => AtomStyle::Mdpd,
         "edpd" => AtomStyle::Edpd,
-        s => return Err(a.err(format!("unknown atom style '{s}'; known: atomic, dpd, gendpde, mdpd, edpd"))),
+        "sph" => AtomStyle::Sph,
+        s => return Err(a.err(format!("unknown atom style '{s}'; known: atomic, dpd, gendpde, mdpd, edpd, sph"))),
     };
     a.done()
 }
@@ -213,9 +215,7 @@ pub fn create_box(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     sim.ntypes = n;
     sim.masses = vec![None; n];
     let mut sys = System::new(domain, Comm::new(transport, procs));
-    if sim.atom_style == AtomStyle::Edpd {
-        sys.store.enable(Fields::EDPD);
-    }
+    sys.store.enable(sim.atom_style_fields());
     sim.system = Some(sys);
     Ok(())
 }

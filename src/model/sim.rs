@@ -11,7 +11,7 @@ use crate::styles::compute::rdf::Rdf;
 use crate::styles::compute::Compute;
 use crate::styles::fix::{Fix, FixStyle};
 use crate::styles::pair::PairStyle;
-use gendpde_engine::Transport;
+use gendpde_engine::{Fields, Transport};
 use gendpde_integrators::{NphState, RebuildPolicy, System};
 use gendpde_io::AtomStyle;
 use std::collections::HashMap;
@@ -107,9 +107,19 @@ impl Sim {
         self.transport.take().ok_or_else(|| "the box exists already".into())
     }
 
+    /// The per-particle fields the atom style carries (atom_style edpd: eDPD's
+    /// temperature, heat capacity and flux; sph: the SPH density and its rate).
+    pub fn atom_style_fields(&self) -> Fields {
+        match self.atom_style {
+            AtomStyle::Edpd => Fields::EDPD,
+            AtomStyle::Sph => Fields::RHO | Fields::SPH,
+            _ => Fields::NONE,
+        }
+    }
+
     /// Whether thermo `pe` is a pair energy (LAMMPS's pairwise styles, tables and edpd).
     pub fn pe_is_pair(&self) -> bool {
-        matches!(self.pair, Some(PairStyle::Pairwise(_) | PairStyle::Edpd(_) | PairStyle::Table(_) | PairStyle::MultiLucy(_) | PairStyle::Overlay(_)))
+        matches!(self.pair, Some(PairStyle::Pairwise(_) | PairStyle::Edpd(_) | PairStyle::Taitwater(_) | PairStyle::Table(_) | PairStyle::MultiLucy(_) | PairStyle::Overlay(_)))
     }
 
     /// The accumulated state of fixes, for a restart file: each reservoir's energy

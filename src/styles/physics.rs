@@ -25,9 +25,13 @@ pub fn build_physics(
     skin: f64,
     rebuild: RebuildPolicy,
     kb: f64,
+    mvv2e: f64,
     ntypes: usize,
 ) -> Result<Box<dyn Physics>, ScriptError> {
     let err = |m: String| ScriptError::at(cmd, m);
+    if let Some(f) = fixes.iter().find(|f| f.style == FixStyle::Sph).filter(|_| !matches!(pair, Some(PairStyle::Taitwater(_)))) {
+        return Err(err(format!("fix {} (sph) integrates pair sdpd/taitwater/isothermal", f.id)));
+    }
     let pair = match pair.ok_or_else(|| err("no pair style is defined (pair_style)".into()))? {
         PairStyle::Gendpde(p) => p,
         PairStyle::Pairwise(p) => {
@@ -51,6 +55,10 @@ pub fn build_physics(
             };
         }
         PairStyle::Sdpd(p) => return crate::styles::sdpd::build_sdpd(cmd, p, fixes, dt, skin, rebuild, kb),
+        PairStyle::Taitwater(p) => {
+            let settings = Settings { dt, skin, rebuild, motion: Motion::Fixed, dissipation: None, reservoirs: Vec::new() };
+            return crate::styles::sdpd::build_taitwater(cmd, p, fixes, settings, kb, mvv2e);
+        }
     };
     if let Some(f) = fixes.iter().find(|f| matches!(f.style, FixStyle::MvvEdpd { .. } | FixStyle::EdpdSource { .. })) {
         return Err(err(format!("fix {} belongs to pair edpd", f.id)));

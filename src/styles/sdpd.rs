@@ -1,12 +1,14 @@
 //! The dynamics of a `pair sdpd/generic` run: thermal SDPD monomorphised over its EOS and
-//! kernel, integrated by `fix nve/sdpd`.
+//! kernel, integrated by `fix nve/sdpd`; and of a `pair sdpd/taitwater/isothermal` run,
+//! integrated by `fix sph`.
 
 use crate::styles::fix::eos::{each_eos, EosModel};
 use crate::styles::fix::{Fix, FixStyle};
 use crate::styles::pair::sdpd::PairSdpd;
-use gendpde_integrators::{FixedEntropy, Motion, Physics, RebuildPolicy, Sdpd, SdpdParams, Settings, Species, Work};
+use crate::styles::pair::sdpd_taitwater::PairTaitwater;
+use gendpde_integrators::{FixedEntropy, Motion, Physics, RebuildPolicy, Sdpd, SdpdParams, SdpdTaitwater, Settings, Species, Work};
 use gendpde_io::{Command, ScriptError};
-use gendpde_potentials::{CubicSpline, Linear, Lucy, Quadratic, WeightKind};
+use gendpde_potentials::{CubicSpline, Linear, Lucy, Quadratic, Tait, WeightKind};
 
 /// Assembles thermal SDPD from the pair style, one EOS fix and `fix nve/sdpd`; `kb` is
 /// Boltzmann's constant of the units (the default of the pair style's `kB`).
@@ -44,4 +46,29 @@ fn with_weight<E: FixedEntropy + 'static>(per_type: Vec<E>, pair: &PairSdpd, par
         WeightKind::Lucy => Box::new(Sdpd::new(eos, Lucy::new(rc), params, settings)),
         WeightKind::CubicSpline => Box::new(Sdpd::new(eos, CubicSpline::new(rc), params, settings)),
     }
+}
+
+/// Assembles LAMMPS's isothermal Tait-water SDPD from the pair style and `fix sph`; `kb`
+/// and `mvv2e` are those of the units.
+pub fn build_taitwater(cmd: &Command, pair: &PairTaitwater, fixes: &[Fix], settings: Settings, kb: f64, mvv2e: f64) -> Result<Box<dyn Physics>, ScriptError> {
+    let err = |m: &str| ScriptError::at(cmd, m);
+    let (water, cut) = pair.table().map_err(|e| err(&e))?;
+    if let Some(f) = fixes.iter().find(|f| f.style != FixStyle::Sph) {
+        return Err(err(&format!("fix {} does not work with pair sdpd/taitwater/isothermal (fix sph integrates it)", f.id)));
+    }
+    match fixes.len() {
+        0 => return Err(err("pair sdpd/taitwater/isothermal needs fix sph")),
+        1 => {}
+        _ => return Err(err("more than one fix sph is defined")),
+    }
+    Ok(Box::new(SdpdTaitwater {
+        eos: water.iter().map(|w| Tait::new(w.rho0, w.c0)).collect(),
+        kernel: cut.iter().map(|&h| Lucy::new(h)).collect(),
+        ntypes: pair.ntypes,
+        kbt: kb * pair.temperature,
+        viscosity: pair.viscosity,
+        seed: pair.seed,
+        mvv2e,
+        settings,
+    }))
 }

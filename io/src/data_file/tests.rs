@@ -110,6 +110,7 @@ fn reads_small_file() {
             kind: 2,
             theta: Some(1.25),
             edpd: None,
+            sph_rho: None,
             r: [9.75, -4.0, 3.0],
             image: [1, -1, 2],
         }

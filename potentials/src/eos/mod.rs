@@ -9,11 +9,13 @@ mod linear;
 mod lj;
 mod lth;
 mod table;
+mod tait;
 
 pub use linear::{LinearTheta, DEFAULT_CAP};
 pub use lj::LennardJones;
 pub use lth::Lth;
 pub use lj::LjAt;
+pub use tait::Tait;
 pub use table::{ErrorAt, TableError, TableErrors, TableGrid, Tabulated};
 
 use std::fmt;

@@ -44,6 +44,9 @@ pub enum FixStyle {
     /// `fix ID all nph ...`: LAMMPS's Nose-Hoover barostat with velocity Verlet; the fixed
     /// point if given (else the box centre at the definition).
     Nph { nph: Box<gendpde_integrators::Nph>, fixedpoint: Option<[f64; 3]> },
+    /// `fix sph` (atom_style sph, pair sdpd/taitwater/isothermal): velocity Verlet of x
+    /// and v with the velocity estimate v + dt f/m, and of the density.
+    Sph,
     /// `fix ID GROUP edpd/source sphere|cuboid|region ... VALUE` (pair edpd).
     EdpdSource { shape: Source, value: f64, mask: u32 },
 }
@@ -106,6 +109,7 @@ pub fn parse_fix_in(cmd: &Command, kb: f64, groups: &[String], regions: &HashMap
         }
         "vv/euler" => FixStyle::VvEuler { heat: heat_keyword(&mut a)?.unwrap_or(HeatModel::Original) },
         "nve/sdpd" => FixStyle::NveSdpd,
+        "sph" => FixStyle::Sph,
         "nve" => FixStyle::Nve,
         "nph" => {
             let (nph, fixedpoint) = nph::parse_nph(&id, &mut a, kb, groups)?;

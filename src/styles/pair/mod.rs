@@ -1,7 +1,7 @@
 //! Pair styles: `pair_style` and `pair_coeff` of GenDPDE ([`gendpde`]), of LAMMPS's
 //! pairwise DPD styles ([`pairwise`]), tabulated potentials ([`table`]), their
-//! overlays ([`hybrid`]), eDPD ([`edpd`]) and DPD-REACT's many-body `multi/lucy`
-//! ([`multi_lucy`]).
+//! overlays ([`hybrid`]), eDPD ([`edpd`]), DPD-REACT's many-body `multi/lucy`
+//! ([`multi_lucy`]) and SDPD ([`sdpd`], [`sdpd_taitwater`]).
 
 pub mod edpd;
 pub mod gendpde;
@@ -10,6 +10,7 @@ pub mod multi_lucy;
 pub mod pairwise;
 pub mod table;
 pub mod sdpd;
+pub mod sdpd_taitwater;
 
 use self::edpd::PairEdpd;
 use self::gendpde::PairGendpde;
@@ -17,6 +18,7 @@ use self::hybrid::Overlay;
 use self::pairwise::Pairwise;
 use self::table::Tabulated;
 use self::sdpd::PairSdpd;
+use self::sdpd_taitwater::PairTaitwater;
 use crate::base::args::Args;
 use gendpde_io::{Command, ScriptError};
 
@@ -36,6 +38,8 @@ pub enum PairStyle {
     Overlay(Overlay),
     /// Thermal SDPD (Serrano-Espanol Sec VII).
     Sdpd(PairSdpd),
+    /// DPD-SMOOTH's isothermal SDPD of Tait water.
+    Taitwater(PairTaitwater),
 }
 
 impl PairStyle {
@@ -50,6 +54,7 @@ impl PairStyle {
             Self::Table(t) | Self::MultiLucy(t) => t.cutoff(),
             Self::Overlay(o) => o.table.as_ref().map_or(0.0, Tabulated::cutoff).max(o.pairwise.as_ref().map_or(0.0, |(_, p)| pairwise_cutoff(p))),
             Self::Sdpd(p) => p.cutoff,
+            Self::Taitwater(p) => p.cutoff(),
         }
     }
 }
@@ -96,6 +101,7 @@ pub fn parse_pair_style(cmd: &Command) -> Result<PairStyle, ScriptError> {
         "multi/lucy" => self::multi_lucy::parse_style(&mut a).map(PairStyle::MultiLucy),
         name @ ("hybrid" | "hybrid/overlay") if !self::hybrid::is_mdpd(&a) => self::hybrid::parse_style(name, &mut a).map(PairStyle::Overlay),
         "sdpd/generic" => self::sdpd::parse_style(&mut a).map(PairStyle::Sdpd),
+        "sdpd/taitwater/isothermal" => self::sdpd_taitwater::parse_style(&mut a).map(PairStyle::Taitwater),
         other => self::pairwise::parse_style(other, &mut a).map(PairStyle::Pairwise),
     }
 }
@@ -119,5 +125,6 @@ pub fn parse_pair_coeff(cmd: &Command, pair: &mut PairStyle, ntypes: usize) -> R
             p.coeff = Some(self::sdpd::parse_coeff(cmd, ntypes)?);
             Ok(())
         }
+        PairStyle::Taitwater(p) => self::sdpd_taitwater::parse_coeff(p, cmd, ntypes),
     }
 }

@@ -1,0 +1,87 @@
+//! `pair_style sdpd/taitwater/isothermal T MU [SEED]` with `pair_coeff I J RHO0 C0 H`
+//! (LAMMPS DPD-SMOOTH; the force law is in `gendpde_integrators::sdpd_taitwater`).
+
+use crate::base::args::Args;
+use gendpde_io::{Command, ScriptError};
+
+/// Tait water of one type: reference density and sound speed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TaitCoeff {
+    pub rho0: f64,
+    pub c0: f64,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct PairTaitwater {
+    pub temperature: f64,
+    pub viscosity: f64,
+    /// The random seed (0 when omitted).
+    pub seed: u64,
+    /// The number of particle types (set by the first pair_coeff).
+    pub ntypes: usize,
+    /// rho0 and c0 per type, from the last pair_coeff whose I range held the type.
+    pub water: Vec<Option<TaitCoeff>>,
+    /// The kernel support h per type pair (`ntypes * ntypes`, symmetric), None while unset.
+    pub cut: Vec<Option<f64>>,
+}
+
+/// The words after `pair_style sdpd/taitwater/isothermal`.
+pub fn parse_style(a: &mut Args) -> Result<PairTaitwater, ScriptError> {
+    let temperature = a.f64("the temperature")?;
+    let viscosity = a.f64("the dynamic viscosity")?;
+    if temperature <= 0.0 {
+        return Err(a.err("Temperature must be positive"));
+    }
+    if viscosity <= 0.0 {
+        return Err(a.err("Viscosity must be positive"));
+    }
+    let seed = if a.remaining() > 0 { a.u64("the random seed")? } else { 0 };
+    a.done()?;
+    Ok(PairTaitwater { temperature, viscosity, seed, ntypes: 0, water: Vec::new(), cut: Vec::new() })
+}
+
+/// A `pair_coeff I J RHO0 C0 H` line: as LAMMPS, only pairs with J >= I are set, and
+/// rho0 and c0 go to every type of the range I.
+pub fn parse_coeff(p: &mut PairTaitwater, cmd: &Command, ntypes: usize) -> Result<(), ScriptError> {
+    let mut a = Args::new(cmd);
+    let (ti, tj) = (a.types(ntypes)?, a.types(ntypes)?);
+    let water = TaitCoeff { rho0: a.positive("the reference density rho0")?, c0: a.positive("the sound speed")? };
+    let h = a.positive("the kernel cutoff h")?;
+    a.done()?;
+    if p.ntypes != ntypes {
+        (p.ntypes, p.water, p.cut) = (ntypes, vec![None; ntypes], vec![None; ntypes * ntypes]);
+    }
+    let mut count = 0;
+    for i in ti {
+        p.water[i - 1] = Some(water);
+        for j in tj.clone().filter(|&j| j >= i) {
+            p.cut[(i - 1) * ntypes + j - 1] = Some(h);
+            p.cut[(j - 1) * ntypes + i - 1] = Some(h);
+            count += 1;
+        }
+    }
+    if count == 0 {
+        return Err(a.err("Incorrect args for pair coefficients (no type pair with J >= I)"));
+    }
+    Ok(())
+}
+
+impl PairTaitwater {
+    /// The largest kernel support (0 before any pair_coeff).
+    pub fn cutoff(&self) -> f64 {
+        self.cut.iter().flatten().copied().fold(0.0, f64::max)
+    }
+
+    /// Tait water per type and the kernel support per type pair; Err names the first
+    /// type pair without coefficients.
+    pub fn table(&self) -> Result<(Vec<TaitCoeff>, Vec<f64>), String> {
+        let n = self.ntypes;
+        let unset = |k: usize| format!("Not all pair sdpd/taitwater/isothermal coeffs are set: no pair_coeff for types {} {}", k / n + 1, k % n + 1);
+        if n == 0 {
+            return Err("pair sdpd/taitwater/isothermal has no coefficients (pair_coeff)".into());
+        }
+        let cut = (0..n * n).map(|k| self.cut[k].ok_or_else(|| unset(k))).collect::<Result<Vec<_>, _>>()?;
+        let water = (0..n).map(|i| self.water[i].ok_or_else(|| unset(i * n + i))).collect::<Result<Vec<_>, _>>()?;
+        Ok((water, cut))
+    }
+}
