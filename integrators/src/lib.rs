@@ -21,6 +21,7 @@ pub mod system;
 pub mod tables;
 pub mod type_table;
 pub mod verlet;
+pub mod voronoi;
 pub mod vv_euler;
 
 pub use classic::{ClassicDpd, DpdCoeff, DpdEnergyCoeff, Integration, MdpdCoeff, PairForce, ShardlowCoeff, ShardlowDpd};

@@ -1,0 +1,10 @@
+//! Voronoi fluid particles (Serrano & Español, "Thermodynamically consistent mesoscopic
+//! fluid particle models for a van der Waals fluid"): the periodic tessellation and the
+//! Lagrangian finite-volume model with dynamic mass and entropy.
+
+pub mod tessellation;
+
+pub use tessellation::{Face, Tessellation, TessellationError};
+
+#[cfg(test)]
+mod tests;
