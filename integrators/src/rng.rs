@@ -16,6 +16,8 @@ pub mod stream {
     pub const RESERVOIR: u32 = 1;
     /// Random pair forces of `pair dpd` and `pair mdpd`.
     pub const FORCE: u32 = 3;
+    /// Random stress and heat flux of one Voronoi cell (voronoi/finite_volume.rs).
+    pub const VORONOI: u32 = 4;
     /// Brownian-bridge noises of split pair updates: SUBSTEP + node of the split tree.
     pub const SUBSTEP: u32 = 16;
 }

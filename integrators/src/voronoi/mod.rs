@@ -2,9 +2,13 @@
 //! fluid particle models for a van der Waals fluid"): the periodic tessellation and the
 //! Lagrangian finite-volume model with dynamic mass and entropy.
 
+pub mod finite_volume;
 pub mod tessellation;
 
+pub use finite_volume::{Cells, FiniteVolume, Frame, ModelError, Rates, Transport};
 pub use tessellation::{Face, Tessellation, TessellationError};
 
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod finite_volume_tests;
