@@ -29,6 +29,8 @@ impl Fields {
     pub const SDPD_STRESS: Self = Self(4096);
     /// The heat-flux increment of one SDPD step (pair sdpd/generic), owners to ghosts.
     pub const SDPD_FLUX: Self = Self(8192);
+    /// The entropy of a Voronoi cell (pair voronoi/fv).
+    pub const ENTROPY: Self = Self(16384);
 
     pub const fn union(self, other: Self) -> Self {
         Self(self.0 | other.0)

@@ -43,8 +43,10 @@ impl std::error::Error for CellStateError {}
 
 /// A fundamental relation E(M, S, V), homogeneous of degree one: E = V eps(M/V, S/V).
 pub trait CellEnergy: Send + Sync {
-    /// T(n, s), the only transcendental part; the rest follows from it.
+    /// E, T, p, mu and C of a cell of mass `m`, entropy `s` and volume `v`.
     fn state(&self, m: f64, s: f64, v: f64) -> Result<CellState, CellStateError>;
+    /// The entropy at temperature `t` (the inverse of T(M, S, V) in S).
+    fn entropy(&self, m: f64, v: f64, t: f64) -> f64;
 }
 
 /// Eq 162's constant c (water, D = 3, with the printed h, which is h-bar; see docs/DESIGN.md).
@@ -86,6 +88,10 @@ impl CellEnergy for VdwCell {
             heat_capacity: 1.5 * m,
         })
     }
+
+    fn entropy(&self, m: f64, v: f64, t: f64) -> f64 {
+        vdw_entropy(self.c, m, v, t)
+    }
 }
 
 /// Ideal gas in the same units (the a, b -> 0 limit of eq 159 at fixed c):
@@ -107,11 +113,19 @@ impl CellEnergy for IdealCell {
             heat_capacity: 1.5 * m,
         })
     }
+
+    fn entropy(&self, m: f64, v: f64, t: f64) -> f64 {
+        m * (1.5 * (t / self.c).ln() - (m / v).ln() + 2.5)
+    }
 }
 
 impl<E: CellEnergy + ?Sized> CellEnergy for &E {
     fn state(&self, m: f64, s: f64, v: f64) -> Result<CellState, CellStateError> {
         (**self).state(m, s, v)
+    }
+
+    fn entropy(&self, m: f64, v: f64, t: f64) -> f64 {
+        (**self).entropy(m, v, t)
     }
 }
 
@@ -155,7 +169,10 @@ mod tests {
             assert!((st.temperature - t).abs() < 1e-12 * t);
             check_derivatives(&vdw, m, s, v);
         }
-        check_derivatives(&IdealCell { c: 1.0 }, 3.0, 7.0, 2.0);
+        let ideal = IdealCell { c: 1.0 };
+        check_derivatives(&ideal, 3.0, 7.0, 2.0);
+        let s = ideal.entropy(3.0, 2.0, 1.7);
+        assert!((ideal.state(3.0, s, 2.0).unwrap().temperature - 1.7).abs() < 1e-12);
     }
 
     /// The paper's reduced equations of state at the critical point and on the

@@ -7,9 +7,10 @@ pub mod fix;
 pub mod pair;
 pub mod physics;
 pub mod sdpd;
+pub mod voronoi;
 
 /// The styles of each family, as error messages list them.
-pub const PAIR_STYLES: &str = "gendpde, sdpd/generic, dpd, dpd/fdt, dpd/fdt/energy, table, hybrid/overlay (table with a pairwise style, or mdpd/rhosum mdpd), edpd";
-pub const FIX_STYLES: &str = "eos/vdw, eos/vdw/reduced, eos/lj, eos/lth, eos/ideal, eos/cv, eos/density, eos/linear, nve/gendpde, nve/sdpd, shardlow, vv/euler, heat/reservoir, \
+pub const PAIR_STYLES: &str = "gendpde, sdpd/generic, voronoi/fv, dpd, dpd/fdt, dpd/fdt/energy, table, hybrid/overlay (table with a pairwise style, or mdpd/rhosum mdpd), edpd";
+pub const FIX_STYLES: &str = "eos/vdw, eos/vdw/reduced, eos/lj, eos/lth, eos/ideal, eos/cv, eos/density, eos/linear, nve/gendpde, nve/sdpd, nve/voronoi, shardlow, vv/euler, heat/reservoir, \
      nve, mvv/dpd, dpd/energy, mvv/edpd, edpd/source, ave/time, ave/chunk";
 pub const COMPUTE_STYLES: &str = "dpd, tint, temp, com, ke/atom, pe/atom, reduce, rdf, chunk/atom, msd, edpd/temp/atom";

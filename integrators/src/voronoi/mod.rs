@@ -3,9 +3,11 @@
 //! Lagrangian finite-volume model with dynamic mass and entropy.
 
 pub mod finite_volume;
+pub mod run;
 pub mod tessellation;
 
 pub use finite_volume::{Cells, FiniteVolume, Frame, ModelError, Rates, Transport};
+pub use run::VoronoiFv;
 pub use tessellation::{Face, Tessellation, TessellationError};
 
 #[cfg(test)]

@@ -8,6 +8,7 @@ pub mod hybrid;
 pub mod pairwise;
 pub mod table;
 pub mod sdpd;
+pub mod voronoi;
 
 use self::edpd::PairEdpd;
 use self::gendpde::PairGendpde;
@@ -15,6 +16,7 @@ use self::hybrid::Overlay;
 use self::pairwise::Pairwise;
 use self::table::Tabulated;
 use self::sdpd::PairSdpd;
+use self::voronoi::PairVoronoi;
 use crate::base::args::Args;
 use gendpde_io::{Command, ScriptError};
 
@@ -32,6 +34,8 @@ pub enum PairStyle {
     Overlay(Overlay),
     /// Thermal SDPD (Serrano-Espanol Sec VII).
     Sdpd(PairSdpd),
+    /// The Voronoi finite-volume model (Serrano-Espanol Secs V-VI.A).
+    Voronoi(PairVoronoi),
 }
 
 impl PairStyle {
@@ -46,6 +50,7 @@ impl PairStyle {
             Self::Table(t) => t.cutoff(),
             Self::Overlay(o) => o.table.as_ref().map_or(0.0, Tabulated::cutoff).max(o.pairwise.as_ref().map_or(0.0, |(_, p)| pairwise_cutoff(p))),
             Self::Sdpd(p) => p.cutoff,
+            Self::Voronoi(_) => 0.0,
         }
     }
 }
@@ -64,6 +69,7 @@ pub fn parse_pair_style(cmd: &Command) -> Result<PairStyle, ScriptError> {
         "table" => self::table::parse_style(&mut a).map(PairStyle::Table),
         name @ ("hybrid" | "hybrid/overlay") if !self::hybrid::is_mdpd(&a) => self::hybrid::parse_style(name, &mut a).map(PairStyle::Overlay),
         "sdpd/generic" => self::sdpd::parse_style(&mut a).map(PairStyle::Sdpd),
+        "voronoi/fv" => self::voronoi::parse_style(&mut a).map(PairStyle::Voronoi),
         other => self::pairwise::parse_style(other, &mut a).map(PairStyle::Pairwise),
     }
 }
@@ -85,6 +91,10 @@ pub fn parse_pair_coeff(cmd: &Command, pair: &mut PairStyle, ntypes: usize) -> R
         PairStyle::Overlay(o) => self::hybrid::parse_coeff(o, cmd, ntypes),
         PairStyle::Sdpd(p) => {
             p.coeff = Some(self::sdpd::parse_coeff(cmd, ntypes)?);
+            Ok(())
+        }
+        PairStyle::Voronoi(p) => {
+            p.coeff = Some(self::voronoi::parse_coeff(cmd, ntypes)?);
             Ok(())
         }
     }
