@@ -73,7 +73,7 @@ impl<E: CellEnergy> Physics for VoronoiFv<E> {
     fn setup(&self, sys: &mut System) -> Result<(), SetupError> {
         if sys.comm.size() > 1 {
             return Err(SetupError::Grid(format!(
-                "pair voronoi/fv runs on one MPI rank only (this run has {}); see docs/commands/pair_voronoi_fv.md",
+                "pair voronoi/fv runs on one MPI rank only (this run has {}); see docs/commands/pair_style_voronoi_fv.md",
                 sys.comm.size()
             )));
         }
