@@ -179,3 +179,42 @@ fn a_cell_outside_the_relation_is_an_error_naming_its_tag() {
     }
     assert!(VDW.state(1.0, 1.0, 1.0).is_ok());
 }
+
+/// Eq 10 (fluctuation-dissipation): the irreversible drift at k_B = 0 is M . dS/dx with
+/// M = <dx~ dx~^T>/(2 k_B dt); dS/dx is 1 on every entropy, so dP_mu = sum_l <dP~_mu dS~_l>
+/// /(2 k_B dt) and T_mu dS_mu = T_mu sum_l <dS~_mu dS~_l>/(2 k_B dt). Estimated over 4000
+/// realisations of the noise, every component within 5 standard errors.
+#[test]
+fn noise_covariance_gives_the_irreversible_drift_eq_10() {
+    let (c, _) = disordered(16, 17);
+    let f = Frame::new(&c, &VDW, LO, LEN).unwrap();
+    let drift = f.irreversible(&c, &TR);
+    let (kb, dt, samples) = (0.5, 0.01, 4000);
+    let n = c.len();
+    let mut sum = vec![[0.0f64; 4]; n];
+    let mut sum2 = vec![[0.0f64; 4]; n];
+    for step in 0..samples {
+        let (dp, ds) = f.noise(&c, &Transport { kb, ..TR }, 3, step, dt);
+        let total: f64 = ds.iter().sum();
+        for k in 0..n {
+            let x = [dp[k][0] * total, dp[k][1] * total, dp[k][2] * total, f.thermo[k].temperature * ds[k] * total];
+            for a in 0..4 {
+                let y = x[a] / (2.0 * kb * dt);
+                sum[k][a] += y;
+                sum2[k][a] += y * y;
+            }
+        }
+    }
+    let mut worst: f64 = 0.0;
+    for k in 0..n {
+        let expected = [drift.p[k][0], drift.p[k][1], drift.p[k][2], f.thermo[k].temperature * drift.s[k]];
+        for a in 0..4 {
+            let mean = sum[k][a] / samples as f64;
+            let se = ((sum2[k][a] / samples as f64 - mean * mean) / samples as f64).sqrt();
+            let z = (mean - expected[a]) / se;
+            worst = worst.max(z.abs());
+            assert!(z.abs() < 5.0, "cell {k} component {a}: covariance {mean:.5} +- {se:.5}, drift {:.5}", expected[a]);
+        }
+    }
+    eprintln!("eq 10 over {samples} realisations: largest deviation {worst:.2} standard errors ({} components)", 4 * n);
+}
