@@ -3,7 +3,7 @@
 
 use crate::styles::fix::{Fix, FixStyle};
 use crate::styles::pair::voronoi::{CellRelation, PairVoronoi};
-use gendpde_integrators::voronoi::{FiniteVolume, Transport, VoronoiFv};
+use gendpde_integrators::voronoi::{Dissipation, FiniteVolume, Transport, VoronoiFv};
 use gendpde_integrators::{Motion, Physics, RebuildPolicy, Settings};
 use gendpde_io::{Command, ScriptError};
 use gendpde_potentials::{IdealCell, VdwCell};
@@ -24,8 +24,9 @@ pub fn build_voronoi(cmd: &Command, pair: &PairVoronoi, fixes: &[Fix], dt: f64, 
     let transport = Transport { eta, zeta, kappa, kb: pair.kb.unwrap_or(kb) };
     let settings = Settings { dt, skin, rebuild, motion: Motion::Fixed, dissipation: None, reservoirs: Vec::new() };
     let seed = pair.seed;
+    let dissipation = if pair.dpd { Dissipation::Dpd { gamma: eta } } else { Dissipation::Hydrodynamic };
     Ok(match relation {
-        CellRelation::Vdw { c } => Box::new(VoronoiFv { model: FiniteVolume { energy: VdwCell { c }, transport, seed }, settings }),
-        CellRelation::Ideal { c } => Box::new(VoronoiFv { model: FiniteVolume { energy: IdealCell { c }, transport, seed }, settings }),
+        CellRelation::Vdw { c } => Box::new(VoronoiFv { model: FiniteVolume { energy: VdwCell { c }, transport, dissipation, seed }, settings }),
+        CellRelation::Ideal { c } => Box::new(VoronoiFv { model: FiniteVolume { energy: IdealCell { c }, transport, dissipation, seed }, settings }),
     })
 }

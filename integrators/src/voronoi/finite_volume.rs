@@ -49,6 +49,15 @@ pub struct Transport {
     pub kb: f64,
 }
 
+/// The irreversible part: the finite-volume hydrodynamics of eqs 76-84 (eta, zeta, kappa
+/// of `Transport`) or the Voronoi DPD of eqs 85-90 (one friction gamma, kappa; eta and zeta
+/// unused).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Dissipation {
+    Hydrodynamic,
+    Dpd { gamma: f64 },
+}
+
 /// Time derivatives of the cell variables (dR/dt = v).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Rates {
@@ -298,6 +307,7 @@ impl Frame {
 pub struct FiniteVolume<E> {
     pub energy: E,
     pub transport: Transport,
+    pub dissipation: Dissipation,
     pub seed: u64,
 }
 
@@ -305,7 +315,11 @@ impl<E: CellEnergy> FiniteVolume<E> {
     /// All deterministic rates at a frame.
     pub fn rates(&self, cells: &Cells, frame: &Frame) -> Rates {
         let mut r = frame.reversible(cells);
-        let irr = frame.irreversible(cells, &self.transport);
+        let tr = &self.transport;
+        let irr = match self.dissipation {
+            Dissipation::Hydrodynamic => frame.irreversible(cells, tr),
+            Dissipation::Dpd { gamma } => frame.irreversible_dpd(cells, gamma, tr.kappa, tr.kb),
+        };
         for k in 0..cells.len() {
             add_to(&mut r.p[k], irr.p[k]);
             r.s[k] += irr.s[k];
@@ -318,7 +332,11 @@ impl<E: CellEnergy> FiniteVolume<E> {
     pub fn step(&self, cells: &mut Cells, lo: V3, len: V3, dt: f64, step: u64) -> Result<(), ModelError> {
         let f0 = Frame::new(cells, &self.energy, lo, len)?;
         let k0 = self.rates(cells, &f0);
-        let noise = (self.transport.kb != 0.0).then(|| f0.noise(cells, &self.transport, self.seed, step, dt));
+        let tr = &self.transport;
+        let noise = (tr.kb != 0.0).then(|| match self.dissipation {
+            Dissipation::Hydrodynamic => f0.noise(cells, tr, self.seed, step, dt),
+            Dissipation::Dpd { gamma } => f0.noise_dpd(cells, gamma, tr.kappa, tr.kb, self.seed, step, dt),
+        });
         let mut pred = cells.clone();
         advance(&mut pred, &k0, dt, 1.0);
         let f1 = Frame::new(&pred, &self.energy, lo, len)?;

@@ -24,6 +24,9 @@ pub struct Face {
     pub dist: f64,
     /// c_ij: face centroid minus (R_i + R_j)/2 (eq 22, 128), the same seen from j.
     pub offset: [f64; 3],
+    /// The periodic image of j across this face, in box lengths (-1, 0 or 1 each): two
+    /// cells of a small box can share faces through several images.
+    pub image: [i8; 3],
 }
 
 impl Face {
@@ -112,7 +115,8 @@ impl Tessellation {
             let d = rj - ri;
             let dist = d.length();
             let offset = f.centroid() - 0.5 * (ri + rj);
-            faces.push(Face { i, j, area: f.area(), normal: (d / dist).into(), dist, offset: offset.into() });
+            let image = std::array::from_fn(|a| (shift[a] / width[a]).round() as i8);
+            faces.push(Face { i, j, area: f.area(), normal: (d / dist).into(), dist, offset: offset.into(), image });
         }
         let n = gens.len();
         let mut face_start = vec![0usize; n + 1];

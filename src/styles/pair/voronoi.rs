@@ -1,4 +1,6 @@
-//! `pair_style voronoi/fv SEED [kB KB]` with `pair_coeff * * ETA ZETA KAPPA vdw|ideal C`:
+//! `pair_style voronoi/fv SEED [kB KB] [dissipation hydrodynamic|dpd]` with
+//! `pair_coeff * * ETA ZETA KAPPA vdw|ideal C` (with `dpd`: ETA is the friction gamma,
+//! ZETA unused):
 //! the Voronoi Lagrangian finite-volume model of Serrano and Espanol (Secs V-VI.A), cells
 //! with dynamic mass and entropy; its integrator is `fix nve/voronoi`.
 
@@ -17,6 +19,8 @@ pub struct PairVoronoi {
     pub seed: u64,
     /// Boltzmann's constant of the fluctuations (None: that of the units).
     pub kb: Option<f64>,
+    /// `dissipation dpd`: the Voronoi DPD irreversible part (eqs 85-90), friction = ETA.
+    pub dpd: bool,
     /// Shear viscosity, bulk viscosity, thermal conductivity (eq 78) and the cell relation.
     pub coeff: Option<([f64; 3], CellRelation)>,
 }
@@ -27,12 +31,19 @@ pub fn parse_style(a: &mut Args) -> Result<PairVoronoi, ScriptError> {
     if seed == 0 {
         return Err(a.err("the random seed must be positive"));
     }
-    let mut p = PairVoronoi { seed, kb: None, coeff: None };
+    let mut p = PairVoronoi { seed, kb: None, dpd: false, coeff: None };
     while let Some(key) = a.peek() {
         a.word("keyword")?;
         match key {
             "kB" => p.kb = Some(a.non_negative("Boltzmann's constant of the fluctuations")?),
-            _ => return Err(a.err(format!("unknown keyword '{key}'; known: kB"))),
+            "dissipation" => {
+                p.dpd = match a.word("hydrodynamic or dpd")? {
+                    "hydrodynamic" => false,
+                    "dpd" => true,
+                    d => return Err(a.err(format!("unknown dissipation '{d}'; known: hydrodynamic, dpd"))),
+                }
+            }
+            _ => return Err(a.err(format!("unknown keyword '{key}'; known: kB, dissipation"))),
         }
     }
     Ok(p)
