@@ -189,12 +189,57 @@ fn noise_covariance_gives_the_irreversible_drift_eq_10() {
     let (c, _) = disordered(16, 17);
     let f = Frame::new(&c, &VDW, LO, LEN).unwrap();
     let drift = f.irreversible(&c, &TR);
-    let (kb, dt, samples) = (0.5, 0.01, 4000);
-    let n = c.len();
+    let (worst, samples) = eq_10_deviation(&f, &drift, |step| f.noise(&c, &Transport { kb: 0.5, ..TR }, 3, step, 0.01), 0.5, 0.01);
+    eprintln!("eq 10 over {samples} realisations: largest deviation {worst:.2} standard errors ({} components)", 4 * c.len());
+}
+
+/// Voronoi DPD (eqs 85-90): at k_B = 0 the irreversible rates conserve E and P and produce
+/// entropy; the pair noise satisfies eq 87 in every realisation; and eq 10 holds with eq
+/// 88's B times sqrt 2 (the printed B gives half of eq 89's friction and heating).
+#[test]
+fn voronoi_dpd_conserves_and_its_noise_covariance_gives_eq_89() {
+    let (c, _) = disordered(16, 18);
+    let f = Frame::new(&c, &VDW, LO, LEN).unwrap();
+    let (gamma, kappa) = (0.8, 1.3);
+    let r = f.irreversible_dpd(&c, gamma, kappa, 0.0);
+    let dp = sum3(&r.p);
+    assert!(dp.iter().all(|x| x.abs() < 1e-14 * scale3(&r.p) * 16.0), "sum dP/dt = {dp:?}");
+    let heat: f64 = (0..c.len()).map(|k| (f.thermo[k].temperature * r.s[k]).abs()).sum();
+    assert!(f.energy_rate(&r).abs() < 1e-12 * heat, "dE/dt = {}", f.energy_rate(&r));
+    assert!(r.s.iter().sum::<f64>() > 0.0);
+
+    let (worst, samples) = eq_10_deviation(&f, &r, |step| {
+        let (dp, ds) = f.noise_dpd(&c, gamma, kappa, 0.5, 3, step, 0.01);
+        let p = sum3(&dp);
+        assert!(p.iter().all(|x| x.abs() < 1e-14 * scale3(&dp) * 16.0));
+        let de: f64 = (0..c.len()).map(|k| f.v[k][0] * dp[k][0] + f.v[k][1] * dp[k][1] + f.v[k][2] * dp[k][2] + f.thermo[k].temperature * ds[k]).sum();
+        assert!(de.abs() < 1e-12 * scale1(&ds) * 16.0, "eq 87: {de}");
+        (dp, ds)
+    }, 0.5, 0.01);
+    eprintln!("Voronoi DPD, eq 10 over {samples} realisations: largest deviation {worst:.2} standard errors");
+
+    // Stepped with noise: mass and momentum exact.
+    let model = FiniteVolume { energy: VDW, transport: Transport { kb: 1e-3, kappa, ..TR }, dissipation: Dissipation::Dpd { gamma }, seed: 4 };
+    let mut s = c.clone();
+    let (m0, p0) = (c.m.iter().sum::<f64>(), sum3(&c.p));
+    for step in 0..10 {
+        model.step(&mut s, LO, LEN, 0.01, step).unwrap();
+    }
+    let p = sum3(&s.p);
+    let pscale: f64 = s.p.iter().flatten().map(|x| x.abs()).sum();
+    assert!((s.m.iter().sum::<f64>() - m0).abs() < 1e-13 * m0 && (0..3).all(|x| (p[x] - p0[x]).abs() < 1e-14 * pscale));
+}
+
+/// Largest |z| over cells and components of sum_l <dP~_mu dS~_l>/(2 k_B dt) and
+/// T_mu sum_l <dS~_mu dS~_l>/(2 k_B dt) against the drift (eq 10), over 4000 realisations
+/// `noise(step)`; panics beyond 5 standard errors.
+fn eq_10_deviation(f: &Frame, drift: &Rates, noise: impl Fn(u64) -> (Vec<[f64; 3]>, Vec<f64>), kb: f64, dt: f64) -> (f64, u64) {
+    let samples = 4000;
+    let n = f.v.len();
     let mut sum = vec![[0.0f64; 4]; n];
     let mut sum2 = vec![[0.0f64; 4]; n];
     for step in 0..samples {
-        let (dp, ds) = f.noise(&c, &Transport { kb, ..TR }, 3, step, dt);
+        let (dp, ds) = noise(step);
         let total: f64 = ds.iter().sum();
         for k in 0..n {
             let x = [dp[k][0] * total, dp[k][1] * total, dp[k][2] * total, f.thermo[k].temperature * ds[k] * total];
@@ -216,65 +261,5 @@ fn noise_covariance_gives_the_irreversible_drift_eq_10() {
             assert!(z.abs() < 5.0, "cell {k} component {a}: covariance {mean:.5} +- {se:.5}, drift {:.5}", expected[a]);
         }
     }
-    eprintln!("eq 10 over {samples} realisations: largest deviation {worst:.2} standard errors ({} components)", 4 * n);
-}
-
-/// Voronoi DPD (eqs 85-90): at k_B = 0 the irreversible rates conserve E and P and produce
-/// entropy; the pair noise satisfies eq 87 in every realisation; and eq 10 holds with eq
-/// 88's B times sqrt 2 (the printed B gives half of eq 89's friction and heating).
-#[test]
-fn voronoi_dpd_conserves_and_its_noise_covariance_gives_eq_89() {
-    let (c, _) = disordered(16, 18);
-    let f = Frame::new(&c, &VDW, LO, LEN).unwrap();
-    let (gamma, kappa) = (0.8, 1.3);
-    let r = f.irreversible_dpd(&c, gamma, kappa, 0.0);
-    let dp = sum3(&r.p);
-    assert!(dp.iter().all(|x| x.abs() < 1e-14 * scale3(&r.p) * 16.0), "sum dP/dt = {dp:?}");
-    let heat: f64 = (0..c.len()).map(|k| (f.thermo[k].temperature * r.s[k]).abs()).sum();
-    assert!(f.energy_rate(&r).abs() < 1e-12 * heat, "dE/dt = {}", f.energy_rate(&r));
-    assert!(r.s.iter().sum::<f64>() > 0.0);
-
-    let (kb, dt, samples) = (0.5, 0.01, 4000);
-    let n = c.len();
-    let mut sum = vec![[0.0f64; 4]; n];
-    let mut sum2 = vec![[0.0f64; 4]; n];
-    for step in 0..samples {
-        let (dp, ds) = f.noise_dpd(&c, gamma, kappa, kb, 3, step, dt);
-        let p = sum3(&dp);
-        assert!(p.iter().all(|x| x.abs() < 1e-14 * scale3(&dp) * 16.0));
-        let de: f64 = (0..n).map(|k| f.v[k][0] * dp[k][0] + f.v[k][1] * dp[k][1] + f.v[k][2] * dp[k][2] + f.thermo[k].temperature * ds[k]).sum();
-        assert!(de.abs() < 1e-12 * scale1(&ds) * 16.0, "eq 87: {de}");
-        let total: f64 = ds.iter().sum();
-        for k in 0..n {
-            let x = [dp[k][0] * total, dp[k][1] * total, dp[k][2] * total, f.thermo[k].temperature * ds[k] * total];
-            for a in 0..4 {
-                let y = x[a] / (2.0 * kb * dt);
-                sum[k][a] += y;
-                sum2[k][a] += y * y;
-            }
-        }
-    }
-    let mut worst: f64 = 0.0;
-    for k in 0..n {
-        let expected = [r.p[k][0], r.p[k][1], r.p[k][2], f.thermo[k].temperature * r.s[k]];
-        for a in 0..4 {
-            let mean = sum[k][a] / samples as f64;
-            let se = ((sum2[k][a] / samples as f64 - mean * mean) / samples as f64).sqrt();
-            let z = (mean - expected[a]) / se;
-            worst = worst.max(z.abs());
-            assert!(z.abs() < 5.0, "cell {k} component {a}: covariance {mean:.5} +- {se:.5}, eq 89 drift {:.5}", expected[a]);
-        }
-    }
-    eprintln!("Voronoi DPD, eq 10 over {samples} realisations: largest deviation {worst:.2} standard errors");
-
-    // Stepped with noise: mass and momentum exact.
-    let model = FiniteVolume { energy: VDW, transport: Transport { kb: 1e-3, kappa, ..TR }, dissipation: Dissipation::Dpd { gamma }, seed: 4 };
-    let mut s = c.clone();
-    let (m0, p0) = (c.m.iter().sum::<f64>(), sum3(&c.p));
-    for step in 0..10 {
-        model.step(&mut s, LO, LEN, 0.01, step).unwrap();
-    }
-    let p = sum3(&s.p);
-    let pscale: f64 = s.p.iter().flatten().map(|x| x.abs()).sum();
-    assert!((s.m.iter().sum::<f64>() - m0).abs() < 1e-13 * m0 && (0..3).all(|x| (p[x] - p0[x]).abs() < 1e-14 * pscale));
+    (worst, samples)
 }
