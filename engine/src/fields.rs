@@ -32,6 +32,8 @@ impl Fields {
     /// The SPH density rate drho/dt of atom_style sph (pair sdpd/taitwater/isothermal;
     /// not exchanged). The density itself is [`Fields::RHO`].
     pub const SPH: Self = Self(16384);
+    /// The entropy of a Voronoi cell (pair voronoi/fv).
+    pub const ENTROPY: Self = Self(32768);
 
     pub const fn union(self, other: Self) -> Self {
         Self(self.0 | other.0)

@@ -297,6 +297,8 @@ particle_fields! {
     sdpd_shear: Vec3, "sdpd_shear", gate Fields::SDPD_STRESS, comm Fields::SDPD_STRESS, stages 0;
     /// SDPD heat-flux increment of the step (eqs 77, 83; scratch of pair sdpd/generic).
     sdpd_flux: Vec3, "sdpd_flux", gate Fields::SDPD_FLUX, comm Fields::SDPD_FLUX, stages 0;
+    /// Entropy S of a Voronoi cell (pair voronoi/fv; Serrano-Espanol eq 64).
+    entropy: f64, "entropy", gate Fields::ENTROPY, comm NONE, stages MIGRATE | RESTART;
     /// Per-particle diagonal virial sum_j F_ij (x_ij^2, y_ij^2, z_ij^2) / 2 of owned
     /// particles (its trace is the scalar virial).
     virial: Vec3, "virial", gate Fields::PRESSURE.union(Fields::PAIR_ENERGY), comm NONE, stages RESTART | RESUME;

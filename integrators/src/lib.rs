@@ -24,6 +24,7 @@ pub mod system;
 pub mod tables;
 pub mod type_table;
 pub mod verlet;
+pub mod voronoi;
 pub mod vv_euler;
 
 pub use barostat::{Couple, Nph, NphState};

@@ -18,6 +18,11 @@ pub mod stream {
     pub const FORCE: u32 = 3;
     /// The second pair of random pair forces of `pair dpd/ext` (across the pair axis).
     pub const FORCE_PERP: u32 = 4;
+    /// Random stress and heat flux of one Voronoi cell (voronoi/finite_volume.rs).
+    pub const VORONOI: u32 = 5;
+    /// Pair noises dW, dV of one Voronoi DPD face (voronoi/dpd.rs): VORONOI_PAIR + the
+    /// code (0..27) of the face's periodic image.
+    pub const VORONOI_PAIR: u32 = 1 << 24;
     /// Brownian-bridge noises of split pair updates: SUBSTEP + node of the split tree.
     pub const SUBSTEP: u32 = 16;
 }

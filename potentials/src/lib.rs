@@ -3,6 +3,7 @@
 //! Equation numbers refer to Bonet Avalos et al., PCCP 21, 24891 (2019) unless a
 //! docstring names another paper. This crate depends on nothing project-internal.
 
+pub mod cell_energy;
 pub mod eos;
 pub mod hnc;
 pub mod lth_params;
@@ -14,4 +15,5 @@ pub use eos::{
     AffineAt, AtDensity, AtN, Eos, EosError, EosState, FixedDensity, ErrorAt, LennardJones, LinearTheta, TableError, TableErrors, TableGrid,
     Tabulated, Tait, ISOLATED_DENSITY,
 };
+pub use cell_energy::{CellEnergy, CellState, CellStateError, IdealCell, VdwCell};
 pub use weight::{CubicSpline, Linear, Lucy, Quadratic, Weight, WeightKind};

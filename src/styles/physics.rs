@@ -59,12 +59,16 @@ pub fn build_physics(
             let settings = Settings { dt, skin, rebuild, motion: Motion::Fixed, dissipation: None, reservoirs: Vec::new() };
             return crate::styles::sdpd::build_taitwater(cmd, p, fixes, settings, kb, mvv2e);
         }
+        PairStyle::Voronoi(p) => return crate::styles::voronoi::build_voronoi(cmd, p, fixes, dt, skin, rebuild, kb),
     };
     if let Some(f) = fixes.iter().find(|f| matches!(f.style, FixStyle::MvvEdpd { .. } | FixStyle::EdpdSource { .. })) {
         return Err(err(format!("fix {} belongs to pair edpd", f.id)));
     }
     if let Some(f) = fixes.iter().find(|f| f.style == FixStyle::NveSdpd) {
         return Err(err(format!("fix {} (nve/sdpd) integrates pair sdpd/generic", f.id)));
+    }
+    if let Some(f) = fixes.iter().find(|f| f.style == FixStyle::NveVoronoi) {
+        return Err(err(format!("fix {} (nve/voronoi) integrates pair voronoi/fv", f.id)));
     }
     if fixes.iter().any(|f| matches!(f.style, FixStyle::Nve | FixStyle::Mvv { .. } | FixStyle::DpdEnergy | FixStyle::Nph { .. })) {
         return Err(err("pair gendpde integrates with fix nve/gendpde or vv/euler (fix nve, nph, mvv/dpd and dpd/energy belong to LAMMPS's pairwise styles)".into()));
@@ -195,7 +199,7 @@ fn pairwise(cmd: &Command, p: &Pairwise, fixes: &[Fix], settings: Settings, kb: 
     if let Some(f) = fixes.iter().find(|f| matches!(f.style, FixStyle::MvvEdpd { .. } | FixStyle::EdpdSource { .. })) {
         return Err(err(&format!("fix {} belongs to pair edpd", f.id)));
     }
-    if has(|s| matches!(s, FixStyle::Verlet { .. } | FixStyle::VvEuler { .. } | FixStyle::Reservoir { .. } | FixStyle::NveSdpd)) {
+    if has(|s| matches!(s, FixStyle::Verlet { .. } | FixStyle::VvEuler { .. } | FixStyle::Reservoir { .. } | FixStyle::NveSdpd | FixStyle::NveVoronoi)) {
         return Err(err("fix nve/gendpde, vv/euler and heat/reservoir belong to pair gendpde; LAMMPS's pairwise styles use fix nve, shardlow, eos/cv, mvv/dpd"));
     }
     if nve && barostat.is_some() {

@@ -32,6 +32,8 @@ pub enum FixStyle {
     /// `fix nve/sdpd`: velocity Verlet at fixed entropy, then the irreversible SDPD step
     /// (pair sdpd/generic).
     NveSdpd,
+    /// `fix nve/voronoi`: the step of the Voronoi finite-volume model (pair voronoi/fv).
+    NveVoronoi,
     /// `fix nve` (LAMMPS's pairwise styles).
     Nve,
     /// `fix mvv/dpd [LAMBDA]` (pair mdpd).
@@ -110,6 +112,7 @@ pub fn parse_fix_in(cmd: &Command, kb: f64, groups: &[String], regions: &HashMap
         "vv/euler" => FixStyle::VvEuler { heat: heat_keyword(&mut a)?.unwrap_or(HeatModel::Original) },
         "nve/sdpd" => FixStyle::NveSdpd,
         "sph" => FixStyle::Sph,
+        "nve/voronoi" => FixStyle::NveVoronoi,
         "nve" => FixStyle::Nve,
         "nph" => {
             let (nph, fixedpoint) = nph::parse_nph(&id, &mut a, kb, groups)?;

@@ -11,6 +11,7 @@ pub mod pairwise;
 pub mod table;
 pub mod sdpd;
 pub mod sdpd_taitwater;
+pub mod voronoi;
 
 use self::edpd::PairEdpd;
 use self::gendpde::PairGendpde;
@@ -19,6 +20,7 @@ use self::pairwise::Pairwise;
 use self::table::Tabulated;
 use self::sdpd::PairSdpd;
 use self::sdpd_taitwater::PairTaitwater;
+use self::voronoi::PairVoronoi;
 use crate::base::args::Args;
 use gendpde_io::{Command, ScriptError};
 
@@ -40,6 +42,8 @@ pub enum PairStyle {
     Sdpd(PairSdpd),
     /// DPD-SMOOTH's isothermal SDPD of Tait water.
     Taitwater(PairTaitwater),
+    /// The Voronoi finite-volume model (Serrano-Espanol Secs V-VI.A).
+    Voronoi(PairVoronoi),
 }
 
 impl PairStyle {
@@ -55,6 +59,7 @@ impl PairStyle {
             Self::Overlay(o) => o.table.as_ref().map_or(0.0, Tabulated::cutoff).max(o.pairwise.as_ref().map_or(0.0, |(_, p)| pairwise_cutoff(p))),
             Self::Sdpd(p) => p.cutoff,
             Self::Taitwater(p) => p.cutoff(),
+            Self::Voronoi(_) => 0.0,
         }
     }
 }
@@ -102,6 +107,7 @@ pub fn parse_pair_style(cmd: &Command) -> Result<PairStyle, ScriptError> {
         name @ ("hybrid" | "hybrid/overlay") if !self::hybrid::is_mdpd(&a) => self::hybrid::parse_style(name, &mut a).map(PairStyle::Overlay),
         "sdpd/generic" => self::sdpd::parse_style(&mut a).map(PairStyle::Sdpd),
         "sdpd/taitwater/isothermal" => self::sdpd_taitwater::parse_style(&mut a).map(PairStyle::Taitwater),
+        "voronoi/fv" => self::voronoi::parse_style(&mut a).map(PairStyle::Voronoi),
         other => self::pairwise::parse_style(other, &mut a).map(PairStyle::Pairwise),
     }
 }
@@ -126,5 +132,9 @@ pub fn parse_pair_coeff(cmd: &Command, pair: &mut PairStyle, ntypes: usize) -> R
             Ok(())
         }
         PairStyle::Taitwater(p) => self::sdpd_taitwater::parse_coeff(p, cmd, ntypes),
+        PairStyle::Voronoi(p) => {
+            p.coeff = Some(self::voronoi::parse_coeff(cmd, ntypes)?);
+            Ok(())
+        }
     }
 }
