@@ -4,14 +4,17 @@ T = 1.5, rho = 0.5 (Fig 1, bottom right) from a Metropolis Monte Carlo of the
 configurational integral, against the GenDPDE runs of distributions.py.
 
     python3 scripts/validation/local_density_mc.py [--n 15] [--sweeps 400] [--equil 100]
-    python3 scripts/validation/local_density_mc.py --rc 3 --n 11 --sweeps 100   # pressure only
+    python3 scripts/validation/local_density_mc.py --rc 3 --n 11 --sweeps 500 [--model lj] [--T 1.507]   # pressure only
 
 Integrating eq 88 over u and momenta leaves the positions with the weight
 exp(-sum_i [Y(n_i)/(k_B T) + ln psi(n_i)]) (eq 92), Y = V for the EOS family of eqs 43-46.
 For the vdW excess EOS (C_V = 60, a = 2.4682, b = 1.4142, self term excluded, quadratic
 weight, rc = 4) the exponent per particle is f(n) = [u(T, n) - C_V T]/T + C_V ln T - s(T, n),
 which this script tabulates through `gendpde eos` so that the engine's cap of n below 1/b
-is included. Single-particle moves in an sc-started box of n^3 sites at rho = 0.5; the step
+is included. For the LJ (Kolafa-Nezbeda) EOS, whose excess free energy depends on theta,
+integrating u out gives F_eff(n) = -k_B T ln int dtheta (C_V/theta) exp(s - u/(k_B T))
+instead (issue 19; it reduces to the above for the linear family). The sampling runs in
+the compiled kernel local_density_mc.c (built with gcc on first use). Single-particle moves in an sc-started box of n^3 sites at rho = 0.5; the step
 is raised towards 40 % acceptance during equilibration, and since the soft weight accepts
 even moves across the whole box three times in four, it ends larger than the box (random
 re-insertion; the proposal stays symmetric). All n_i are recomputed every sweep (no drift
@@ -21,8 +24,9 @@ u + a n ~ Gamma(C_V, T) for each particle's n, so P(u) = <Gamma pdf(u + a n)>_n.
 The virial pressure of the sampled weight (issue 19, item 4): with F(n) = k_B T f(n) the
 configurational free energy per particle (V + k_B T ln psi for the linear family), the pair
 force is -(F'(n_i) + F'(n_j)) w'(r) e_ij (eq 50 with pi/n^2 = F'), and
-P = rho k_B T + <sum_{i<j} r_ij . f_ij>/(3V), recorded every sweep. With --rc other than 4
-the script records the pressure only (the GenDPDE comparison runs are at rc = 4).
+P = rho k_B T + <sum_{i<j} r_ij . f_ij>/(3V), recorded every sweep. With --rc other than 4,
+--model lj or --T other than 1.5 the script records the pressure only (results entry
+local_density_mc_pressure); pressure_mc.py runs it against the engine.
 """
 import argparse
 import time
