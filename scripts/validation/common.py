@@ -54,6 +54,24 @@ def mean_sem(values, blocks=10):
     return float(v.mean()), float(b.std(ddof=1) / np.sqrt(nb))
 
 
+def mean_sem_tau(values):
+    """Mean and its standard error sd sqrt(2 tau / n) from the integrated autocorrelation
+    time tau (in samples; the sum of the autocorrelation function up to its first negative
+    value). Unlike `mean_sem` with 10 blocks, it does not depend on how the blocks fall,
+    whose error estimate scatters by a quarter on its own."""
+    import numpy as np
+    v = np.asarray(values, dtype=float)
+    x = v - v.mean()
+    var = x.var()
+    tau = 0.5
+    for k in range(1, len(x) // 4):
+        c = (x[:-k] * x[k:]).mean() / var
+        if c < 0.0:
+            break
+        tau += c
+    return float(v.mean()), float(np.sqrt(var * 2.0 * tau / len(v)))
+
+
 def relative(energy):
     """(E(t) - E(0)) / |E(0)| over one run's thermo column."""
     return [(e - energy[0]) / abs(energy[0]) for e in energy]

@@ -4,14 +4,17 @@ T = 1.5, rho = 0.5 (Fig 1, bottom right) from a Metropolis Monte Carlo of the
 configurational integral, against the GenDPDE runs of distributions.py.
 
     python3 scripts/validation/local_density_mc.py [--n 15] [--sweeps 400] [--equil 100]
-    python3 scripts/validation/local_density_mc.py --rc 3 --n 11 --sweeps 100   # pressure only
+    python3 scripts/validation/local_density_mc.py --rc 3 --n 11 --sweeps 500 [--model lj] [--T 1.507]   # pressure only
 
 Integrating eq 88 over u and momenta leaves the positions with the weight
 exp(-sum_i [Y(n_i)/(k_B T) + ln psi(n_i)]) (eq 92), Y = V for the EOS family of eqs 43-46.
 For the vdW excess EOS (C_V = 60, a = 2.4682, b = 1.4142, self term excluded, quadratic
 weight, rc = 4) the exponent per particle is f(n) = [u(T, n) - C_V T]/T + C_V ln T - s(T, n),
 which this script tabulates through `gendpde eos` so that the engine's cap of n below 1/b
-is included. Single-particle moves in an sc-started box of n^3 sites at rho = 0.5; the step
+is included. For the LJ (Kolafa-Nezbeda) EOS, whose excess free energy depends on theta,
+integrating u out gives F_eff(n) = -k_B T ln int dtheta (C_V/theta) exp(s - u/(k_B T))
+instead (issue 19; it reduces to the above for the linear family). The sampling runs in
+the compiled kernel local_density_mc.c (built with gcc on first use). Single-particle moves in an sc-started box of n^3 sites at rho = 0.5; the step
 is raised towards 40 % acceptance during equilibration, and since the soft weight accepts
 even moves across the whole box three times in four, it ends larger than the box (random
 re-insertion; the proposal stays symmetric). All n_i are recomputed every sweep (no drift
@@ -21,11 +24,13 @@ u + a n ~ Gamma(C_V, T) for each particle's n, so P(u) = <Gamma pdf(u + a n)>_n.
 The virial pressure of the sampled weight (issue 19, item 4): with F(n) = k_B T f(n) the
 configurational free energy per particle (V + k_B T ln psi for the linear family), the pair
 force is -(F'(n_i) + F'(n_j)) w'(r) e_ij (eq 50 with pi/n^2 = F'), and
-P = rho k_B T + <sum_{i<j} r_ij . f_ij>/(3V), recorded every sweep. With --rc other than 4
-the script records the pressure only (the GenDPDE comparison runs are at rc = 4).
+P = rho k_B T + <sum_{i<j} r_ij . f_ij>/(3V), recorded every sweep. With --rc other than 4,
+--model lj or --T other than 1.5 the script records the pressure only (results entry
+local_density_mc_pressure); pressure_mc.py runs it against the engine.
 """
 import argparse
 import time
+from pathlib import Path
 
 import numpy as np
 from scipy import stats
@@ -34,6 +39,7 @@ import common
 
 T, RHO, CV, A, B, RC = 1.5, 0.5, 60.0, 2.4682, 1.4142, 4.0
 EOS = f"vdw {CV} {A} {B} excess"
+LJ_EOS = f"lj {CV}"
 
 
 def exponent_table(grid):
@@ -45,41 +51,23 @@ def exponent_table(grid):
     return np.array(f)
 
 
-def weight_derivative(r):
-    """d/dr of `weight`."""
-    return -2.0 * np.clip(1.0 - r / RC, 0.0, None) / RC * 15.0 / (2.0 * np.pi * RC ** 3)
-
-
-def virial(pos, n, box, dfdn):
-    """sum_{i<j} r_ij . f_ij for the weight exp(-sum f(n_i)) (f in units of k_B T)."""
-    total = 0.0
-    dfn = dfdn(n)
-    for i, x in enumerate(pos):
-        r = distances(pos, x, box)
-        r[i] = 2.0 * RC
-        total += -((dfn[i] + dfn) * weight_derivative(r) * r).sum()
-    return 0.5 * T * total
-
-
-def weight(r):
-    """Quadratic weight (1 - r/rc)^2 normalised to unit integral, zero beyond rc."""
-    w = np.clip(1.0 - r / RC, 0.0, None) ** 2
-    return w * 15.0 / (2.0 * np.pi * RC ** 3)
-
-
-def distances(pos, x, box):
-    d = pos - x
-    d -= box * np.round(d / box)
-    return np.sqrt((d * d).sum(axis=1))
-
-
-def densities(pos, box):
-    n = np.empty(len(pos))
-    for i, x in enumerate(pos):
-        w = weight(distances(pos, x, box))
-        w[i] = 0.0
-        n[i] = w.sum()
-    return n
+def lj_exponent_table(grid, nodes=16):
+    """F_eff(n)/(k_B T) of the LJ (Kolafa-Nezbeda) particle EOS on `grid`: integrating u
+    out of eq 88 leaves -ln int dtheta (C_V/theta) exp(s - u/T) (issue 19; for the linear
+    family V/T + ln psi + const), here by Gauss-Hermite in x = ln(theta/T), where the
+    integrand is nearly Gaussian with width 1/sqrt(C_V). Constant terms dropped."""
+    x, w = np.polynomial.hermite.hermgauss(nodes)
+    width = np.sqrt(2.0 / CV)
+    f = []
+    for n in grid:
+        h = []
+        for xk in x:
+            e = common.eos(LJ_EOS, T * np.exp(width * xk), n)
+            h.append(e["s"] - e["u"] / T + np.log(e["cv"]))
+        h = np.array(h) + x * x
+        top = h.max()
+        f.append(-(top + np.log((w * np.exp(h - top)).sum())))
+    return np.array(f)
 
 
 def analytic_table(grid):
@@ -89,54 +77,58 @@ def analytic_table(grid):
     return -A * grid / T - np.log(np.clip(1.0 - B * grid, 1e-12, None))
 
 
-def monte_carlo(cells, sweeps, equil, seed, analytic=False):
-    rng = np.random.default_rng(seed)
-    box = cells / RHO ** (1 / 3)
-    g = (np.arange(cells) + 0.5) * box / cells
-    pos = np.array(np.meshgrid(g, g, g, indexing="ij")).reshape(3, -1).T.copy()
-    grid = np.linspace(0.0, 1.2, 1201)
-    table = analytic_table(grid) if analytic else exponent_table(grid)
-    f = lambda n: np.interp(n, grid, table)  # noqa: E731
-    slope = np.gradient(table, grid)
-    dfdn = lambda n: np.interp(n, grid, slope)  # noqa: E731
-    N = len(pos)
-    step, accepted, tried = 1.0, 0, 0
-    hist_edges = np.linspace(0.0, 1.0, 201)
-    hist = np.zeros(len(hist_edges) - 1)
-    means, variances, samples, pressures = [], [], [], []
-    for sweep in range(equil + sweeps):
-        n = densities(pos, box)
-        if analytic and n.max() >= 0.95 / B:
-            raise SystemExit(f"n_i = {n.max():.4f} reached the vdW cap: run without --analytic")
-        if sweep >= equil:
-            hist += np.histogram(n, hist_edges)[0]
-            means.append(n.mean())
-            variances.append(n.var())
-            samples.append(n[rng.integers(0, N, 64)])
-            pressures.append(RHO * T + virial(pos, n, box, dfdn) / (3.0 * box ** 3))
-        for k in rng.integers(0, N, N):
-            new = (pos[k] + step * rng.uniform(-1.0, 1.0, 3)) % box
-            w_old = weight(distances(pos, pos[k], box))
-            w_old[k] = 0.0
-            w_new = weight(distances(pos, new, box))
-            w_new[k] = 0.0
-            touched = (w_old > 0.0) | (w_new > 0.0)
-            n_j = n[touched]
-            n_j_new = n_j - w_old[touched] + w_new[touched]
-            n_k_new = w_new.sum()
-            df = f(n_j_new).sum() - f(n_j).sum() + f(n_k_new) - f(n[k])
-            tried += 1
-            if df <= 0.0 or rng.random() < np.exp(-df):
-                accepted += 1
-                n[touched] = n_j_new
-                n[k] = n_k_new
-                pos[k] = new
-        if sweep < equil and sweep % 5 == 4:
-            step *= np.exp(accepted / tried - 0.4)
-            accepted = tried = 0
-    return {"N": N, "box": box, "step": step, "acceptance": accepted / max(tried, 1), "edges": hist_edges,
-            "hist": hist, "means": np.array(means), "vars": np.array(variances),
-            "samples": np.concatenate(samples), "pressures": np.array(pressures)}
+def table(model, analytic):
+    """(fine grid, f, df/dn): the engine's EOS on a coarse grid (`gendpde eos` calls are
+    slow), interpolated by a cubic spline (LJ, smooth) or linearly (vdW, whose cap below
+    1/b is a kink)."""
+    from scipy.interpolate import CubicSpline
+    fine = np.linspace(0.0, 1.2, 1201)
+    cache = common.workdir("local_density_mc", "tables") / f"{model}_T{T!r}{'_analytic' if analytic else ''}.npy"
+    if cache.exists():
+        f = np.load(cache)
+        return fine, f, np.gradient(f, fine)
+    if model == "lj":
+        coarse = np.linspace(0.0, 1.2, 49)
+        f = CubicSpline(coarse, lj_exponent_table(coarse))(fine)
+    elif analytic:
+        f = analytic_table(fine)
+    else:
+        coarse = np.linspace(0.0, 1.2, 241)
+        f = np.interp(fine, coarse, exponent_table(coarse))
+    cache.parent.mkdir(parents=True, exist_ok=True)
+    np.save(cache, f)
+    return fine, f, np.gradient(f, fine)
+
+
+def kernel():
+    """The compiled Monte Carlo kernel (local_density_mc.c), built once per source version."""
+    import hashlib
+    import subprocess
+    src = Path(__file__).with_suffix(".c")
+    exe = common.workdir("local_density_mc", "bin") / f"mc_{hashlib.sha1(src.read_bytes()).hexdigest()[:10]}"
+    if not exe.exists():
+        exe.parent.mkdir(parents=True, exist_ok=True)
+        subprocess.run(["gcc", "-O3", "-o", str(exe), str(src), "-lm"], check=True)
+    return exe
+
+
+def monte_carlo(cells, sweeps, equil, seed, model="vdw", analytic=False):
+    import subprocess
+    grid, f, slope = table(model, analytic)
+    wd = common.workdir("local_density_mc", f"{model}_rc{RC:g}_T{T:g}_n{cells}_s{sweeps}_e{equil}_seed{seed}")
+    wd.mkdir(parents=True, exist_ok=True)
+    np.concatenate([[grid[0], grid[1] - grid[0], len(grid)], f, slope]).astype("<f8").tofile(wd / "table.bin")
+    subprocess.run([str(kernel()), str(cells), str(RHO), str(RC), repr(T), str(sweeps), str(equil), str(seed),
+                    str(wd / "table.bin"), str(wd / "out.bin")], check=True)
+    out = np.fromfile(wd / "out.bin", dtype="<f8")
+    rec = out[:3 * sweeps].reshape(sweeps, 3)
+    hist = out[3 * sweeps:3 * sweeps + 200]
+    samples = out[3 * sweeps + 200:-2]
+    if model == "vdw" and analytic and samples.max() >= 0.95 / B:
+        raise SystemExit(f"n_i = {samples.max():.4f} reached the vdW cap: run without --analytic")
+    return {"N": cells ** 3, "box": cells / RHO ** (1 / 3), "step": out[-2], "acceptance": out[-1],
+            "edges": np.linspace(0.0, 1.0, 201), "hist": hist, "means": rec[:, 1], "vars": rec[:, 2], "samples": samples,
+            "pressures": rec[:, 0], "table": (grid, f, slope)}
 
 
 def block_sem(x, blocks=10):
@@ -151,7 +143,7 @@ def md_frames(tag):
 
 
 def main():
-    global RC
+    global RC, T
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--n", type=int, default=15, help="lattice cells per side (15: the Fig 6 runs' box)")
     ap.add_argument("--sweeps", type=int, default=400)
@@ -159,20 +151,31 @@ def main():
     ap.add_argument("--seed", type=int, default=92)
     ap.add_argument("--analytic", action="store_true", help="f(n) in closed form (valid below the cap) instead of `gendpde eos`")
     ap.add_argument("--rc", type=float, default=RC, help="density cutoff (4: the paper's, with the GenDPDE comparison)")
+    ap.add_argument("--model", choices=["vdw", "lj"], default="vdw", help="particle EOS: vdW excess or LJ (Kolafa-Nezbeda)")
+    ap.add_argument("--T", type=float, default=T, help="temperature (a run's <T_int> for the engine comparison)")
     args = ap.parse_args()
-    RC = args.rc
+    RC, T = args.rc, args.T
 
     start = time.time()
-    mc = monte_carlo(args.n, args.sweeps, args.equil, args.seed, args.analytic)
+    mc = monte_carlo(args.n, args.sweeps, args.equil, args.seed, args.model, args.analytic)
     wall = time.time() - start
     m, m_err = block_sem(mc["means"])
     v, v_err = block_sem(mc["vars"])
     p, p_err = block_sem(mc["pressures"])
-    pressure = {"rc": RC, "N": mc["N"], "sweeps": args.sweeps, "P": p, "P_err": p_err, "mean_n": m, "mean_n_err": m_err,
-                "std_n": v ** 0.5, "wall_s": round(wall, 1)}
-    print(pressure)
-    if RC != 4.0:
-        common.save(f"local_density_mc_pressure_rc{RC:g}", pressure)
+    grid, f, slope = mc["table"]
+    rho_t = np.interp(RHO, grid, slope)
+    eos = common.eos(LJ_EOS if args.model == "lj" else EOS, T, RHO)["pressure"]
+    pressure = {"model": args.model, "rc": RC, "T": T, "N": mc["N"], "sweeps": args.sweeps, "equil": args.equil,
+                "P": p, "P_err": p_err, "mean_n": m, "mean_n_err": m_err, "std_n": v ** 0.5, "P_eos": eos,
+                "P_mean_field": RHO * T + RHO * RHO * T * rho_t, "acceptance": mc["acceptance"], "wall_s": round(wall, 1)}
+    print(pressure, flush=True)
+    if RC != 4.0 or args.model != "vdw" or args.T != 1.5:
+        try:
+            rows = common.saved("local_density_mc_pressure")
+        except (OSError, KeyError):
+            rows = {}
+        rows[f"{args.model}_rc{RC:g}_N{mc['N']}_T{T:.4f}"] = pressure
+        common.save("local_density_mc_pressure", rows)
         return
     entry = {"pressure": pressure, "N": mc["N"], "sweeps": args.sweeps, "equil": args.equil, "acceptance": mc["acceptance"],
              "step": mc["step"], "wall_s": round(wall, 1), "mc": {"mean": m, "mean_err": m_err, "std": v ** 0.5,

@@ -62,13 +62,21 @@ def main():
     ap.add_argument("--dump", type=int, default=1000)
     ap.add_argument("--gamma", type=float, default=0.45)
     ap.add_argument("--eos", default=f"lj 60.0 {common.LJ_TABLE}")
+    ap.add_argument("--start", choices=["lattice", "slab"], default="lattice",
+                    help="the paper's quench from the lattice, or a liquid slab in vapour (results: vapour_liquid_slab)")
+    ap.add_argument("--slab", default="25.35,43.05,0.66,0.04", help="slab start: xlo,xhi,rho_liquid,rho_vapour")
     ap.add_argument("--plot", action="store_true", help="only redraw the figure from results.json")
     args = ap.parse_args()
+    scene = "vapour_liquid" if args.start == "lattice" else "vapour_liquid_slab"
     if args.plot:
-        return plot(common.saved("vapour_liquid"))
-    wd = common.workdir("vapour_liquid", f"{args.ly}x{args.lz}_g{args.gamma}")
+        return plot(common.saved(scene), scene)
+    tag = f"{args.ly}x{args.lz}_g{args.gamma}" + ("" if args.start == "lattice" else f"_slab{args.slab}_s{args.steps}")
+    wd = common.workdir("vapour_liquid", tag)
+    wd.mkdir(parents=True, exist_ok=True)
     v = {"ly": args.ly, "lz": args.lz, "steps": args.steps, "dump": args.dump, "eos": args.eos, "every": 100,
-         "gamma": args.gamma}
+         "gamma": args.gamma, "start": args.start, "ckpt": args.dump}
+    if args.start == "slab":
+        v.update(zip(("xlo", "xhi", "rhol", "rhov"), args.slab.split(",")))
     blocks, wall = common.run_once("vapour-liquid", v, wd)
     run = blocks[-1]
     x = common.h5md_frames(wd / "traj.h5", "position")[..., 0] % LX
@@ -88,6 +96,10 @@ def main():
     srt = np.sort(final)
     q = nbins // 4
     rho_v, rho_l = float(srt[:q].mean()), float(srt[-q:].mean())
+    # errors: the same quarters frame by frame over the second half, block averages
+    per_frame = np.sort([profile(x[k]) for k in range(frames // 2, frames)], axis=1)
+    rho_v_err = common.mean_sem(per_frame[:, :q].mean(axis=1), blocks=5)[1]
+    rho_l_err = common.mean_sem(per_frame[:, -q:].mean(axis=1), blocks=5)[1]
     half = len(run["Step"]) // 2
     stats = {k: common.mean_sem(run[k][half:]) for k in ["Press", "Pxx", "Pyy", "Pzz", "Temp", "Tint"]}
     pn = np.asarray(run["Pxx"][half:]) - 0.5 * (np.asarray(run["Pyy"][half:]) + np.asarray(run["Pzz"][half:]))
@@ -98,9 +110,15 @@ def main():
     interfaces = int(np.count_nonzero(above != np.roll(above, 1)))
     sigma = common.mean_sem(LX / max(interfaces, 2) * pn)
     slab_peak = float(np.convolve(last, np.ones(3) / 3, mode="valid").max())
-    mv, ml, ps = maxwell()
+    try:  # the EOS's own coexistence, as the quench run stored it (450 `gendpde eos` calls)
+        c = common.saved("vapour_liquid")["eos_coexistence"]
+        mv, ml, ps = c["rho_vapour"], c["rho_liquid"], c["P_sat"]
+    except (OSError, KeyError):
+        mv, ml, ps = maxwell()
     entry = {"box": [LX, args.ly, args.lz], "N": int(x.shape[1]), "steps": args.steps, "gamma": args.gamma, "wall_s": round(wall, 1),
-             "rho_vapour": rho_v, "rho_liquid": rho_l, "P": stats["Press"], "T_kin": stats["Temp"], "T_int": stats["Tint"],
+             "rho_vapour": rho_v, "rho_liquid": rho_l, "rho_vapour_err": rho_v_err, "rho_liquid_err": rho_l_err,
+             "progress": progress([profile(x[k]) for k in range(frames)], args.dump * 0.01, rho_v, rho_l),
+             "start": args.start, "P": stats["Press"], "T_kin": stats["Temp"], "T_int": stats["Tint"],
              "surface_tension": sigma, "interfaces": interfaces, "slab_peak": slab_peak, "last_profile": [float(r) for r in last],
              "eos_coexistence": {"rho_vapour": mv, "rho_liquid": ml, "P_sat": ps},
              "paper": {"P_sat_reference": 0.029, "surface_tension": 0.18}, "eos": args.eos}
@@ -110,11 +128,25 @@ def main():
                             for k in sorted({0, frames // 4, frames // 2, frames - 1})}}
     entry["series"] = common.series(run, t="Time", T_kin="Temp", T_int="Tint", P="Press")
     print({k: v for k, v in entry.items() if k not in ("series", "profiles", "last_profile")})
-    plot(entry)
-    common.save("vapour_liquid", entry)
+    plot(entry, scene)
+    common.save(scene, entry)
 
 
-def plot(entry):
+def progress(profiles, dt, rho_v, rho_l):
+    """The separation's progress frame by frame: time, the number of interfaces (crossings
+    of the mid density) and the amplitudes |rho_m| / (rho_l - rho_v) of the profile's first
+    four Fourier modes along x (one sharp slab filling a fraction f of the box: mode 1 at
+    2 sin(pi f)/pi, 0.47 at f = 1/4; shorter wavelengths dominate while several domains
+    remain)."""
+    rows = []
+    for k, p in enumerate(profiles):
+        above = p > 0.5 * (rho_v + rho_l)
+        modes = np.abs(np.fft.rfft(p - p.mean()))[1:5] * 2 / len(p) / (rho_l - rho_v)
+        rows.append([round(k * dt, 3), int(np.count_nonzero(above != np.roll(above, 1)))] + [round(float(a), 4) for a in modes])
+    return rows
+
+
+def plot(entry, scene="vapour_liquid"):
     """Figs 8 and 9 from the results entry: density profiles, temperatures, pressure."""
     import sys
     if "series" not in entry:
@@ -148,7 +180,7 @@ def plot(entry):
     c.set_title("Fig 9: pressure")
     c.legend(fontsize=8)
     fig.tight_layout()
-    fig.savefig(common.figure_path("vapour_liquid"), dpi=80)
+    fig.savefig(common.figure_path(scene), dpi=80)
 
 
 if __name__ == "__main__":
