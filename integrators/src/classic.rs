@@ -289,9 +289,10 @@ impl ClassicDpd {
     /// Pair forces at the current positions and velocities; the noise of step `step`.
     fn forces(&self, sys: &mut System, step: u64) {
         let inv_sqrt_dt = 1.0 / self.settings.dt.sqrt();
+        let key = sys.noise_step(step);
         let (seed, pairs, s) = (self.seed, &sys.nlist.pairs, &mut sys.store);
         let normals = Normals::get();
-        let noise = move |s: &Particles, i: usize, j: usize| normals.pair(seed, step, s.tag[i].min(s.tag[j]), s.tag[i].max(s.tag[j]), stream::FORCE);
+        let noise = move |s: &Particles, i: usize, j: usize| normals.pair(seed, key, s.tag[i].min(s.tag[j]), s.tag[i].max(s.tag[j]), stream::FORCE);
         match &self.force {
             // w = 0 beyond rc: no branch to mispredict on the skin's pairs
             PairForce::Dpd(t) if t.iter().all(|c| c.gamma == 0.0 && c.sigma == 0.0) => tally::<true, false, false>(s, pairs, |_, _| f64::INFINITY, |s, i, j, _, r| {
@@ -318,7 +319,7 @@ impl ClassicDpd {
             }),
             PairForce::DpdExt(e) => {
                 let (t, kb, normals) = (e.temperature(step, sys.run), self.kb, Normals::get());
-                let noise = move |s: &Particles, i: usize, j: usize, stream| normals.pair(seed, step, s.tag[i].min(s.tag[j]), s.tag[i].max(s.tag[j]), stream);
+                let noise = move |s: &Particles, i: usize, j: usize, stream| normals.pair(seed, key, s.tag[i].min(s.tag[j]), s.tag[i].max(s.tag[j]), stream);
                 let ext_pair = move |s: &Particles, i: usize, j: usize, d: Vec3, r: f64, perp: bool| {
                     let c = *e.coeff.get(s.kind[i], s.kind[j]);
                     let w = 1.0 - r / c.rc;
@@ -418,7 +419,7 @@ impl ClassicDpd {
     fn sweep(&self, sys: &mut System, p: &ShardlowDpd) {
         let (dt, kb) = (self.settings.dt, self.kb);
         let sqrt_dt = dt.sqrt();
-        let (step, normals, reach) = (sys.step, Normals::get(), p.cutoff());
+        let (step, normals, reach) = (sys.noise_step(sys.step), Normals::get(), p.cutoff());
         for colour in 0..sys.sweep.colours() {
             let pairs = sys.sweep.within(colour, &sys.store, reach);
             let s = &mut sys.store;

@@ -111,6 +111,7 @@ impl Edpd {
     /// One pass over the half list: a pair gives its exact mirror to j.
     fn forces(&self, sys: &mut System, step: u64) {
         let inv_sqrt_dt = 1.0 / self.settings.dt.sqrt();
+        let key = sys.noise_step(step);
         let (kb, s, pairs) = (self.kb, &mut sys.store, &sys.nlist.pairs);
         let n = s.nlocal;
         s.f[..n].fill([0.0; 3]);
@@ -132,7 +133,7 @@ impl Edpd {
             let inv_r = 1.0 / r;
             let (ti, tj) = (s.edpd_temp[i], s.edpd_temp[j]);
             let vij = dot(d, sub(velocity(s, i), velocity(s, j))) * inv_r;
-            let xi = normal_pair(self.seed, step, s.tag[i].min(s.tag[j]), s.tag[i].max(s.tag[j]), stream::FORCE).0;
+            let xi = normal_pair(self.seed, key, s.tag[i].min(s.tag[j]), s.tag[i].max(s.tag[j]), stream::FORCE).0;
             let t_ij = 0.5 * (ti + tj);
             let power = (c.power * EdpdCoeff::factor(&c.power_poly, t_ij)).max(0.01);
             let wc = (1.0 - r / c.rc).clamp(0.0, 1.0);

@@ -164,7 +164,7 @@ impl<E: FixedEntropy, W: Weight> Sdpd<E, W> {
     /// K + U exact (midpoint velocities).
     fn viscous(&self, sys: &mut System, sc: &mut Scratch) {
         let (dt, p) = (self.settings.dt, &self.params);
-        let normals = Normals::get();
+        let (normals, key) = (Normals::get(), sys.noise_step(sys.step));
         self.gradients(sys, sc);
         let nl = sys.store.nlocal;
         for i in 0..nl {
@@ -180,7 +180,7 @@ impl<E: FixedEntropy, W: Weight> Sdpd<E, W> {
                 let tag = sys.store.tag[i];
                 let mut draws = [0.0; 10];
                 for c in 0..5 {
-                    (draws[2 * c], draws[2 * c + 1]) = normals.pair(p.seed, sys.step, tag, 0, c as u32);
+                    (draws[2 * c], draws[2 * c + 1]) = normals.pair(p.seed, key, tag, 0, c as u32);
                 }
                 let w: [f64; 9] = std::array::from_fn(|k| draws[k]);
                 let trw = w[0] + w[4] + w[8];
@@ -234,7 +234,7 @@ impl<E: FixedEntropy, W: Weight> Sdpd<E, W> {
     /// Heat conduction with its noise and Ito drift (eqs 82-83 in energy form).
     fn conduction(&self, sys: &mut System, sc: &mut Scratch) {
         let (dt, p) = (self.settings.dt, &self.params);
-        let normals = Normals::get();
+        let (normals, key) = (Normals::get(), sys.noise_step(sys.step));
         let nl = sys.store.nlocal;
         {
             let s = &sys.store;
@@ -270,8 +270,8 @@ impl<E: FixedEntropy, W: Weight> Sdpd<E, W> {
             }
             if p.kb > 0.0 {
                 let amp = t * (2.0 * p.kb * p.kappa / vol * dt).sqrt();
-                let (x0, x1) = normals.pair(p.seed, sys.step, s.tag[i], 0, HEAT_STREAMS[0]);
-                let (x2, _) = normals.pair(p.seed, sys.step, s.tag[i], 0, HEAT_STREAMS[1]);
+                let (x0, x1) = normals.pair(p.seed, key, s.tag[i], 0, HEAT_STREAMS[0]);
+                let (x2, _) = normals.pair(p.seed, key, s.tag[i], 0, HEAT_STREAMS[1]);
                 for (c, xi) in [x0, x1, x2].into_iter().enumerate() {
                     x[c] += amp * xi;
                 }

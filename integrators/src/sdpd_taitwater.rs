@@ -55,7 +55,7 @@ impl SdpdTaitwater {
     /// Forces, virials and drho/dt of the owned particles at the current
     /// positions, densities and (estimated) velocities; the noise of step `step`.
     fn forces(&self, sys: &mut System, step: u64) {
-        let normals = Normals::get();
+        let (normals, key) = (Normals::get(), sys.noise_step(step));
         let inv_m = 1.0 / self.mvv2e;
         let noise = 4.0 * self.kbt / self.settings.dt;
         let (s, pairs) = (&mut sys.store, &sys.nlist.pairs);
@@ -85,9 +85,9 @@ impl SdpdTaitwater {
             let fvisc = (5.0 / 3.0) * self.viscosity * mi * mj * wfd / (rho_i * rho_j);
             let fpair = -mi * mj * (pi + pj) * wfd;
             let (a, b) = if s.tag[i] < s.tag[j] { (s.tag[i], s.tag[j]) } else { (s.tag[j], s.tag[i]) };
-            let (w00, w11) = normals.pair(self.seed, step, a, b, WIENER_STREAM);
-            let (w22, w01) = normals.pair(self.seed, step, a, b, WIENER_STREAM + 1);
-            let (w02, w12) = normals.pair(self.seed, step, a, b, WIENER_STREAM + 2);
+            let (w00, w11) = normals.pair(self.seed, key, a, b, WIENER_STREAM);
+            let (w22, w01) = normals.pair(self.seed, key, a, b, WIENER_STREAM + 1);
+            let (w02, w12) = normals.pair(self.seed, key, a, b, WIENER_STREAM + 2);
             let half = std::f64::consts::FRAC_1_SQRT_2;
             let (w01, w02, w12) = (half * w01, half * w02, half * w12);
             let prefactor = (-noise * fvisc).sqrt() / r;

@@ -37,7 +37,7 @@ pub fn sweep<E: FixedDensity, H: HeatFlow, N: Noise>(eos: &Species<E>, d: &Dissi
     let rc = d.cutoff();
     let (inv_rcd, inv_rch) = (1.0 / d.rc_friction, 1.0 / d.rc_heat);
     let gamma = d.gamma * d.noise.scale();
-    let (step, normals) = (sys.step, Normals::get());
+    let (step, key, normals) = (sys.step, sys.noise_step(sys.step), Normals::get());
     let inv_m = &mut sys.inv_mass;
     inv_m.clear();
     inv_m.extend(sys.store.mass.iter().map(|m| 1.0 / m));
@@ -56,7 +56,7 @@ pub fn sweep<E: FixedDensity, H: HeatFlow, N: Noise>(eos: &Species<E>, d: &Dissi
             let r = dot(dr, dr).sqrt();
             let wd = (1.0 - r * inv_rcd).max(0.0);
             let wh = (1.0 - r * inv_rch).max(0.0);
-            let (xi, xibar) = normals.pair(d.seed, step, v.tag[i], v.tag[j], stream::PAIR);
+            let (xi, xibar) = normals.pair(d.seed, key, v.tag[i], v.tag[j], stream::PAIR);
             let inv_r = 1.0 / r;
             let pair = Pair {
                 i,
@@ -66,7 +66,7 @@ pub fn sweep<E: FixedDensity, H: HeatFlow, N: Noise>(eos: &Species<E>, d: &Dissi
                 gamma: gamma * wd * wd,
                 kappa: d.kappa * wh * wh,
                 seed: d.seed,
-                step,
+                key,
                 kb,
             };
             if let Err(failed) = pair_step::<_, H, N>(&mut v, &pair, xi, xibar, dt, 0, d.substeps, &mut sys.substeps) {
@@ -97,7 +97,7 @@ fn at_density<'a, E: FixedDensity>(eos: &'a Species<E>, s: &Particles, i: usize)
 pub fn reservoir<E: FixedDensity, H: HeatFlow, N: Noise>(eos: &Species<E>, res: &Reservoir, sys: &mut System, dt: f64) -> Result<(), StepError> {
     let kb = eos.kb();
     let sqrt_dt = dt.sqrt();
-    let step = sys.step;
+    let (step, key) = (sys.step, sys.noise_step(sys.step));
     let s = &mut sys.store;
     let mut outcome = Ok(());
     let mut added = Vec::new();
@@ -106,7 +106,7 @@ pub fn reservoir<E: FixedDensity, H: HeatFlow, N: Noise>(eos: &Species<E>, res: 
             continue;
         }
         let (q, alpha) = H::reservoir(kb, res.kappa, temps::<H, N>(s, i), res.temperature);
-        let xi = normal_pair(res.seed, step, s.tag[i], 0, stream::RESERVOIR).0;
+        let xi = normal_pair(res.seed, key, s.tag[i], 0, stream::RESERVOIR).0;
         let du = dt * q + sqrt_dt * alpha * xi;
         s.u[i] += du;
         added.push([du]);
@@ -136,7 +136,8 @@ struct Pair {
     gamma: f64,
     kappa: f64,
     seed: u64,
-    step: u64,
+    /// The noise step ([`System::noise_step`]).
+    key: u64,
     kb: f64,
 }
 
@@ -264,7 +265,7 @@ fn split<A: AtDensity, H: HeatFlow, N: Noise>(
     let (i, j) = (p.i, p.j);
     let saved = (v.load::<H, N>(i), v.load::<H, N>(j));
     *splits += 1;
-    let (eta, etabar) = normal_pair(p.seed, p.step, v.tag[i], v.tag[j], stream::SUBSTEP + node);
+    let (eta, etabar) = normal_pair(p.seed, p.key, v.tag[i], v.tag[j], stream::SUBSTEP + node);
     let h = std::f64::consts::FRAC_1_SQRT_2;
     let first = ((xi + eta) * h, (xibar + etabar) * h);
     let second = ((xi - eta) * h, (xibar - etabar) * h);

@@ -47,6 +47,10 @@ pub struct System {
     /// The first and last step of the current run (LAMMPS's beginstep, endstep), over
     /// which the thermostat pair styles ramp their temperature.
     pub run: [u64; 2],
+    /// What `reset_timestep` moved the step by, summed (wrapping): the counter-based noise
+    /// is keyed by [`System::noise_step`], which a reset leaves running on, so no stretch of
+    /// noise repeats (kept in restart files).
+    pub noise_shift: u64,
     pub time: f64,
     /// Step of the last list build.
     pub last_build: u64,
@@ -78,6 +82,12 @@ pub struct System {
 }
 
 impl System {
+    /// The step the noise of step `step` is keyed by: the step count as if no
+    /// `reset_timestep` had moved the clock.
+    pub fn noise_step(&self, step: u64) -> u64 {
+        step.wrapping_add(self.noise_shift)
+    }
+
     pub fn new(domain: Domain, comm: Comm) -> Self {
         Self {
             domain,
@@ -99,6 +109,7 @@ impl System {
             inv_mass: Vec::new(),
             step: 0,
             run: [0, 0],
+            noise_shift: 0,
             time: 0.0,
             last_build: 0,
             builds: 0,

@@ -59,7 +59,7 @@ fn friction_kernel(d: &Dissipation, r: f64) -> f64 {
 /// and `sys.noise` for the kicks) and the Euler update of u.
 pub fn start<H: HeatFlow>(d: Option<&Dissipation>, kb: f64, sys: &mut System, dt: f64) {
     let sqrt_dt = dt.sqrt();
-    let (step, normals) = (sys.step, Normals::get());
+    let (step, normals) = (sys.noise_step(sys.step), Normals::get());
     let rc = d.map_or(0.0, Dissipation::cutoff);
     let s = &mut sys.store;
     let n = s.nlocal;

@@ -22,6 +22,7 @@
 //! | `max_tag`         | u64                       | largest tag ever assigned                 |
 //! | `ntypes`          | u64                       | number of particle types                  |
 //! | `last_build`      | u64                       | step of the last neighbour-list build     |
+//! | `noise_shift`     | u64                       | only present when not 0: the noise key's shift (`reset_timestep`) |
 //! | `energy0`         | f64                       | only present when `energy0` is `Some`     |
 //! | `cell_counts`     | u64 `[3]`                 | only present when `cell_counts` is `Some` |
 //!
@@ -106,6 +107,9 @@ pub struct RestartHeader {
     pub energy0: Option<f64>,
     /// Step of the last neighbour-list build.
     pub last_build: u64,
+    /// What `reset_timestep` moved the step by (wrapping sum): the noise is keyed by
+    /// step + noise_shift.
+    pub noise_shift: u64,
     /// Global cell grid at the last build.
     pub cell_counts: Option<[usize; 3]>,
     /// Script commands that re-create the styles (pair_style, pair_coeff,
@@ -311,6 +315,9 @@ impl RestartWriter {
         write_attr(&file, "max_tag", &header.max_tag).map_err(h5)?;
         write_attr(&file, "ntypes", &(header.ntypes as u64)).map_err(h5)?;
         write_attr(&file, "last_build", &header.last_build).map_err(h5)?;
+        if header.noise_shift != 0 {
+            write_attr(&file, "noise_shift", &header.noise_shift).map_err(h5)?;
+        }
         if let Some(e0) = header.energy0 {
             write_attr(&file, "energy0", &e0).map_err(h5)?;
         }

@@ -376,12 +376,14 @@ pub fn neigh_modify(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     Ok(())
 }
 
-/// `reset_timestep N`: positions and lists stay; the build step follows the clock.
+/// `reset_timestep N`: positions and lists stay; the build step follows the clock, the
+/// noise does not (its key runs on, so no stretch of it repeats).
 pub fn reset_timestep(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     let n = a.u64("the new step number")?;
     a.done()?;
     let sys = sim.system.as_mut().ok_or_else(|| a.err("reset_timestep before create_box"))?;
     sys.last_build = sys.last_build.saturating_sub(sys.step).saturating_add(n).min(n);
+    sys.noise_shift = sys.noise_shift.wrapping_add(sys.step.wrapping_sub(n));
     sys.step = n;
     Ok(())
 }

@@ -32,6 +32,7 @@ pub fn write(sim: &Sim, file: &str) -> Result<(), String> {
         masses: sim.masses.clone(),
         energy0: sim.energy0,
         last_build: sys.last_build,
+        noise_shift: sys.noise_shift,
         cell_counts: sys.grid.as_ref().map(|g| g.count),
         commands: sim.style_commands(),
         creator_version: env!("CARGO_PKG_VERSION").into(),
@@ -97,6 +98,7 @@ pub fn read(sim: &mut Sim, file: &str, transport: Box<dyn Transport>) -> Result<
     sys.step = h.step;
     sys.time = h.time;
     sys.last_build = h.last_build;
+    sys.noise_shift = h.noise_shift;
     sys.restored = true;
     sys.restored_grid = h.cell_counts;
     sim.ntypes = h.ntypes;

@@ -100,7 +100,7 @@ impl<E: CellEnergy> Physics for VoronoiFv<E> {
         let dt = self.settings.dt;
         let (mut cells, order) = Self::gather(sys);
         let (lo, len) = (sys.domain.lo, sys.domain.len());
-        let stepped = self.model.step(&mut cells, lo, len, dt, sys.step).map_err(|e| Self::error(sys, e));
+        let stepped = self.model.step(&mut cells, lo, len, dt, sys.noise_step(sys.step)).map_err(|e| Self::error(sys, e));
         sys.settle(stepped)?;
         for (k, &i) in order.iter().enumerate() {
             let s = &mut sys.store;

@@ -301,6 +301,7 @@ impl RestartReader {
         let ntypes = c.scalar::<u64>("ntypes")?;
         let last_build = c.scalar::<u64>("last_build")?;
         let energy0 = c.optional_scalar::<f64>("energy0")?;
+        let noise_shift = c.optional_scalar::<u64>("noise_shift")?.unwrap_or(0);
         let cell_counts = if c
             .file
             .attr_names()
@@ -409,6 +410,7 @@ impl RestartReader {
             masses,
             energy0,
             last_build,
+            noise_shift,
             cell_counts,
             commands,
             creator_version,

@@ -72,6 +72,7 @@ fn header(natoms: u64) -> RestartHeader {
         masses: vec![Some(1.0 / 3.0), None, Some(f64::from_bits(1))],
         energy0: Some(-1_234.567_890_123_456_7),
         last_build: 123_456_789_000,
+        noise_shift: u64::MAX - 399,
         cell_counts: Some([7, 3, 11]),
         commands: vec![
             "pair_style gendpde 1.0 12345".into(),
@@ -152,6 +153,7 @@ fn assert_header_bit_exact(a: &RestartHeader, b: &RestartHeader) {
     assert_eq!(opt(&a.masses), opt(&b.masses));
     assert_eq!(a.energy0.map(f64::to_bits), b.energy0.map(f64::to_bits));
     assert_eq!(a.last_build, b.last_build);
+    assert_eq!(a.noise_shift, b.noise_shift);
     assert_eq!(a.cell_counts, b.cell_counts);
     assert_eq!(a.commands, b.commands);
     assert_eq!(a.creator_version, b.creator_version);
