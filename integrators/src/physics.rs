@@ -23,8 +23,11 @@ pub trait Physics {
     fn step(&self, sys: &mut System) -> Result<(), StepError>;
     /// Largest list radius (cutoff plus skin), for memory estimates.
     fn list_radius(&self) -> f64;
-    /// Migrates particles and builds ghosts and lists for the positions of step `at_step`.
-    fn rebuild(&self, sys: &mut System, at_step: u64);
+    /// Migrates particles and builds ghosts and lists for the positions of step `at_step`
+    /// (by default one pair list of radius [`Physics::list_radius`] and no sweep list).
+    fn rebuild(&self, sys: &mut System, at_step: u64) {
+        sys.rebuild(Some(self.list_radius()), None, at_step);
+    }
 
     /// Lists for the positions of the next step, by LAMMPS's rule: at most every `every`
     /// steps, not within `delay` steps of the last build, and (with `check`) only once

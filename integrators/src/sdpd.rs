@@ -357,10 +357,6 @@ impl<E: FixedEntropy, W: Weight> Physics for Sdpd<E, W> {
         self.weight.cutoff() + self.settings.skin
     }
 
-    fn rebuild(&self, sys: &mut System, at_step: u64) {
-        sys.rebuild(Some(self.list_radius()), None, at_step);
-    }
-
     fn setup(&self, sys: &mut System) -> Result<(), SetupError> {
         let max_kind = sys.store.kind[..sys.store.nlocal].iter().copied().max().unwrap_or(1);
         let max_kind = sys.comm.max(max_kind as f64) as u32;

@@ -122,10 +122,6 @@ impl Physics for SdpdTaitwater {
         &self.settings
     }
 
-    fn rebuild(&self, sys: &mut System, at_step: u64) {
-        sys.rebuild(Some(self.radius()), None, at_step);
-    }
-
     fn list_radius(&self) -> f64 {
         self.radius()
     }
