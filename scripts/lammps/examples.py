@@ -273,13 +273,14 @@ def merge(report):
 # Notes printed under an example's results.
 NOTES = {
     "edpd": [
-        "Press differs, and the cause is known: gendpde keys its pair noise by (seed, step, tags),",
-        "so after the script's `reset_timestep 0` the second run redraws the noise of the first run's",
-        "step numbers for the same pairs, which their positions now remember; the random virial",
-        "lowers Press. The same script run by gendpde without `reset_timestep 0` (seed set 0, thermo",
-        "every 20 steps, runs of 300 steps, 15 rows each): first run 196.83 +- 0.64 in both, second",
-        "run 193.81 +- 0.46 with the reset against 197.26 +- 0.37 without. At step 0 with the noise",
-        "separated out, Press, its diagonal and the energies agree with LAMMPS to 1e-14 (tests/edpd.rs).",
+        "Press differed (194.71 +- 0.38 against 197.44 +- 0.48, z = -4.5) until gendpde's noise key",
+        "stopped following `reset_timestep`: the pair noise is drawn from (seed, step, tags), and",
+        "after the script's `reset_timestep 0` the second run redrew the noise of the first run's",
+        "steps for the same pairs, which their positions remembered; the random virial lowered",
+        "Press. The key now runs on through a reset (System::noise_shift, kept in restarts;",
+        "tests/guarantees.rs `reset_timestep_leaves_the_trajectory_alone`), and Press agrees.",
+        "At step 0 with the noise separated out, Press, its diagonal and the energies agree with",
+        "LAMMPS to 1e-14 (tests/edpd.rs).",
     ],
     "multi-lucy": [
         "LAMMPS's `table.multibody` is missing upstream (an absent Git LFS blob): both programs",
