@@ -12,6 +12,7 @@ target="${CARGO_TARGET_DIR:-target}"
 [[ "$target" = /* ]] || target="$PWD/$target"
 cd examples/vdw-equilibrium
 if [ "${NP:-1}" -gt 1 ]; then
-  exec mpirun --oversubscribe -np "$NP" "$target/release/gendpde" run in.vdw-equilibrium "$@"
+  # idle ranks yield the core (more ranks than cores: docs/PERFORMANCE.md)
+  exec mpirun --oversubscribe --mca mpi_yield_when_idle 1 -np "$NP" "$target/release/gendpde" run in.vdw-equilibrium "$@"
 fi
 exec "$target/release/gendpde" run in.vdw-equilibrium "$@"

@@ -90,7 +90,7 @@ def error_message(stdout, stderr, returncode):
 def run(script, vars=None, np=1, log="log.gendpde", cwd=None, binary=None, args=(), timeout=None):
     """Runs `gendpde run script -var K V ... -log log` in `cwd` (default: the current
     directory), under `mpirun -np np` when np > 1 ($MPIRUN, default "mpirun
-    --oversubscribe"), and returns a `Run`. `log=None` writes no log file (the tables are
+    --oversubscribe --mca mpi_yield_when_idle 1": idle ranks yield the core), and returns a `Run`. `log=None` writes no log file (the tables are
     then read from stdout). `script` is taken relative to the caller's directory when it
     exists there, else relative to `cwd`; `args` are further command-line words. Raises `GendpdeError` when gendpde fails.
     """
@@ -105,7 +105,7 @@ def run(script, vars=None, np=1, log="log.gendpde", cwd=None, binary=None, args=
     cmd += [str(a) for a in args]
     env = dict(os.environ)
     if np > 1:
-        cmd = shlex.split(os.environ.get("MPIRUN", "mpirun --oversubscribe")) + ["-np", str(np)] + cmd
+        cmd = shlex.split(os.environ.get("MPIRUN", "mpirun --oversubscribe --mca mpi_yield_when_idle 1")) + ["-np", str(np)] + cmd
         if hasattr(os, "geteuid") and os.geteuid() == 0:  # OpenMPI refuses root unless told
             env.update(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
     before = _snapshot(cwd)
