@@ -191,6 +191,8 @@ fn noise_covariance_gives_the_irreversible_drift_eq_10() {
     let drift = f.irreversible(&c, &TR);
     let (worst, samples) = eq_10_deviation(&f, &drift, |step| f.noise(&c, &Transport { kb: 0.5, ..TR }, 3, step, 0.01), 0.5, 0.01);
     eprintln!("eq 10 over {samples} realisations: largest deviation {worst:.2} standard errors ({} components)", 4 * c.len());
+    // eq_10_deviation asserts each component; the whole set within 5 standard errors too
+    assert!(samples > 0 && worst < 5.0, "eq 10: largest deviation {worst:.2} standard errors over {samples} realisations");
 }
 
 /// Voronoi DPD (eqs 85-90): at k_B = 0 the irreversible rates conserve E and P and produce
