@@ -476,3 +476,43 @@ fn reset_timestep_leaves_the_trajectory_alone() {
         assert!(straight == reset, "{name}: the particles after reset_timestep differ from those of an uninterrupted run");
     }
 }
+
+/// A run broken into parts with `pre no` (and `start`/`stop` spanning them) continues
+/// the lists and forces of the part before, so its particles end bit for bit as those of
+/// one uninterrupted run, on one rank and on three. With `pre yes` (the default) the
+/// set-up recomputes the forces: GenDPDE's reversible forces depend on positions only and
+/// come out the same, while the velocity-dependent pair forces (dpd/tstat, dpd/fdt/energy)
+/// are recomputed from full-step velocities, as LAMMPS's set-up does, and the trajectory
+/// leaves the uninterrupted one.
+#[test]
+fn runs_continued_with_pre_no_end_as_one_run() {
+    let original = "pair_style gendpde 3.0 4928459 weight quadratic\npair_coeff * * 4.5 1.0\n\
+                    fix rev all nve/gendpde\nfix ssa all shardlow heat original\n";
+    let scenes = [
+        ("pre-gendpde", true, gendpde_fluid("eos/vdw 60.0 2.4682 1.4142 excess", original)),
+        ("pre-tstat", false, pairwise_fluid("atomic", 3.0, 7, "comm_modify vel yes\npair_style dpd/tstat 1.0 2.0 1.0 4928\npair_coeff * * 4.5\nfix 1 all nve\n")),
+        (
+            "pre-dpde-shardlow",
+            false,
+            pairwise_fluid("dpd", 3.0, 7, "pair_style dpd/fdt/energy 1.0 4928\npair_coeff * * 25.0 3.0 1.0\nset group all dpd/theta 1.0\nfix 1 all shardlow\nfix 2 all nve\nfix 3 all eos/cv 10.0\n"),
+        ),
+    ];
+    for (name, setup_repeats_forces, scene) in scenes {
+        let dir = tempdir(name);
+        let end = |runs: &str, np: usize| {
+            let script = format!("{scene}{runs}write_dump all custom final.dump id x y z vx vy vz modify format float %.17g\n");
+            std::fs::write(dir.join("in.x"), script).unwrap();
+            let out = mpirun(np, &dir, &["run", "in.x", "-log", "none"]);
+            assert!(out.status.success(), "{name}:\n{}", String::from_utf8_lossy(&out.stderr));
+            std::fs::read_to_string(dir.join("final.dump")).unwrap().lines().skip(9).collect::<Vec<_>>().join("\n")
+        };
+        let straight = end("run 20\n", 1);
+        // the first part of `every` is set up whatever `pre` says (LAMMPS's rule)
+        for continued in ["run 8 start 0 stop 20\nrun 15 upto start 0 stop 20 pre no\nrun 5 start 0 stop 20 pre no\n", "run 20 start 0 stop 20 pre no every 3 NULL\n"] {
+            assert!(end(continued, 1) == straight, "{name}: {continued:?} differs from one run");
+            assert!(end(continued, 3) == straight, "{name}: {continued:?} on 3 ranks differs from one run");
+        }
+        let set_up = end("run 8 start 0 stop 20\nrun 12 start 0 stop 20\n", 1);
+        assert_eq!(set_up == straight, setup_repeats_forces, "{name}: a set-up between the runs");
+    }
+}

@@ -675,3 +675,55 @@ fn lattice_errors_name_the_line() {
         expect_error("lattice-errors", &format!("units lj\n{line}\n"), expected);
     }
 }
+
+/// A DPD fluid whose thermostat ramps (dpd/tstat 1 -> 2), so that `start`/`stop` show.
+const RAMP: &str = "units lj\natom_style atomic\ncomm_modify vel yes\nlattice fcc 3.0\nregion box block 0 3 0 3 0 3\n\
+create_box 1 box\ncreate_atoms 1 box\nmass 1 1.0\nvelocity all create 1.0 87287\n\
+pair_style dpd/tstat 1.0 2.0 1.0 34387\npair_coeff * * 4.5\nfix 1 all nve\n\
+thermo 5\nthermo_style custom step elapsed elaplong\n";
+
+/// `run N upto|start|stop|pre|post|every` and LAMMPS's quoting: quoted text waits for the
+/// command that reads it (print, the commands of `run every`), a `string` variable is
+/// substituted when defined. The printed lines, the Step/Elapsed/Elaplong columns of every
+/// thermo block and the count of summaries are LAMMPS's.
+#[test]
+fn run_keywords_and_quoting_match_lammps() {
+    let script = format!(
+        "{RAMP}variable x equal 2\nvariable s string \"x was ${{x}}\"\nvariable x equal 3\n\
+         print \"q: $x ${{s}} 'kept $x' $(step)\"\nprint 'q: single $x'\n\
+         run 10 start 0 stop 40\n\
+         run 25 upto start 0 stop 40 pre no post no\n\
+         run 15 start 0 stop 40 every 5 \"print 'q: at $(step) elaplong $(elaplong)'\" \"print 'q: done'\"\n\
+         run 0 post no\n"
+    );
+    let ((_, g), (_, l)) = both("run-keywords", &script);
+    let printed = |t: &str| t.lines().filter(|l| l.starts_with("q:")).map(String::from).collect::<Vec<_>>();
+    assert_eq!(printed(&g), printed(&l));
+    assert!(printed(&g).contains(&"q: 3 x was 2 'kept $x' 0".to_string()), "{:?}", printed(&g));
+    let clock = |t: &str| {
+        parse_thermo_blocks(t, "Step").iter().map(|b| ["Step", "Elapsed", "Elaplong"].map(|c| b.column(c))).collect::<Vec<_>>()
+    };
+    assert_eq!(clock(&g), clock(&l));
+    assert_eq!(clock(&g).len(), 6, "one block per run and per part of every");
+    let count = |t: &str, what: &str| t.lines().filter(|l| l.starts_with(what)).count();
+    for what in ["Loop time of", "Performance:"] {
+        assert_eq!(count(&g, what), count(&l, what), "{what}");
+    }
+}
+
+#[test]
+fn run_keyword_errors_name_the_line() {
+    let cases = [
+        ("run 10\nrun 5 upto\n", "in.x:16: run: run 5 upto: the current step 10 is already past it"),
+        ("run 10\nrun 5 start 11\n", "run start 11 is after the start of the run (step 10)"),
+        ("run 10 stop 9\n", "run stop 9 is before the end of the run (step 10)"),
+        ("run 10 every 0 NULL\n", "the number of steps must be positive"),
+        ("run 10 every 5\n", "expected the commands of run every"),
+        ("run 10 pre maybe\n", "expected yes or no for pre, got 'maybe'"),
+        ("run 10 sideways\n", "unknown run keyword 'sideways'"),
+        ("run 10 every 5 \"nonsense 1\"\n", "(run every):1: nonsense: unknown command 'nonsense'"),
+    ];
+    for (k, (tail, expected)) in cases.iter().enumerate() {
+        expect_error(&format!("run-error-{k}"), &format!("{RAMP}{tail}"), expected);
+    }
+}

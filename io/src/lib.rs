@@ -17,5 +17,5 @@ pub use format::{format_g, format_printf};
 pub use h5md::{check_h5md, repair_h5md, H5mdError, H5mdField, H5mdMeta, H5mdSummary, H5mdWriter};
 pub use restart::{row_width, ColumnSpec, RestartError, RestartHeader, RestartReader, RestartWriter};
 pub use command::{Command, Location, ScriptError};
-pub use script::ScriptReader;
+pub use script::{substitute, ScriptReader};
 pub use variables::Variables;

@@ -189,6 +189,13 @@ impl ScriptReader {
     }
 }
 
+/// Substitutes the variables of `text` outside its quotes, as a script line is
+/// substituted when it is read: for the commands that substitute their quoted text when
+/// they execute (`print`, the commands of `run every`, `variable string`).
+pub fn substitute(text: &str, vars: &Variables, resolve: &dyn Fn(&str) -> Option<f64>) -> Result<String, String> {
+    line::substitute(text, vars, resolve, 0)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -204,7 +211,7 @@ mod tests {
         let mut out = Vec::new();
         while let Some(cmd) = reader.next_command(vars, &thermo)? {
             match cmd.name.as_str() {
-                "variable" => vars.define(&cmd)?,
+                "variable" => vars.define(&cmd, &|_| None)?,
                 "next" => {
                     vars.next(&cmd.args)?;
                 }
@@ -314,7 +321,8 @@ mod tests {
             cmds[0].args,
             ["2.5", "hello", "0.25", "3.142", "5", "6", "6", "051.0", "0.10000000000000000555"]
         );
-        assert_eq!(cmds[1].args, ["2.5 hello", "$x ${name}", "$x", "x2.52.5"]);
+        // quotes keep `$` for the command to substitute (LAMMPS's parsing rule 6)
+        assert_eq!(cmds[1].args, ["$x ${name}", "$x ${name}", "$x", "x2.52.5"]);
     }
 
     #[test]
@@ -484,7 +492,7 @@ mod tests {
                 match reader.next_command(&vars, &none) {
                     Ok(None) => break,
                     Ok(Some(cmd)) if cmd.name == "variable" => {
-                        let _ = vars.define(&cmd);
+                        let _ = vars.define(&cmd, &|_| None);
                         let _ = vars.value("v", &none);
                     }
                     Err(e) => {

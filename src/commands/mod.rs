@@ -67,7 +67,8 @@ impl Interpreter {
     /// thermostat holds its TSTART).
     pub fn dynamics(&mut self) -> Result<Box<dyn Physics>, AppError> {
         let cmd = Command { name: "run".into(), args: vec![], loc: Location { file: "<api>".into(), line: 0 } };
-        run::prepare(&mut self.sim, &self.outputs.averages, &cmd, 0)
+        let step = self.sim.system.as_ref().map_or(0, |s| s.step);
+        run::prepare(&mut self.sim, &self.outputs.averages, &cmd, run::RunPart { nsteps: 0, ramp: [step, step], continues: false, summary: true })
     }
 
     /// The system built by the script.
@@ -178,14 +179,48 @@ impl Interpreter {
             "undump" => output::undump(&mut outputs.dumps, a)?,
             "write_dump" => output::write_dump(sim, &self.vars, &outputs.thermo, a)?,
             "checkpoint" => outputs.checkpoint = Checkpoint::parse(a)?,
-            "print" => output::print(&mut self.out, a)?,
+            "print" => {
+                let (sim, thermo, vars) = (&*sim, &outputs.thermo, &self.vars);
+                output::print(&mut self.out, a, &|text| gendpde_io::substitute(text, vars, &|name| resolve(sim, thermo, vars, name)))?
+            }
             "log" => output::log(&mut self.out, self.mode, a)?,
             "echo" => self.echo_screen = output::echo(a)?,
-            "variable" => self.vars.define(cmd)?,
-            "run" => run::run(sim, outputs, &mut self.out, &self.vars, self.mode, a)?,
+            "variable" => {
+                let (sim, thermo) = (&*sim, &outputs.thermo);
+                let vars = self.vars.clone();
+                self.vars.define(cmd, &|name| resolve(sim, thermo, &vars, name))?
+            }
+            "run" => self.run(a)?,
             other => return Err(a.err(format!("unknown command '{other}' (see docs/commands/ for the commands gendpde knows)")).into()),
         }
         Ok(())
+    }
+
+    /// `run`: one run, or with `every M` runs of M steps each followed by the commands
+    /// (executed, variables substituted, as if they were the next lines of the script).
+    fn run(&mut self, a: &mut Args) -> Result<(), AppError> {
+        let cmd = a.command();
+        let step = self.sim.system.as_ref().map_or(0, |s| s.step);
+        let args = run::RunArgs::parse(a, step)?;
+        let Some((every, commands)) = &args.every else {
+            return run::run(&mut self.sim, &mut self.outputs, &mut self.out, &self.vars, self.mode, cmd, args.part(step, args.nsteps, true, true));
+        };
+        let mut left = args.nsteps;
+        loop {
+            let step = self.sim.system.as_ref().map_or(0, |s| s.step);
+            let n = left.min(*every);
+            let part = args.part(step, n, left == args.nsteps, n == left);
+            run::run(&mut self.sim, &mut self.outputs, &mut self.out, &self.vars, self.mode, cmd, part)?;
+            let name = format!("{}:{} (run every)", cmd.loc.file.display(), cmd.loc.line);
+            for c in commands {
+                self.execute_str(&name, c)?;
+            }
+            left -= n;
+            // a check sets up and runs the commands once
+            if left == 0 || self.mode == Mode::Check {
+                return Ok(());
+            }
+        }
     }
 }
 

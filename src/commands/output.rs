@@ -31,7 +31,7 @@ pub fn thermo_style(thermo: &mut ThermoConfig, vars: &Variables, a: &mut Args) -
         let known = heading(k) != k || k.starts_with("v_") || k.starts_with("c_") || k.starts_with("f_");
         if !known {
             return Err(a.err(format!(
-                "unknown thermo keyword '{k}'; known: step elapsed time dt cpu tpcpu spcpu atoms temp tint nmean press pxx pyy pzz pe ke etotal enthalpy edrift vol density lx ly lz xlo xhi ylo yhi zlo zhi cella cellb cellc pxtot pytot pztot v_NAME c_ID[k] f_ID"
+                "unknown thermo keyword '{k}'; known: step elapsed elaplong time dt cpu tpcpu spcpu atoms temp tint nmean press pxx pyy pzz pe ke etotal enthalpy edrift vol density lx ly lz xlo xhi ylo yhi zlo zhi cella cellb cellc pxtot pytot pztot v_NAME c_ID[k] f_ID"
             )));
         }
         if let Some(name) = k.strip_prefix("v_") {
@@ -127,9 +127,10 @@ pub fn write_dump(sim: &Sim, vars: &Variables, thermo: &ThermoConfig, a: &mut Ar
     dump.write(sim, sys, &PerAtomInputs { vars, thermo }).map_err(|e| a.err(e))
 }
 
-/// `print TEXT [screen yes|no]`.
-pub fn print(out: &mut Output, a: &mut Args) -> Result<(), ScriptError> {
+/// `print TEXT [screen yes|no]`, TEXT substituted as it executes (LAMMPS's print).
+pub fn print(out: &mut Output, a: &mut Args, substitute: &dyn Fn(&str) -> Result<String, String>) -> Result<(), ScriptError> {
     let text = a.word("the text to print")?;
+    let text = substitute(text).map_err(|e| a.err(e))?;
     let mut screen = true;
     while a.remaining() > 0 {
         match a.word("keyword")? {
@@ -137,7 +138,7 @@ pub fn print(out: &mut Output, a: &mut Args) -> Result<(), ScriptError> {
             k => return Err(a.err(format!("unknown keyword '{k}'; known: screen"))),
         }
     }
-    if screen { out.line(text) } else { out.log_line(text) }
+    if screen { out.line(&text) } else { out.log_line(&text) }
     Ok(())
 }
 

@@ -19,16 +19,102 @@ use gendpde_io::{Command, ScriptError, Variables};
 use indicatif::ProgressBar;
 use std::time::Instant;
 
+/// `run N [upto] [start N1] [stop N2] [pre yes|no] [post yes|no] [every M c1 c2 ...]`,
+/// read as LAMMPS's run.cpp reads it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RunArgs {
+    /// Steps of the whole run (`upto`: up to step N).
+    pub nsteps: u64,
+    /// `start N1`, `stop N2`: the steps that time-dependent settings (thermostat and
+    /// barostat targets) ramp between, instead of the run's own first and last.
+    ramp: [Option<u64>; 2],
+    /// `pre no`: a run that follows another continues its lists and forces.
+    pre: bool,
+    /// `post no`: the summary prints only its Loop time line.
+    post: bool,
+    /// `every M c1 c2 ...`: runs of M steps with the commands executed after each.
+    pub every: Option<(u64, Vec<String>)>,
+}
+
+impl RunArgs {
+    /// Reads the arguments of a run that starts at `step`.
+    pub fn parse(a: &mut Args, step: u64) -> Result<Self, ScriptError> {
+        let n = a.u64("the number of steps")?;
+        let mut run = Self { nsteps: n, ramp: [None, None], pre: true, post: true, every: None };
+        let mut upto = false;
+        while let Some(key) = a.peek() {
+            a.word("a run keyword")?;
+            match key {
+                "upto" => upto = true,
+                "start" => run.ramp[0] = Some(a.u64("the start step")?),
+                "stop" => run.ramp[1] = Some(a.u64("the stop step")?),
+                "pre" => run.pre = a.yes_no("pre")?,
+                "post" => run.post = a.yes_no("post")?,
+                "every" => {
+                    let m = a.u64("the steps between the commands of every")?;
+                    if m == 0 {
+                        return Err(a.err("run every: the number of steps must be positive"));
+                    }
+                    let mut commands = Vec::new();
+                    while a.peek().is_some() {
+                        commands.push(a.word("a command")?.to_string());
+                    }
+                    if commands.is_empty() {
+                        return Err(a.err("missing argument: expected the commands of run every (or NULL)"));
+                    }
+                    if commands == ["NULL"] {
+                        commands.clear();
+                    }
+                    run.every = Some((m, commands));
+                }
+                other => return Err(a.err(format!("unknown run keyword '{other}' (expected upto, start, stop, pre, post or every)"))),
+            }
+        }
+        if upto {
+            run.nsteps = n.checked_sub(step).ok_or_else(|| a.err(format!("run {n} upto: the current step {step} is already past it")))?;
+        }
+        if let Some(start) = run.ramp[0].filter(|&s| s > step) {
+            return Err(a.err(format!("run start {start} is after the start of the run (step {step})")));
+        }
+        if let Some(stop) = run.ramp[1].filter(|&s| s < step + run.nsteps) {
+            return Err(a.err(format!("run stop {stop} is before the end of the run (step {})", step + run.nsteps)));
+        }
+        Ok(run)
+    }
+
+    /// The part of the run of `nsteps` steps starting at `step`, its ramp span; `first`
+    /// and `last` say whether it starts the run (set up unless `pre no`) and ends it (the
+    /// full summary unless `post no`).
+    pub fn part(&self, step: u64, nsteps: u64, first: bool, last: bool) -> RunPart {
+        let ramp = [self.ramp[0].unwrap_or(step), self.ramp[1].unwrap_or(step + nsteps)];
+        // LAMMPS sets up every part of `every` but the later ones under `pre no`, and
+        // ends its last part with the full summary even under `post no`
+        let every = self.every.is_some();
+        RunPart { nsteps, ramp, continues: !self.pre && !(first && every), summary: self.post || (last && every) }
+    }
+}
+
+/// One run of the dynamics: its steps, the span its ramps follow, whether it continues
+/// the previous run's lists and forces (`pre no`),
+/// and whether its summary is the full one or only the Loop time line.
+#[derive(Clone, Copy, Debug)]
+pub struct RunPart {
+    pub nsteps: u64,
+    pub ramp: [u64; 2],
+    pub continues: bool,
+    pub summary: bool,
+}
+
 /// Builds the dynamics of the current styles and sets the system up for it (lists,
-/// densities, forces) for a run of `nsteps`; errors name `cmd`.
-pub fn prepare(sim: &mut Sim, averages: &[AveTime], cmd: &Command, nsteps: u64) -> Result<Box<dyn Physics>, AppError> {
+/// densities, forces) for a run of `part.nsteps`; errors name `cmd`.
+pub fn prepare(sim: &mut Sim, averages: &[AveTime], cmd: &Command, part: RunPart) -> Result<Box<dyn Physics>, AppError> {
     let err = |m: String| AppError::Script(ScriptError::at(cmd, m));
     let physics = build_physics(cmd, sim.pair.as_ref(), &sim.fixes, sim.dt, sim.skin, sim.rebuild.clone(), sim.units.kb, sim.units.mvv2e, sim.ntypes)?;
     let sys = sim.system.as_mut().ok_or_else(|| err("run before create_box".into()))?;
     if sys.store.nlocal == 0 {
         return Err(err("the box holds no particles (create_atoms)".into()));
     }
-    sys.run = [sys.step, sys.step + nsteps];
+    sys.run = part.ramp;
     // the cells must reach the pairs that the computes read by fix ave/time count
     sys.min_cell = 0.0;
     for rdf in sim.rdfs.iter().filter(|r| averages.iter().any(|f| f.computes().any(|c| c == r.id))) {
@@ -45,6 +131,13 @@ pub fn prepare(sim: &mut Sim, averages: &[AveTime], cmd: &Command, nsteps: u64) 
     let neighbours = n / volume * 4.0 / 3.0 * std::f64::consts::PI * reach.powi(3);
     let bytes = n * neighbours * (memory::NEIGHBOUR_ENTRY_BYTES + 0.5 * memory::SWEEP_PAIR_BYTES);
     memory::check(bytes, &format!("the neighbour lists ({neighbours:.0} neighbours per particle)")).map_err(err)?;
+    // a run that continues another (`pre no`, as LAMMPS's, once a run has been made and
+    // while no particle has moved half the skin since the lists were built) keeps its
+    // cells, lists and forces, as a restart's continuation does
+    if part.continues && sim.energy0.is_some() && sys.grid.is_some() && sys.comm.max(sys.displacement_since_build()) <= 0.5 * sim.skin {
+        sys.restored = true;
+        sys.restored_grid = sys.grid.as_ref().map(|g| g.count);
+    }
     // a continuation keeps the forces of the step its restart was written at: they
     // depend on that step's velocities and noise, which the set-up cannot redo
     let resume = sys.restored.then(|| sys.store.save_by_tag(gendpde_engine::stage::RESUME));
@@ -66,14 +159,13 @@ pub fn prepare(sim: &mut Sim, averages: &[AveTime], cmd: &Command, nsteps: u64) 
     Ok(physics)
 }
 
-/// `run N`: sets up, then advances N steps, writing the outputs that are due at the
-/// setup and after every step (a check only sets up).
-pub fn run(sim: &mut Sim, outputs: &mut Outputs, out: &mut Output, vars: &Variables, mode: Mode, a: &mut Args) -> Result<(), AppError> {
-    let nsteps = a.u64("the number of steps")?;
-    a.done()?;
-    let cmd = a.command();
+/// One run of `part.nsteps` steps of `run` command `cmd`: sets up, then advances,
+/// writing the outputs that are due at the setup and after every step (a check only
+/// sets up).
+pub fn run(sim: &mut Sim, outputs: &mut Outputs, out: &mut Output, vars: &Variables, mode: Mode, cmd: &Command, part: RunPart) -> Result<(), AppError> {
+    let nsteps = part.nsteps;
     let err = |m: String| AppError::Script(ScriptError::at(cmd, m));
-    let physics = prepare(sim, &outputs.averages, cmd, nsteps)?;
+    let physics = prepare(sim, &outputs.averages, cmd, part)?;
     if mode == Mode::Check {
         return Ok(());
     }
@@ -123,6 +215,10 @@ pub fn run(sim: &mut Sim, outputs: &mut Outputs, out: &mut Output, vars: &Variab
     let n = sys.comm.count(sys.store.nlocal);
     out.line(&format!("Loop time of {} on {} procs for {nsteps} steps with {n} atoms", gendpde_io::format_g(secs, 6), sys.comm.size()));
     out.line("");
+    if !part.summary {
+        out.flush();
+        return Ok(());
+    }
     if secs > 0.0 && nsteps > 0 {
         out.line(&performance(sim.units, sim.dt, nsteps as f64 / secs, n as f64));
     }

@@ -190,6 +190,7 @@ impl<'a> ThermoContext<'a> {
         Some(match name {
             "step" => self.sys.step as f64,
             "elapsed" => self.elapsed as f64,
+            "elaplong" => self.sys.step.saturating_sub(self.sys.run[0]) as f64,
             "time" => self.sys.time,
             "dt" => self.sim.dt,
             "cpu" => self.cpu,
@@ -283,7 +284,7 @@ impl<'a> ThermoContext<'a> {
 
 /// Whether a keyword prints as an integer.
 pub fn is_integer(name: &str) -> bool {
-    matches!(name, "step" | "elapsed" | "atoms")
+    matches!(name, "step" | "elapsed" | "elaplong" | "atoms")
 }
 
 /// Column heading of a keyword, as LAMMPS names it.
@@ -291,6 +292,7 @@ pub fn heading(name: &str) -> String {
     match name {
         "step" => "Step".into(),
         "elapsed" => "Elapsed".into(),
+        "elaplong" => "Elaplong".into(),
         "time" => "Time".into(),
         "dt" => "Dt".into(),
         "cpu" => "CPU".into(),

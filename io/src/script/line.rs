@@ -69,9 +69,10 @@ fn strip_comment(text: &str) -> &str {
     text
 }
 
-/// Replaces `$x`, `${name}` and `$(expr[:fmt])` outside single and triple
-/// quotes. Substituted text is not scanned again.
-fn substitute(
+/// Replaces `$x`, `${name}` and `$(expr[:fmt])` outside quotes (single, double and
+/// triple, as LAMMPS's Input::substitute: quoted text waits for the command that reads
+/// it, e.g. `print`, to substitute it). Substituted text is not scanned again.
+pub(super) fn substitute(
     text: &str,
     vars: &Variables,
     resolve: &dyn Fn(&str) -> Option<f64>,
@@ -86,7 +87,7 @@ fn substitute(
     let mut quote = Quote::None;
     let mut rest = text;
     while !rest.is_empty() {
-        if rest.starts_with('$') && matches!(quote, Quote::None | Quote::Double) {
+        if rest.starts_with('$') && quote == Quote::None {
             let (value, len) = expand(&rest[1..], vars, resolve, nesting)?;
             out.push_str(&value);
             rest = &rest[1 + len..];
