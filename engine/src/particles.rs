@@ -300,8 +300,8 @@ particle_fields! {
     /// Entropy S of a Voronoi cell (pair voronoi/fv; Serrano-Espanol eq 64).
     entropy: f64, "entropy", gate Fields::ENTROPY, comm NONE, stages MIGRATE | RESTART;
     /// Per-particle diagonal virial sum_j F_ij (x_ij^2, y_ij^2, z_ij^2) / 2 of owned
-    /// particles (its trace is the scalar virial).
-    virial: Vec3, "virial", gate Fields::PRESSURE.union(Fields::PAIR_ENERGY), comm NONE, stages RESTART | RESUME;
+    /// particles (its trace is the scalar virial); for a Voronoi cell p dV/d epsilon_aa.
+    virial: Vec3, "virial", gate Fields::PRESSURE.union(Fields::PAIR_ENERGY).union(Fields::ENTROPY), comm NONE, stages RESTART | RESUME;
     /// Half the pair energy of each pair a particle is in (pairwise styles).
     epair: f64, "epair", gate Fields::PAIR_ENERGY, comm NONE, stages RESTART | RESUME;
     /// duCond/dt of velocity-Verlet DPDE from the last force pass (LAMMPS's duCond).

@@ -26,7 +26,7 @@ pub fn build_voronoi(cmd: &Command, pair: &PairVoronoi, fixes: &[Fix], dt: f64, 
     let seed = pair.seed;
     let dissipation = if pair.dpd { Dissipation::Dpd { gamma: eta } } else { Dissipation::Hydrodynamic };
     Ok(match relation {
-        CellRelation::Vdw { c } => Box::new(VoronoiFv { model: FiniteVolume { energy: VdwCell { c }, transport, dissipation, seed }, settings }),
-        CellRelation::Ideal { c } => Box::new(VoronoiFv { model: FiniteVolume { energy: IdealCell { c }, transport, dissipation, seed }, settings }),
+        CellRelation::Vdw { c } => Box::new(VoronoiFv::new(FiniteVolume { energy: VdwCell { c }, transport, dissipation, seed }, settings)),
+        CellRelation::Ideal { c } => Box::new(VoronoiFv::new(FiniteVolume { energy: IdealCell { c }, transport, dissipation, seed }, settings)),
     })
 }

@@ -37,6 +37,16 @@ impl Cells {
     pub fn is_empty(&self) -> bool {
         self.r.is_empty()
     }
+
+    /// Whether `other` has the same tags and the same bits in every variable.
+    pub fn same_bits(&self, other: &Cells) -> bool {
+        self.tag == other.tag && same_bits(self.r.as_flattened(), other.r.as_flattened()) && same_bits(self.p.as_flattened(), other.p.as_flattened()) && same_bits(&self.m, &other.m) && same_bits(&self.s, &other.s)
+    }
+}
+
+/// Whether two slices hold the same bits (unlike ==, -0.0 and 0.0 differ).
+pub fn same_bits(a: &[f64], b: &[f64]) -> bool {
+    a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())
 }
 
 /// Transport coefficients (eq 78) and the noise scale k_B (0: the deterministic
@@ -127,6 +137,26 @@ impl Frame {
             dv[f.j] += dot(gji, vij);
         }
         dv
+    }
+
+    /// Each cell's share of the diagonal virial, p_mu dV_mu/d epsilon_aa: the change of its
+    /// volume under the uniform stretch R -> (1 + epsilon_aa) R of all generators and of
+    /// the box (eq 129 summed against R_nu - R_mu over the faces; the trace is 3 p_mu V_mu,
+    /// the pyramids of height R/2 on the faces). The pressure is -dH/dV_T at fixed M, S of
+    /// every cell: (sum_mu 3 p_mu V_mu + sum P^2/M) / (3 V_T).
+    pub fn virial(&self) -> Vec<V3> {
+        let mut w = vec![[0.0; 3]; self.v.len()];
+        for f in &self.tess.faces {
+            let (gij, gji) = Tessellation::volume_gradients(f);
+            let (pi, pj) = (self.thermo[f.i].pressure, self.thermo[f.j].pressure);
+            for a in 0..3 {
+                // R_j - R_i = R n seen from i, the opposite from j.
+                let d = f.dist * f.normal[a];
+                w[f.i][a] += pi * gij[a] * d;
+                w[f.j][a] -= pj * gji[a] * d;
+            }
+        }
+        w
     }
 
     /// dE/dt along `rates`: sum v.dP - (v^2/2) dM + mu dM + T dS - p dV (eqs 64, 66).
@@ -329,9 +359,10 @@ impl<E: CellEnergy> FiniteVolume<E> {
 
     /// One step of `dt` from step number `step`: Heun's predictor-corrector on the
     /// deterministic rates, plus the noise increments with coefficients at the start (Ito).
-    pub fn step(&self, cells: &mut Cells, lo: V3, len: V3, dt: f64, step: u64) -> Result<(), ModelError> {
-        let f0 = Frame::new(cells, &self.energy, lo, len)?;
-        let k0 = self.rates(cells, &f0);
+    /// `f0` is the frame of `cells` (a run reuses the previous step's end frame), so the
+    /// step tessellates once, for the predictor.
+    pub fn step(&self, cells: &mut Cells, f0: &Frame, lo: V3, len: V3, dt: f64, step: u64) -> Result<(), ModelError> {
+        let k0 = self.rates(cells, f0);
         let tr = &self.transport;
         let noise = (tr.kb != 0.0).then(|| match self.dissipation {
             Dissipation::Hydrodynamic => f0.noise(cells, tr, self.seed, step, dt),

@@ -1,24 +1,42 @@
 //! The finite-volume model as a run's dynamics (`pair_style voronoi/fv` + `fix
 //! nve/voronoi`): the particles are the cells; their per-particle `mass` is the dynamic M,
-//! the field-table row `entropy` holds S, `u` the cell energy E(M, S, V) and `theta` T, so
-//! thermo's pe + ke is the model's energy (eq 64). One rank only (docs/DESIGN.md "Voronoi
-//! fluid particles", plan for ranks).
+//! the field-table row `entropy` holds S, `u` the cell energy E(M, S, V), `theta` T and
+//! `virial` p dV/d epsilon (its trace 3 p V), so thermo's pe + ke is the model's energy
+//! (eq 64) and press its pressure. One rank only (docs/DESIGN.md "Voronoi fluid
+//! particles", plan for ranks).
 
-use super::finite_volume::{Cells, FiniteVolume, Frame, ModelError};
+use super::finite_volume::{same_bits, Cells, FiniteVolume, Frame, ModelError};
 use crate::error::StepError;
 use crate::settings::Settings;
 use crate::system::System;
 use crate::{Physics, SetupError};
 use gendpde_engine::Fields;
 use gendpde_potentials::CellEnergy;
+use std::cell::RefCell;
 
 /// The Voronoi finite-volume dynamics with cell relation `E`.
 pub struct VoronoiFv<E> {
     pub model: FiniteVolume<E>,
     pub settings: Settings,
+    /// The frame of the last refresh and what it was computed from.
+    last: RefCell<Option<Refreshed>>,
+}
+
+/// A frame with the cells and box it tessellated: the next step's first frame while they
+/// are unchanged to the bit (so a step tessellates twice, not three times, and a run that
+/// reads a restart, which recomputes it at the set-up, follows the same trajectory).
+struct Refreshed {
+    cells: Cells,
+    lo: [f64; 3],
+    len: [f64; 3],
+    frame: Frame,
 }
 
 impl<E: CellEnergy> VoronoiFv<E> {
+    pub fn new(model: FiniteVolume<E>, settings: Settings) -> Self {
+        Self { model, settings, last: RefCell::new(None) }
+    }
+
     /// The owned particles in tag order (so no storage order reaches the sums).
     fn gather(sys: &System) -> (Cells, Vec<usize>) {
         let s = &sys.store;
@@ -34,16 +52,29 @@ impl<E: CellEnergy> VoronoiFv<E> {
         (cells, order)
     }
 
-    /// Tessellates the current positions and writes E into u and T into theta.
+    /// Tessellates the current positions, writes E into u, T into theta and the virial,
+    /// and keeps the frame for the next step.
     fn refresh(&self, sys: &mut System) -> Result<(), ModelError> {
         let (cells, order) = Self::gather(sys);
-        let lo = sys.domain.lo;
-        let frame = Frame::new(&cells, &self.model.energy, lo, sys.domain.len())?;
+        let (lo, len) = (sys.domain.lo, sys.domain.len());
+        let frame = Frame::new(&cells, &self.model.energy, lo, len)?;
+        let virial = frame.virial();
         for (k, &i) in order.iter().enumerate() {
             sys.store.u[i] = frame.thermo[k].energy;
             sys.store.theta[i] = frame.thermo[k].temperature;
+            sys.store.virial[i] = virial[k];
         }
+        *self.last.borrow_mut() = Some(Refreshed { cells, lo, len, frame });
         Ok(())
+    }
+
+    /// The frame of `cells` in the box [lo, lo + len): the last refresh's if it saw the
+    /// same bits, else a new tessellation.
+    fn frame(&self, cells: &Cells, lo: [f64; 3], len: [f64; 3]) -> Result<Frame, ModelError> {
+        match self.last.take() {
+            Some(r) if r.cells.same_bits(cells) && same_bits(&r.lo, &lo) && same_bits(&r.len, &len) => Ok(r.frame),
+            _ => Frame::new(cells, &self.model.energy, lo, len),
+        }
     }
 
     fn error(sys: &System, e: ModelError) -> StepError {
@@ -100,7 +131,7 @@ impl<E: CellEnergy> Physics for VoronoiFv<E> {
         let dt = self.settings.dt;
         let (mut cells, order) = Self::gather(sys);
         let (lo, len) = (sys.domain.lo, sys.domain.len());
-        let stepped = self.model.step(&mut cells, lo, len, dt, sys.noise_step(sys.step)).map_err(|e| Self::error(sys, e));
+        let stepped = self.frame(&cells, lo, len).and_then(|f0| self.model.step(&mut cells, &f0, lo, len, dt, sys.noise_step(sys.step))).map_err(|e| Self::error(sys, e));
         sys.settle(stepped)?;
         for (k, &i) in order.iter().enumerate() {
             let s = &mut sys.store;
