@@ -343,6 +343,11 @@ fn run(session: Session) -> ExitCode {
         (Input::File(path), _) => (it.execute_file(path), path.display().to_string()),
         (Input::Stdin, text) => (it.execute_str("stdin", &text.unwrap_or_default()), "stdin".to_string()),
     };
+    // `quit` ends the script as its end would, with its status
+    let (result, status) = match result {
+        Err(AppError::Quit { status }) => (Ok(()), status),
+        other => (other, 0),
+    };
     match result {
         Ok(()) => {
             if mode == Mode::Check {
@@ -352,7 +357,7 @@ fn run(session: Session) -> ExitCode {
             it.out.line(&format!("Total wall time: {}:{:02}:{:02}", s / 3600, s / 60 % 60, s % 60));
             // a signal outside a run: the script went on to its end
             match signals::received().load(std::sync::atomic::Ordering::Relaxed) {
-                0 => ExitCode::SUCCESS,
+                0 => ExitCode::from(status),
                 sig => {
                     it.out.line(&format!("{} received outside a run; the script ended", signals::name(sig)));
                     ExitCode::from((128 + sig) as u8)

@@ -727,3 +727,38 @@ fn run_keyword_errors_name_the_line() {
         expect_error(&format!("run-error-{k}"), &format!("{RAMP}{tail}"), expected);
     }
 }
+
+/// `if ... then ... elif ... else`, a `jump` out of a loop from inside `if`, string
+/// comparisons, `|^`, and `quit`: the printed lines are LAMMPS's and `quit 3` ends the
+/// script with status 3 after the line before it.
+#[test]
+fn if_jump_and_quit_follow_lammps() {
+    let script = format!(
+        "{RAMP}variable s equal step\nvariable name index lj/cut\nlabel loop\nvariable a loop 10\nrun 5 post no\n\
+         if \"$s >= 15\" then \"print 'q: out at $s a=$a'\" \"jump SELF break\" elif \"$a == 2\" \"print 'q: a is 2'\" else \"print 'q: not yet $a'\"\n\
+         next a\njump SELF loop\nlabel break\nprint \"q: done a=$a\"\n\
+         if \"${{name}} == lj/cut && !(1 > 2)\" then \"print 'q: string ok'\"\n\
+         if \"(1 > 0) |^ (2 > 1)\" then \"print 'q: xor wrong'\" else \"print 'q: xor ok'\"\n\
+         if \"$a > 2\" then \"print 'q: quitting'\" \"quit 3\"\nprint \"q: not reached\"\n"
+    );
+    let (_, g) = run_script("if-quit-gendpde", &script);
+    let dl = stage("if-quit-lammps", &script);
+    let l = run_lammps(&dl, "in.x", &[]);
+    let printed = |o: &Output| String::from_utf8_lossy(&o.stdout).lines().filter(|l| l.starts_with("q:")).map(String::from).collect::<Vec<_>>();
+    assert_eq!(printed(&g), printed(&l), "gendpde stderr: {}", stderr(&g));
+    assert_eq!(printed(&g), ["q: not yet 1", "q: a is 2", "q: out at 15 a=3", "q: done a=3", "q: string ok", "q: xor ok", "q: quitting"]);
+    assert_eq!((g.status.code(), l.status.code()), (Some(3), Some(3)));
+    for (k, (tail, expected)) in [
+        ("if \"1 < 2\"\n", "missing argument: expected then"),
+        ("if \"1 < 2\" than \"print x\"\n", "expected 'then'"),
+        ("if \"1 < 2\" then\n", "need at least one command"),
+        ("if \"abc < 2\" then \"print x\"\n", "cannot compare a number with a string"),
+        ("if \"1 < 2\" then \"print x\" else \"print y\" elif \"1\" \"print z\"\n", "elif after else"),
+        ("quit 256\n", "the exit status 256 is not in 0..255"),
+    ]
+    .iter()
+    .enumerate()
+    {
+        expect_error(&format!("if-error-{k}"), &format!("{RAMP}{tail}"), expected);
+    }
+}

@@ -2,6 +2,7 @@
 //! variable substitution, the variable store, an equal-style expression
 //! evaluator, C-printf-compatible number formatting and LAMMPS data files.
 
+pub mod boolean;
 pub mod command;
 pub mod data_file;
 pub mod expr;
@@ -11,6 +12,7 @@ pub mod restart;
 pub mod script;
 pub mod variables;
 
+pub use boolean::evaluate_boolean;
 pub use data_file::{parse_data, read_data, write_data, AtomStyle, DataAtom, DataFile, PairCoeffs};
 pub use expr::evaluate;
 pub use format::{format_g, format_printf};

@@ -19,6 +19,8 @@ pub enum AppError {
     Step { cmd: Command, err: StepError },
     /// A signal stopped a run (`base::signals`); `what` says what was saved.
     Interrupted { cmd: Command, signal: usize, step: u64, what: String },
+    /// `quit`: the script ends here with this exit status (not an error).
+    Quit { status: u8 },
 }
 
 impl fmt::Display for AppError {
@@ -29,6 +31,7 @@ impl fmt::Display for AppError {
             Self::Interrupted { cmd, signal, step, what } => {
                 write!(f, "{}: run stopped by {} after step {step}: {what}", cmd.loc, crate::base::signals::name(*signal))
             }
+            Self::Quit { status } => write!(f, "quit with status {status}"),
         }
     }
 }

@@ -2,6 +2,7 @@
 //! (label, next, jump) and hands every other command to the body of its family.
 
 mod change_box;
+mod control;
 mod group;
 mod output;
 mod particles;
@@ -35,6 +36,10 @@ pub struct Interpreter {
     skip_jump: bool,
     /// Jumps since the last `run` or `next` (see [`MAX_IDLE_JUMPS`]).
     idle_jumps: u64,
+    /// Depth of the commands of `if` and `run every` being executed: a `jump` among them
+    /// moves the script file they stand in, once they are done (`pending_jump`).
+    nested: usize,
+    pending_jump: Option<Command>,
 }
 
 /// Jumps a loop may make without a `run` or a `next` in between before it is taken for
@@ -49,7 +54,7 @@ impl Interpreter {
 
     /// An interpreter whose box is split over the ranks of `transport`.
     pub fn with_transport(mode: Mode, out: Output, transport: Box<dyn Transport>) -> Self {
-        Self { sim: Sim::new(transport), outputs: Outputs::default(), vars: Variables::new(), out, mode, echo_screen: false, skip_jump: false, idle_jumps: 0 }
+        Self { sim: Sim::new(transport), outputs: Outputs::default(), vars: Variables::new(), out, mode, echo_screen: false, skip_jump: false, idle_jumps: 0, nested: 0, pending_jump: None }
     }
 
     /// Executes a script file to its end.
@@ -112,14 +117,23 @@ impl Interpreter {
                             let what = format!("{MAX_IDLE_JUMPS} jumps without a run or a next in between: the loop never ends");
                             return Err(ScriptError::at(&cmd, what).into());
                         }
-                        reader.jump(&cmd)?;
+                        if self.nested > 0 {
+                            self.pending_jump = Some(cmd);
+                        } else {
+                            reader.jump(&cmd)?;
+                        }
                     }
                 }
                 _ => {
                     if cmd.name == "run" {
                         self.idle_jumps = 0;
                     }
-                    self.execute(&cmd)?
+                    self.execute(&cmd)?;
+                    if self.nested == 0 {
+                        if let Some(jump) = self.pending_jump.take() {
+                            reader.jump(&jump)?;
+                        }
+                    }
                 }
             }
         }
@@ -191,36 +205,11 @@ impl Interpreter {
                 self.vars.define(cmd, &|name| resolve(sim, thermo, &vars, name))?
             }
             "run" => self.run(a)?,
+            "if" => self.if_then(a)?,
+            "quit" => return Err(control::quit(a)?),
             other => return Err(a.err(format!("unknown command '{other}' (see docs/commands/ for the commands gendpde knows)")).into()),
         }
         Ok(())
-    }
-
-    /// `run`: one run, or with `every M` runs of M steps each followed by the commands
-    /// (executed, variables substituted, as if they were the next lines of the script).
-    fn run(&mut self, a: &mut Args) -> Result<(), AppError> {
-        let cmd = a.command();
-        let step = self.sim.system.as_ref().map_or(0, |s| s.step);
-        let args = run::RunArgs::parse(a, step)?;
-        let Some((every, commands)) = &args.every else {
-            return run::run(&mut self.sim, &mut self.outputs, &mut self.out, &self.vars, self.mode, cmd, args.part(step, args.nsteps, true, true));
-        };
-        let mut left = args.nsteps;
-        loop {
-            let step = self.sim.system.as_ref().map_or(0, |s| s.step);
-            let n = left.min(*every);
-            let part = args.part(step, n, left == args.nsteps, n == left);
-            run::run(&mut self.sim, &mut self.outputs, &mut self.out, &self.vars, self.mode, cmd, part)?;
-            let name = format!("{}:{} (run every)", cmd.loc.file.display(), cmd.loc.line);
-            for c in commands {
-                self.execute_str(&name, c)?;
-            }
-            left -= n;
-            // a check sets up and runs the commands once
-            if left == 0 || self.mode == Mode::Check {
-                return Ok(());
-            }
-        }
     }
 }
 
