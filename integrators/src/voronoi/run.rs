@@ -1,8 +1,8 @@
 //! The finite-volume model as a run's dynamics (`pair_style voronoi/fv` + `fix
 //! nve/voronoi`): the particles are the cells; their per-particle `mass` is the dynamic M,
-//! the field-table row `entropy` holds S, `u` the cell energy E(M, S, V) and `theta` T, so
-//! thermo's pe + ke is the model's energy (eq 64). One rank only (docs/DESIGN.md "Voronoi
-//! fluid particles", plan for ranks).
+//! the field-table row `entropy` holds S, `u` the cell energy E(M, S, V), `theta` T and
+//! `vol` the cell volume, so thermo's pe + ke is the model's energy (eq 64). One rank only
+//! (docs/DESIGN.md "Voronoi fluid particles", plan for ranks).
 
 use super::finite_volume::{Cells, FiniteVolume, Frame, ModelError};
 use crate::error::StepError;
@@ -42,6 +42,7 @@ impl<E: CellEnergy> VoronoiFv<E> {
         for (k, &i) in order.iter().enumerate() {
             sys.store.u[i] = frame.thermo[k].energy;
             sys.store.theta[i] = frame.thermo[k].temperature;
+            sys.store.volume[i] = frame.tess.volumes[k];
         }
         Ok(())
     }

@@ -1,0 +1,344 @@
+#!/usr/bin/env python3
+"""Gas-liquid coexistence of Voronoi fluid particles (issue 23; Serrano-Espanol Sec IV,
+eqs 116 and 162-167; reading notes sec 6, targets b and c): the per-cell density
+distribution of pair voronoi/fv in a closed box against eq 166 and the Maxwell densities.
+
+    python3 scripts/validation/voronoi_coexistence.py          # runs (cached) and analysis
+    python3 scripts/validation/voronoi_coexistence.py --plot   # only the figure, from results.json
+
+Environment: GENDPDE (default $CARGO_TARGET_DIR/release/gendpde, else target/release),
+VALIDATION_WORK (the runs' directory, default /tmp/gendpde-validation).
+
+Runs: examples/voronoi-coexistence, 125 cells of mean volume V~ at the mean density
+n~ = 1, k_B = 1, eta = zeta = kappa = 1, c = 4.836e-5 (eq 163 as printed), a closed
+(microcanonical) periodic box. The coexistence runs start with 45 % of the cells at
+n~ = 1.6 and the others at 0.5 (not the Maxwell densities: the peaks have to move there)
+at T~ = 0.66, so that the latent heat brings the box near T~ = 0.85; the supercritical run
+starts uniform at T~ = 1.15. The first `equil` steps are dropped; n~ = M/V per cell from
+the dumped `mass` and `vol`.
+
+Theory. Eq 166 integrated over s~ at fixed n~ (ds~ = (3/2) n~ dT~/T~, the Jacobian of eq
+167; the T~ integral is a Gamma function):
+
+    ln P(n~) = ln n~ + ln Gamma(a) - a ln(a beta) + V~ [n~ (5/2 - (3/2) ln c - ln(n~/(3 - n~)))
+               + beta (9/8 n~^2 + mu n~)] + const,   a = (3/2) V~ n~, beta = 1/T~ext,
+
+checked against direct quadrature of eq 166 over s~ (`check_marginal`). Eq 116 takes every
+cell at the mean volume; the cells' volumes spread (relative sd ~0.2), so the curve
+compared is P(n~) = <P(n~ | V~_cell)> over the sampled cells' own volumes (eq 111 before
+its equal-volume step, with F(V) the measured volume distribution), and eq 166 at the mean
+volume is drawn too. T~ext = the mean kinetic temperature (thermo temp, beta* of eq 105)
+over the sampled part; mu~ext is the one fitted parameter (maximum likelihood of the
+samples under P(n~ | V~_cell)); also given: the mean of the cells' mu~(n~, T~) (eq 162).
+A variant keeps the factor M^(3/2) of the momentum integral (eq 103) that eq 106 drops.
+The Maxwell densities at the measured T~ come from equal P~ and mu~ (eq 162).
+"""
+import argparse
+import json
+import time
+from pathlib import Path
+
+import numpy as np
+from scipy.integrate import quad
+from scipy.optimize import brentq, minimize_scalar
+from scipy.special import gammaln
+
+import common
+
+SCENE = "voronoi_coexistence"
+C = 4.836e-5  # eq 163 as printed (the reading notes: 4.80e-5 reproduces the paper's mu~ values)
+EXAMPLE = "voronoi-coexistence"
+COEX_START = {"T": 0.66, "nl": 1.6, "ng": 0.5, "fl": 0.4545}
+RUNS = [
+    {"tag": "V40", "V": 40, **COEX_START, "dt": 0.02, "steps": 20000, "dump": 20, "equil": 2000},
+    {"tag": "V60", "V": 60, **COEX_START, "dt": 0.02, "steps": 20000, "dump": 20, "equil": 2000},
+    {"tag": "V40_T1.15", "V": 40, "T": 1.15, "nl": 1.0, "ng": 1.0, "fl": 0.0, "dt": 0.02, "steps": 10000, "dump": 20, "equil": 1000},
+    {"tag": "V20", "V": 20, **COEX_START, "dt": 0.01, "steps": 20000, "dump": 20, "equil": 2000},
+]
+
+
+# --- vdW cell relation in the paper's reduced units (eqs 161-162, D = 3) ---
+
+def mu_vdw(n, T, c=C):
+    """mu~(n~, T~), eq 162."""
+    return T * (np.log(n / (3 - n)) + n / (3 - n)) - 2.25 * n - 1.5 * T * np.log(T / c)
+
+
+def p_vdw(n, T):
+    """P~(n~, T~), eq 162 (the pressure in energy/volume units is 3/8 of it)."""
+    return 8 * T * n / (3 - n) - 3 * n * n
+
+
+def maxwell(T, c=C):
+    """(n~_gas, n~_liquid, P~, mu~) of the Maxwell construction at T~ < 1: equal P~ and mu~."""
+    n = np.linspace(1e-3, 2.99, 20000)
+    dp = np.gradient(p_vdw(n, T), n)
+    spin = n[np.nonzero(np.diff(np.sign(dp)))[0]]  # the two spinodal densities
+    lo, hi = spin[0], spin[-1]
+
+    def roots(P):
+        return (brentq(lambda x: p_vdw(x, T) - P, 1e-9, lo), brentq(lambda x: p_vdw(x, T) - P, hi, 2.999))
+
+    def dmu(P):
+        g, l = roots(P)
+        return mu_vdw(g, T, c) - mu_vdw(l, T, c)
+
+    P = brentq(dmu, max(p_vdw(hi, T), 1e-9) + 1e-12, p_vdw(lo, T) - 1e-12, xtol=1e-14)
+    g, l = roots(P)
+    return g, l, P, mu_vdw(g, T, c)
+
+
+def mu_roots(mu, T, c=C):
+    """The densities where mu~(n~, T~) = mu (one or three; the middle one a minimum of P)."""
+    n = np.linspace(1e-4, 2.999, 30000)
+    f = mu_vdw(n, T, c) - mu
+    k = np.nonzero(np.diff(np.sign(f)))[0]
+    return [brentq(lambda x: mu_vdw(x, T, c) - mu, n[i], n[i + 1]) for i in k]
+
+
+def log_pn(n, V, T, mu, c=C, momentum=False):
+    """ln P(n~ | V~) of eq 166 integrated over s~ (unnormalised); `momentum`: times M^(3/2)."""
+    b = 1.0 / T
+    a = 1.5 * V * n
+    r = np.log(n) + gammaln(a) - a * np.log(a * b) \
+        + V * (n * (2.5 - 1.5 * np.log(c) - np.log(n / (3 - n))) + b * (1.125 * n * n + mu * n))
+    return r + 1.5 * np.log(n) if momentum else r
+
+
+def check_marginal():
+    """log_pn against direct quadrature of eq 166 over s~ (T~(n~, s~) from eq 162, eps~ from
+    eq 161): the differences of ln P between densities agree to 1e-8."""
+    V, T, mu = 20.0, 0.85, -14.9
+
+    def direct(n):
+        def integrand(s):
+            t = C * np.exp((2 / 3) * (s / n - 2.5 + np.log(n / (3 - n))))
+            eps = 1.5 * t * n - 1.125 * n * n
+            return np.exp(V * (s - (eps - mu * n) / T) - shift)
+        s0 = n * (1.5 * np.log(T / C) + 2.5 - np.log(n / (3 - n)))  # s~ at T~ = T~ext
+        shift = V * (s0 - (1.5 * T * n - 1.125 * n * n - mu * n) / T)
+        w = 12 * n / np.sqrt(V * n)
+        return np.log(quad(integrand, s0 - w, s0 + w, epsabs=0, epsrel=1e-12, limit=200)[0]) + shift
+    ns = [0.3, 0.8, 1.4, 1.9]
+    d = np.array([direct(n) for n in ns])
+    a = log_pn(np.array(ns), V, T, mu)
+    err = np.abs((d - d[0]) - (a - a[0])).max()
+    assert err < 1e-8, f"eq 166 marginal disagrees with quadrature by {err}"
+    return float(err)
+
+
+GRID = np.linspace(0.005, 2.6, 2600)
+
+
+def mixture(vols, T, mu, momentum=False, nbins=40):
+    """<P(n~ | V~_cell)> on GRID over the sampled cell volumes (normalised), and the
+    per-bin normalisation ln Z(V) for the likelihood."""
+    w, edges = np.histogram(vols, bins=nbins)
+    centres = 0.5 * (edges[1:] + edges[:-1])
+    p = np.zeros_like(GRID)
+    for wk, v in zip(w, centres):
+        if wk:
+            lp = log_pn(GRID, v, T, mu, momentum=momentum)
+            q = np.exp(lp - lp.max())
+            p += wk * q / np.trapezoid(q, GRID)
+    return p / w.sum()
+
+
+def log_likelihood(mu, n, vols, T, momentum=False):
+    """sum_i ln P(n_i | V_i) with P normalised for each V (ln Z interpolated in V)."""
+    vg = np.linspace(vols.min(), vols.max(), 30)
+    logz = []
+    for v in vg:
+        lp = log_pn(GRID, v, T, mu, momentum=momentum)
+        logz.append(lp.max() + np.log(np.trapezoid(np.exp(lp - lp.max()), GRID)))
+    return float((log_pn(n, vols, T, mu, momentum=momentum) - np.interp(vols, vg, logz)).sum())
+
+
+def fit_mu(n, vols, T, momentum=False):
+    r = minimize_scalar(lambda m: -log_likelihood(m, n, vols, T, momentum), bounds=(-16.5, -13.5),
+                        method="bounded", options={"xatol": 1e-6})
+    return float(r.x), -float(r.fun)
+
+
+def peaks(n, split, bins):
+    """The histogram's maxima below and above `split` (None: one peak): a parabola fitted to
+    ln(counts) over the bins within 60 % of the peak height."""
+    h, e = np.histogram(n, bins=bins, density=True)
+    x = 0.5 * (e[1:] + e[:-1])
+    out = []
+    for sel in ([x > 0] if split is None else [x < split, x >= split]):
+        k = np.nonzero(sel)[0]
+        top = k[np.argmax(h[k])]
+        near = [i for i in k if h[i] > 0.6 * h[top] and abs(i - top) < len(x) // 8]
+        c = np.polyfit(x[near], np.log(h[near]), 2)
+        out.append((float(-c[1] / (2 * c[0])), float(np.exp(c[2] - c[1] ** 2 / (4 * c[0])))))
+    return out
+
+
+def curve_peaks(p, split):
+    out = []
+    for sel in ([GRID > 0] if split is None else [GRID < split, GRID >= split]):
+        k = np.nonzero(sel)[0]
+        i = k[np.argmax(p[k])]
+        c = np.polyfit(GRID[i - 3:i + 4], np.log(p[i - 3:i + 4]), 2)
+        out.append((float(-c[1] / (2 * c[0])), float(np.exp(c[2] - c[1] ** 2 / (4 * c[0])))))
+    return out
+
+
+# --- runs ---
+
+def run(spec):
+    """Runs one scene in its work directory (reusing a finished run with the same
+    variables); a run that stops with an error keeps its frames and the message."""
+    wd = common.workdir(SCENE, spec["tag"])
+    wd.mkdir(parents=True, exist_ok=True)
+    variables = {k: spec[k] for k in ("V", "T", "nl", "ng", "fl", "dt", "steps", "dump")}
+    record = wd / "run.json"
+    if record.exists() and json.loads(record.read_text())["variables"] == variables:
+        return wd, json.loads(record.read_text())
+    script = common.ROOT / "examples" / EXAMPLE / f"in.{EXAMPLE}"
+    start, error = time.time(), None
+    try:
+        common.gendpde.run(script, variables, cwd=wd, binary=common.GENDPDE)
+    except common.gendpde.GendpdeError as e:
+        error = str(e)
+    info = {"example": EXAMPLE, "variables": variables, "wall_s": time.time() - start, "error": error}
+    record.write_text(json.dumps(info))
+    return wd, info
+
+
+def read_cells(path):
+    """(steps, [frames, N, 4] id mass vol theta) of the text dump (a cut-off last frame dropped)."""
+    steps, frames = [], []
+    with open(path) as f:
+        text = f.read()
+    for block in text.split("ITEM: TIMESTEP\n")[1:]:
+        lines = block.split("\n")
+        nat = int(lines[2])
+        rows = lines[8:8 + nat]
+        if len(rows) < nat or not rows[-1].strip():
+            break
+        steps.append(int(lines[0]))
+        frames.append(np.array([r.split() for r in rows], dtype=float))
+    return np.array(steps), np.array(frames)
+
+
+def analyse(spec, wd, info):
+    steps, cells = read_cells(wd / "cells.dump")
+    keep = steps >= spec["equil"]
+    log = common.gendpde.read_log(wd / "log.gendpde")[-1]
+    th = log[log["Step"] >= spec["equil"]]
+    row = {"tag": spec["tag"], "V": spec["V"], "N": int(cells.shape[1]), "dt": spec["dt"],
+           "steps_run": int(steps[-1]), "steps_asked": spec["steps"], "equil": spec["equil"],
+           "frames": int(keep.sum()), "dump_every": spec["dump"], "wall_s": round(info["wall_s"], 1),
+           "error": info.get("error"), "start": {k: spec[k] for k in ("T", "nl", "ng", "fl")}}
+    e = log["TotEng"].to_numpy()
+    row["energy_change"] = float((e[-1] - e[0]) / abs(e[0]))
+    if keep.sum() < 20:
+        row["note"] = "too few frames after equilibration"
+        return row, None
+    c = cells[keep]
+    n = (c[:, :, 1] / c[:, :, 2])
+    vols, temps = c[:, :, 2], c[:, :, 3]
+    T_kin, T_kin_err = common.mean_sem_tau(th["Temp"].to_numpy())
+    row.update(T_kin=T_kin, T_kin_err=T_kin_err, T_cells=float(temps.mean()),
+               T_cells_err=common.mean_sem_tau(temps.mean(axis=1))[1],
+               vol_rel_sd=float(vols.std() / vols.mean()), vol_mean=float(vols.mean()),
+               n_mean=float(n.mean()), n_min=float(n.min()), M_min=float(c[:, :, 1].min()))
+    T = T_kin
+    below = T < 1.0
+    split = None
+    if below:
+        g, l, P, mu_c = maxwell(T)
+        row.update(maxwell_gas=g, maxwell_liquid=l, maxwell_P=P, maxwell_mu=mu_c, maxwell_mu_c480=maxwell(T, 4.80e-5)[3])
+        split = 0.5 * (g + l)
+        split = float(np.clip(split, 0.8, 1.3))
+    fn, fv = n.ravel(), vols.ravel()
+    mu_fit, ll = fit_mu(fn, fv, T)
+    mu_fit_m, ll_m = fit_mu(fn, fv, T, momentum=True)
+    row.update(mu_fit=mu_fit, mu_fit_momentum=mu_fit_m, loglik_gain_momentum=ll_m - ll,
+               mu_cells=float(mu_vdw(n, temps).mean()),
+               mu_cells_err=common.mean_sem_tau(mu_vdw(n, temps).mean(axis=1))[1])
+    # error of the fitted mu~ from four blocks of frames
+    blocks = np.array_split(np.arange(len(c)), 4)
+    mus = [fit_mu(n[b].ravel(), vols[b].ravel(), T)[0] for b in blocks]
+    row["mu_fit_err"] = float(np.std(mus, ddof=1) / 2)
+    row["roots"] = mu_roots(mu_fit, T)
+    bins = np.linspace(0.0, 2.6, 105)
+    theory = mixture(fv, T, mu_fit)
+    theory_m = mixture(fv, T, mu_fit_m, momentum=True)
+    lp = log_pn(GRID, spec["V"], T, mu_fit)
+    fixed = np.exp(lp - lp.max())
+    fixed /= np.trapezoid(fixed, GRID)
+    row["peaks"] = peaks(fn, split, bins)
+    per_block = [peaks(n[b].ravel(), split, bins) for b in blocks]
+    row["peaks_err"] = [float(np.std([pb[k][0] for pb in per_block], ddof=1) / 2) for k in range(len(row["peaks"]))]
+    row["peaks_theory"] = curve_peaks(theory, split)
+    row["peaks_theory_momentum"] = curve_peaks(theory_m, split)
+    row["peaks_theory_fixed_V"] = curve_peaks(fixed, split)
+    half = len(c) // 2
+    row["halves"] = [peaks(n[:half].ravel(), split, bins), peaks(n[half:].ravel(), split, bins)]
+    if split is not None:
+        row["liquid_fraction"] = float((fn > split).mean())
+        row["liquid_fraction_halves"] = [float((n[:half] > split).mean()), float((n[half:] > split).mean())]
+    h, _ = np.histogram(fn, bins=bins, density=True)
+    hh = [np.histogram(n[b].ravel(), bins=bins, density=True)[0] for b in blocks]
+    curves = {"n": GRID[::5].round(4).tolist(), "mixture": theory[::5].round(5).tolist(),
+              "mixture_momentum": theory_m[::5].round(5).tolist(), "fixed_V": fixed[::5].round(5).tolist(),
+              "hist_edges": bins.round(4).tolist(), "hist": h.round(5).tolist(),
+              "hist_err": (np.std(hh, axis=0, ddof=1) / 2).round(5).tolist(),
+              "hist_halves": [np.histogram(n[:half].ravel(), bins=bins, density=True)[0].round(5).tolist(),
+                              np.histogram(n[half:].ravel(), bins=bins, density=True)[0].round(5).tolist()]}
+    return row, curves
+
+
+def plot(data):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    rows = [r for r in data["runs"] if r["tag"] in data["curves"]]
+    fig, axes = plt.subplots(1, len(rows), figsize=(4.6 * len(rows), 4.0), squeeze=False)
+    for ax, r in zip(axes[0], rows):
+        cv = data["curves"][r["tag"]]
+        e = np.array(cv["hist_edges"])
+        x = 0.5 * (e[1:] + e[:-1])
+        ax.errorbar(x, cv["hist"], yerr=cv["hist_err"], fmt="o", ms=2.5, color="k", lw=0.8, label="simulation")
+        ax.plot(cv["n"], cv["mixture"], "r-", lw=1.4, label=f"eq 166, cells' volumes, $\\tilde\\mu^{{ext}}$ = {r['mu_fit']:.3f}")
+        ax.plot(cv["n"], cv["fixed_V"], "b--", lw=1.0, label=f"eq 166 at $\\tilde V$ = {r['V']}")
+        if "maxwell_gas" in r:
+            for k, d in enumerate((r["maxwell_gas"], r["maxwell_liquid"])):
+                ax.axvline(d, color="g", ls=":", lw=1.2, label="Maxwell densities" if k == 0 else None)
+        ax.set_xlabel(r"cell density $\tilde n = M/\mathcal{V}$ (molecules per $3b$)")
+        ax.set_ylabel(r"$P(\tilde n)$")
+        ax.set_title(f"$\\tilde V$ = {r['V']}, $\\tilde T$ = {r['T_kin']:.3f}, {r['N']} cells, {r['frames']} frames", fontsize=9)
+        ax.set_xlim(0, 2.6)
+        ax.legend(fontsize=7, loc="upper center")
+    fig.tight_layout()
+    out = common.figure_path(SCENE)
+    fig.savefig(out, dpi=130)
+    print("figure:", out)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--plot", action="store_true", help="only redraw the figure from results.json")
+    ap.add_argument("--only", nargs="*", help="run tags to run and analyse (default: all)")
+    args = ap.parse_args()
+    if args.plot:
+        return plot(common.saved(SCENE))
+    data = {"c": C, "quadrature_check": check_marginal(), "runs": [], "curves": {}}
+    for spec in RUNS:
+        if args.only and spec["tag"] not in args.only:
+            continue
+        wd, info = run(spec)
+        row, curves = analyse(spec, wd, info)
+        data["runs"].append(row)
+        if curves:
+            data["curves"][spec["tag"]] = curves
+        print(json.dumps({k: v for k, v in row.items() if k not in ("halves",)}, default=float))
+    common.save(SCENE, data)
+    plot(data)
+
+
+if __name__ == "__main__":
+    main()
