@@ -37,7 +37,6 @@ The Maxwell densities at the measured T~ come from equal P~ and mu~ (eq 162).
 import argparse
 import json
 import time
-from pathlib import Path
 
 import numpy as np
 from scipy.integrate import quad
