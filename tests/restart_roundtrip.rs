@@ -135,7 +135,10 @@ fn check(case: &Case, np_write: usize, np_read: usize) {
 }
 
 /// Scenes that run on one rank only (pair voronoi/fv), checked written and read on one.
-const ONE_RANK_CASES: &[Case] = &[Case { script: "examples/voronoi-vdw/in.voronoi-vdw", vars: &[("k", "4")], every: 5, k: 10 }];
+const ONE_RANK_CASES: &[Case] = &[
+    Case { script: "examples/voronoi-vdw/in.voronoi-vdw", vars: &[("k", "4")], every: 5, k: 10 },
+    Case { script: "examples/voronoi-coexistence/in.voronoi-coexistence", vars: &[("k", "4"), ("V", "40"), ("dump", "5")], every: 5, k: 10 },
+];
 
 fn all(np_write: usize, np_read: usize) {
     let mut failed = Vec::new();

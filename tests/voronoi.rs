@@ -133,3 +133,29 @@ fn bad_input_names_the_line_and_what_was_expected() {
     let err = it.execute_str("test.in", "units lj\npair_style voronoi/fv 0\n").expect_err("seed 0").to_string();
     assert!(err.contains("random seed must be positive"), "{err}");
 }
+
+/// The dump keyword `vol` is each cell's own volume after the cells have moved: in every
+/// row, mass, vol and theta give the dumped cell energy u = (3/2) M T - (9/8) M^2 / V (eq 161,
+/// so a stale or misplaced volume fails), and the volumes sum to the box.
+#[test]
+fn the_vol_dump_column_is_each_cells_volume() {
+    let dir = common::tempdir("voronoi-vol");
+    let script = std::fs::read_to_string(common::example("voronoi-coexistence")).unwrap();
+    std::fs::write(dir.join("in.c"), format!("{script}write_dump all custom final.dump id mass vol theta u\n")).unwrap();
+    let out = common::gendpde(&dir, &["-in", "in.c", "-var", "k", "4", "-var", "V", "40", "-var", "steps", "20", "-var", "dump", "10", "-log", "none"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stdout));
+    let text = std::fs::read_to_string(dir.join("final.dump")).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    let len: f64 = 4.0 * 40f64.cbrt();
+    let rows: Vec<Vec<f64>> = lines[9..].iter().map(|l| l.split_whitespace().map(|w| w.parse().unwrap()).collect()).collect();
+    assert_eq!(rows.len(), 64);
+    let total: f64 = rows.iter().map(|r| r[2]).sum();
+    assert!((total - len.powi(3)).abs() < 1e-12 * total, "sum of vol {total} against the box {}", len.powi(3));
+    let spread = rows.iter().map(|r| (r[2] - 40.0).abs()).fold(0.0, f64::max);
+    assert!(spread > 1e-3, "the cells did not move (volumes still 40, largest change {spread})");
+    for r in &rows {
+        let (m, v, t, u) = (r[1], r[2], r[3], r[4]);
+        let e = 1.5 * m * t - 1.125 * m * m / v;
+        assert!((e - u).abs() < 1e-9 * (1.5 * m * t), "cell {}: u {u} against E(M, T, vol) {e}", r[0]);
+    }
+}

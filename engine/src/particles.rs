@@ -299,6 +299,9 @@ particle_fields! {
     sdpd_flux: Vec3, "sdpd_flux", gate Fields::SDPD_FLUX, comm Fields::SDPD_FLUX, stages 0;
     /// Entropy S of a Voronoi cell (pair voronoi/fv; Serrano-Espanol eq 64).
     entropy: f64, "entropy", gate Fields::ENTROPY, comm NONE, stages MIGRATE | RESTART;
+    /// Volume of a Voronoi cell, rewritten from the tessellation after every step and at
+    /// set-up (allocated with the entropy; dump keyword `vol`).
+    volume: f64, "vol", gate Fields::ENTROPY, comm NONE, stages 0;
     /// Per-particle diagonal virial sum_j F_ij (x_ij^2, y_ij^2, z_ij^2) / 2 of owned
     /// particles (its trace is the scalar virial); for a Voronoi cell p dV/d epsilon_aa.
     virial: Vec3, "virial", gate Fields::PRESSURE.union(Fields::PAIR_ENERGY).union(Fields::ENTROPY), comm NONE, stages RESTART | RESUME;

@@ -16,7 +16,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "python"))  # the gendpde package, installed or not
 import gendpde  # noqa: E402
-GENDPDE = os.environ.get("GENDPDE", str(ROOT / "target" / "release" / "gendpde"))
+GENDPDE = os.environ.get("GENDPDE", str(Path(os.environ.get("CARGO_TARGET_DIR", ROOT / "target")) / "release" / "gendpde"))
 OUT = ROOT / "docs" / "validation"
 LJ_TABLE = "table 0.3 8.0 121 0.0 1.2 129"  # the grid the LJ scans use (see fix_eos.md)
 

@@ -658,6 +658,13 @@ equations away from the slabs).
         rows.append(srow)
         parts.append(spart)
 
+    vc = json.loads((common.OUT / "results.json").read_text()).get("voronoi_coexistence")
+    if vc:
+        import voronoi_coexistence
+        vrow, vpart = voronoi_coexistence.markdown(vc, voronoi_coexistence.FINDINGS)
+        rows.append(vrow)
+        parts.append(vpart)
+
     text = HEAD + "\n## Summary\n\n| scene | paper | gendpde | run |\n|---|---|---|---|\n" + "\n".join(rows) + "\n\n## Scenes\n\n" + "\n".join(parts)
     (common.ROOT / "docs" / "VALIDATION.md").write_text(text)
     print(text)

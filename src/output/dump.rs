@@ -57,7 +57,8 @@ fn scaled(s: &System, i: usize, k: usize) -> f64 {
     (s.store.r[i][k] - s.domain.lo[k]) / s.domain.len()[k]
 }
 
-/// LAMMPS's dump keywords and gendpde's (p, u, theta, n, eDPD's T, C_V and Q, and SPH's drho).
+/// LAMMPS's dump keywords and gendpde's (p, u, theta, n, eDPD's T, C_V and Q, SPH's drho and
+/// the Voronoi cell volume).
 pub const KEYWORDS: &[Keyword] = &[
     field("id", "id", 0),
     field("type", "type", 0),
@@ -94,6 +95,7 @@ pub const KEYWORDS: &[Keyword] = &[
     field("edpd_cv", "edpd_cv", 0),
     field("edpd_flux", "edpd_flux", 0),
     field("drho", "drho", 0),
+    field("vol", "vol", 0),
 ];
 
 /// The keyword names, for error messages.

@@ -1,9 +1,9 @@
 //! The finite-volume model as a run's dynamics (`pair_style voronoi/fv` + `fix
 //! nve/voronoi`): the particles are the cells; their per-particle `mass` is the dynamic M,
-//! the field-table row `entropy` holds S, `u` the cell energy E(M, S, V), `theta` T and
-//! `virial` p dV/d epsilon (its trace 3 p V), so thermo's pe + ke is the model's energy
-//! (eq 64) and press its pressure. One rank only (docs/DESIGN.md "Voronoi fluid
-//! particles", plan for ranks).
+//! the field-table row `entropy` holds S, `u` the cell energy E(M, S, V), `theta` T,
+//! `volume` the cell volume (dump `vol`) and `virial` p dV/d epsilon (its trace 3 p V),
+//! so thermo's pe + ke is the model's energy (eq 64) and press its pressure. One rank
+//! only (docs/DESIGN.md "Voronoi fluid particles", plan for ranks).
 
 use super::finite_volume::{same_bits, Cells, FiniteVolume, Frame, ModelError};
 use crate::error::StepError;
@@ -63,6 +63,7 @@ impl<E: CellEnergy> VoronoiFv<E> {
             sys.store.u[i] = frame.thermo[k].energy;
             sys.store.theta[i] = frame.thermo[k].temperature;
             sys.store.virial[i] = virial[k];
+            sys.store.volume[i] = frame.tess.volumes[k];
         }
         *self.last.borrow_mut() = Some(Refreshed { cells, lo, len, frame });
         Ok(())
