@@ -342,6 +342,20 @@ pub struct FiniteVolume<E> {
 }
 
 impl<E: CellEnergy> FiniteVolume<E> {
+    /// With thermal noise every cell needs C > k_B: the factors 1 - k_B/C of eqs 82-84 and
+    /// 89-90 change sign below, and the heating they scale runs away (a cell of a few
+    /// molecules; larger cells keep clear of it). Stops the step at the first such cell.
+    fn check_capacities(&self, cells: &Cells, frame: &Frame) -> Result<(), ModelError> {
+        let kb = self.transport.kb;
+        match (0..cells.len()).find(|&k| kb > 0.0 && frame.thermo[k].heat_capacity <= kb) {
+            None => Ok(()),
+            Some(k) => Err(ModelError::State {
+                tag: cells.tag[k],
+                err: CellStateError { m: cells.m[k], s: cells.s[k], v: frame.tess.volumes[k], what: "heat capacity C <= k_B, where 1 - k_B/C of the irreversible part changes sign (cells too small: raise the mean cell volume)" },
+            }),
+        }
+    }
+
     /// All deterministic rates at a frame.
     pub fn rates(&self, cells: &Cells, frame: &Frame) -> Rates {
         let mut r = frame.reversible(cells);
@@ -362,6 +376,7 @@ impl<E: CellEnergy> FiniteVolume<E> {
     /// `f0` is the frame of `cells` (a run reuses the previous step's end frame), so the
     /// step tessellates once, for the predictor.
     pub fn step(&self, cells: &mut Cells, f0: &Frame, lo: V3, len: V3, dt: f64, step: u64) -> Result<(), ModelError> {
+        self.check_capacities(cells, f0)?;
         let k0 = self.rates(cells, f0);
         let tr = &self.transport;
         let noise = (tr.kb != 0.0).then(|| match self.dissipation {
@@ -371,6 +386,7 @@ impl<E: CellEnergy> FiniteVolume<E> {
         let mut pred = cells.clone();
         advance(&mut pred, &k0, dt, 1.0);
         let f1 = Frame::new(&pred, &self.energy, lo, len)?;
+        self.check_capacities(&pred, &f1)?;
         let k1 = self.rates(&pred, &f1);
         advance(cells, &k0, dt, 0.5);
         advance(cells, &k1, dt, 0.5);

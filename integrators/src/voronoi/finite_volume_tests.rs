@@ -213,6 +213,24 @@ fn a_cell_outside_the_relation_is_an_error_naming_its_tag() {
     assert!(VDW.state(1.0, 1.0, 1.0).is_ok());
 }
 
+/// With noise a cell of heat capacity C = 3M/2 <= k_B stops the step, naming it; without
+/// noise (k_B = 0) the same cell steps.
+#[test]
+fn a_cell_below_the_noise_models_heat_capacity_stops_the_step() {
+    let (mut c, _) = disordered(30, 18);
+    c.m[6] = 0.6;
+    c.s[6] = vdw_entropy(WATER_C, 0.6, Frame::new(&c, &VDW, LO, LEN).unwrap().tess.volumes[6], 1.2);
+    for (kb, fails) in [(1.0, true), (0.0, false)] {
+        let model = FiniteVolume { energy: VDW, transport: Transport { kb, ..TR }, dissipation: Dissipation::Hydrodynamic, seed: 3 };
+        let f0 = Frame::new(&c, &VDW, LO, LEN).unwrap();
+        match model.step(&mut c.clone(), &f0, LO, LEN, 1e-3, 0) {
+            Err(ModelError::State { tag, err }) if fails => assert!(tag == 7 && err.what.contains("C <= k_B"), "{tag}: {err}"),
+            Ok(()) if !fails => {}
+            other => panic!("k_B {kb}: {other:?}"),
+        }
+    }
+}
+
 /// Eq 10 (fluctuation-dissipation): the irreversible drift at k_B = 0 is M . dS/dx with
 /// M = <dx~ dx~^T>/(2 k_B dt); dS/dx is 1 on every entropy, so dP_mu = sum_l <dP~_mu dS~_l>
 /// /(2 k_B dt) and T_mu dS_mu = T_mu sum_l <dS~_mu dS~_l>/(2 k_B dt). Estimated over 4000
