@@ -23,7 +23,7 @@ use crate::settings::{Dissipation, Reservoir};
 use crate::species::Species;
 use crate::system::System;
 use crate::many_body::density_of;
-use gendpde_engine::{dot, exact_sums, sub, Fields, Particles, Vec3};
+use gendpde_engine::{exact_sums, Fields, Particles, Vec3};
 use gendpde_potentials::{AtDensity, Eos, EosError, FixedDensity, ISOLATED_DENSITY};
 
 /// Fields the sweep writes, exchanged between colours.
@@ -45,33 +45,31 @@ pub fn sweep<E: FixedDensity, H: HeatFlow, N: Noise>(eos: &Species<E>, d: &Dissi
     let at: Vec<E::At<'_>> = (0..sys.store.mass.len()).map(|i| at_density(eos, &sys.store, i)).collect();
     let mut outcome = Ok(());
     let mut failures = Vec::new();
+    let keys = Keys { seed: d.seed, key, kb };
     for colour in 0..sys.sweep.colours() {
-        let pairs = sys.sweep.within(colour, &sys.store, rc);
+        let (pairs, displacement) = sys.sweep.within_displaced(colour, &sys.store, rc);
         let mut v = Swept::new::<H, N>(&mut sys.store, &at, inv_m);
         // the pairs' noises a block of LANES ahead, their Philox blocks side by side: the
         // keys (step, tags) do not change during the sweep
-        for block in pairs.chunks(LANES) {
-            let ends: [(Idx, Idx); LANES] = std::array::from_fn(|l| v.pair(block[l.min(block.len() - 1)]));
+        for (block, displaced) in pairs.chunks(LANES).zip(displacement.chunks(LANES)) {
+            let last = block.len() - 1;
+            let ends: [(Idx, Idx); LANES] = std::array::from_fn(|l| v.pair(block[l.min(last)]));
             let tags = ends.map(|(i, j)| (v.tag(i), v.tag(j)));
             let noises = normals.pairs(d.seed, key, tags, stream::PAIR);
-            for (&(i, j), &(xi, xibar)) in ends.iter().zip(&noises).take(block.len()) {
-                let dr = sub(v.r(i), v.r(j));
-                let r = dot(dr, dr).sqrt();
+            for ((&(i, j), &(xi, xibar)), &[dx, dy, dz, r2]) in ends.iter().zip(&noises).zip(displaced) {
+                let r = r2.sqrt();
                 let wd = (1.0 - r * inv_rcd).max(0.0);
                 let wh = (1.0 - r * inv_rch).max(0.0);
                 let inv_r = 1.0 / r;
                 let pair = Pair {
                     i,
                     j,
-                    e: [dr[0] * inv_r, dr[1] * inv_r, dr[2] * inv_r],
+                    e: [dx * inv_r, dy * inv_r, dz * inv_r],
                     inv_m: (v.inv_m(i), v.inv_m(j)),
                     gamma: gamma * wd * wd,
                     kappa: d.kappa * wh * wh,
-                    seed: d.seed,
-                    key,
-                    kb,
                 };
-                if let Err(failed) = pair_step::<_, H, N>(&mut v, pair, xi, xibar, dt, 0, d.substeps, &mut sys.substeps) {
+                if let Err(failed) = pair_step::<_, H, N>(&mut v, &keys, pair, xi, xibar, dt, 0, d.substeps, &mut sys.substeps) {
                     sys.rejected += d.reject as u64;
                     if !d.reject {
                         failures.push(failed);
@@ -142,6 +140,10 @@ struct Pair {
     inv_m: (f64, f64),
     gamma: f64,
     kappa: f64,
+}
+
+/// What stays fixed during the sweep.
+struct Keys {
     seed: u64,
     /// The noise step ([`System::noise_step`]).
     key: u64,
@@ -159,7 +161,6 @@ struct Idx(usize);
 /// so the accessors read and write without further checks.
 struct Swept<'a, A> {
     len: usize,
-    r: &'a [Vec3],
     tag: &'a [u64],
     inv_m: &'a [f64],
     at: &'a [A],
@@ -194,7 +195,6 @@ impl<'a, A: AtDensity> Swept<'a, A> {
         let len = at.len();
         Self {
             len,
-            r: &s.r[..len],
             tag: &s.tag[..len],
             inv_m: &inv_m[..len],
             at,
@@ -212,11 +212,6 @@ impl<'a, A: AtDensity> Swept<'a, A> {
         let (i, j) = (i as usize, j as usize);
         assert!(i < self.len && j < self.len, "sweep pair outside the store");
         (Idx(i), Idx(j))
-    }
-
-    #[inline(always)]
-    fn r(&self, i: Idx) -> Vec3 {
-        *at!(self.r, i)
     }
 
     #[inline(always)]
@@ -292,6 +287,7 @@ impl Failed {
 #[inline(always)]
 fn pair_step<A: AtDensity, H: HeatFlow, N: Noise>(
     v: &mut Swept<'_, A>,
+    k: &Keys,
     p: Pair,
     xi: f64,
     xibar: f64,
@@ -305,7 +301,7 @@ fn pair_step<A: AtDensity, H: HeatFlow, N: Noise>(
     let drive = PairDrive { e: p.e, gamma: p.gamma, kappa: p.kappa, ti: a.temps(), tj: b.temps(), xi, xibar };
     let (mut p_i, mut p_j, mut u_i, mut u_j) = (a.p, b.p, a.u, b.u);
     let state = PairState { p_i: &mut p_i, p_j: &mut p_j, u_i: &mut u_i, u_j: &mut u_j, inv_m_i: p.inv_m.0, inv_m_j: p.inv_m.1 };
-    pair_update::<H, N>(state, &drive, p.kb, dt, dt.sqrt());
+    pair_update::<H, N>(state, &drive, k.kb, dt, dt.sqrt());
     let refreshed = refresh_pair::<A, H, N>([v.at(i), v.at(j)], [i.0, j.0], [p_i, p_j], [u_i, u_j], [a.theta, b.theta]);
     match refreshed {
         Ok((a, b)) => {
@@ -314,7 +310,7 @@ fn pair_step<A: AtDensity, H: HeatFlow, N: Noise>(
             Ok(())
         }
         Err(failed) if levels == 0 => Err(failed),
-        Err(_) => split::<A, H, N>(v, p, (xi, xibar, dt, node, levels), splits),
+        Err(_) => split::<A, H, N>(v, k, p, (xi, xibar, dt, node, levels), splits),
     }
 }
 
@@ -322,6 +318,7 @@ fn pair_step<A: AtDensity, H: HeatFlow, N: Noise>(
 #[cold]
 fn split<A: AtDensity, H: HeatFlow, N: Noise>(
     v: &mut Swept<'_, A>,
+    k: &Keys,
     p: Pair,
     (xi, xibar, dt, node, levels): (f64, f64, f64, u32, u32),
     splits: &mut u64,
@@ -329,12 +326,12 @@ fn split<A: AtDensity, H: HeatFlow, N: Noise>(
     let (i, j) = (p.i, p.j);
     let saved = (v.load::<H, N>(i), v.load::<H, N>(j));
     *splits += 1;
-    let (eta, etabar) = normal_pair(p.seed, p.key, v.tag(i), v.tag(j), stream::SUBSTEP + node);
+    let (eta, etabar) = normal_pair(k.seed, k.key, v.tag(i), v.tag(j), stream::SUBSTEP + node);
     let h = std::f64::consts::FRAC_1_SQRT_2;
     let first = ((xi + eta) * h, (xibar + etabar) * h);
     let second = ((xi - eta) * h, (xibar - etabar) * h);
-    let halves = pair_step::<A, H, N>(v, p, first.0, first.1, 0.5 * dt, 2 * node + 1, levels - 1, splits)
-        .and_then(|_| pair_step::<A, H, N>(v, p, second.0, second.1, 0.5 * dt, 2 * node + 2, levels - 1, splits));
+    let halves = pair_step::<A, H, N>(v, k, p, first.0, first.1, 0.5 * dt, 2 * node + 1, levels - 1, splits)
+        .and_then(|_| pair_step::<A, H, N>(v, k, p, second.0, second.1, 0.5 * dt, 2 * node + 2, levels - 1, splits));
     if halves.is_err() {
         v.store::<H, N>(i, saved.0);
         v.store::<H, N>(j, saved.1);
