@@ -308,6 +308,22 @@ mod tests {
         }
     }
 
+    /// The SSE2 lanes give the scalar blocks.
+    #[cfg(target_arch = "x86_64")]
+    #[test]
+    fn sse2_lanes_are_the_scalar_philox() {
+        let mut x = 0x9E37_79B9_7F4A_7C15u64;
+        let mut next = || {
+            x = x.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (x >> 32) as u32
+        };
+        for _ in 0..5_000 {
+            let ctr: [[u32; 4]; 8] = std::array::from_fn(|_| std::array::from_fn(|_| next()));
+            let key = [next(), next()];
+            assert_eq!(sse2::philox4x32_lanes(ctr, key), ctr.map(|c| philox4x32(c, key)));
+        }
+    }
+
     #[test]
     fn normals_have_unit_moments_and_are_uncorrelated() {
         let n = 200_000;
