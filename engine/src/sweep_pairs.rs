@@ -17,8 +17,13 @@ pub struct SweepPairs {
     pub colour_start: Vec<usize>,
     /// Ghosts written by the pairs of colour c (sorted, unique); one entry per colour.
     pub ghost_writes: Vec<Vec<u32>>,
-    /// Scratch of [`SweepPairs::within`].
+    /// Scratch of [`SweepPairs::within`]: the selected pairs are its first `selected`
+    /// (the rest is left from earlier colours, so the scratch is filled only as it grows).
     active: Vec<[u32; 2]>,
+    selected: usize,
+    /// Scratch of [`SweepPairs::within_displaced`]: r_i - r_j and |r_i - r_j|^2 of each
+    /// selected pair.
+    displacement: Vec<[f64; 4]>,
 }
 
 impl SweepPairs {
@@ -36,22 +41,43 @@ impl SweepPairs {
     /// selected without a branch per pair (about half the list lies in the skin, a test
     /// the processor could not predict).
     pub fn within(&mut self, c: usize, store: &Particles, rc: f64) -> &[[u32; 2]] {
+        self.select::<false>(c, store, rc);
+        self.active()
+    }
+
+    /// [`SweepPairs::within`] with each pair's r_i - r_j and |r_i - r_j|^2 as the
+    /// selection computed them (`[x, y, z, r^2]`), for a sweep that would compute them
+    /// again.
+    pub fn within_displaced(&mut self, c: usize, store: &Particles, rc: f64) -> (&[[u32; 2]], &[[f64; 4]]) {
+        self.select::<true>(c, store, rc);
+        (self.active(), &self.displacement[..self.selected])
+    }
+
+    #[inline(always)]
+    fn select<const DISPLACED: bool>(&mut self, c: usize, store: &Particles, rc: f64) {
         let range = self.colour_start[c]..self.colour_start[c + 1];
-        self.active.resize(range.len(), [0; 2]);
+        if self.active.len() < range.len() {
+            self.active.resize(range.len(), [0; 2]);
+        }
+        if DISPLACED && self.displacement.len() < range.len() {
+            self.displacement.resize(range.len(), [0.0; 4]);
+        }
         let mut m = 0;
         for &[i, j] in &self.pairs[range] {
             let d = sub(store.r[i as usize], store.r[j as usize]);
             let r2 = dot(d, d);
             self.active[m] = [i, j];
+            if DISPLACED {
+                self.displacement[m] = [d[0], d[1], d[2], r2];
+            }
             m += (r2 < rc * rc && r2 >= 1e-20) as usize;
         }
-        self.active.truncate(m);
-        &self.active
+        self.selected = m;
     }
 
     /// The pairs the last [`SweepPairs::within`] selected.
     pub fn active(&self) -> &[[u32; 2]] {
-        &self.active
+        &self.active[..self.selected]
     }
 }
 

@@ -23,7 +23,7 @@ use crate::settings::{Dissipation, Reservoir};
 use crate::species::Species;
 use crate::system::System;
 use crate::many_body::density_of;
-use gendpde_engine::{dot, exact_sums, sub, Fields, Particles, Vec3};
+use gendpde_engine::{exact_sums, Fields, Particles, Vec3};
 use gendpde_potentials::{AtDensity, Eos, EosError, FixedDensity, ISOLATED_DENSITY};
 
 /// Fields the sweep writes, exchanged between colours.
@@ -32,7 +32,28 @@ pub const SWEPT: Fields = Fields::MOMENTUM.union(Fields::ENERGY).union(Fields::T
 /// One full sweep over all pairs of all colours. A pair update that fails is undone:
 /// left out under `reject`, else reported after the sweep (the failure of lowest tag:
 /// the pairs after it see the same states on any rank count).
+///
+/// On x86_64 processors with AVX2 the sweep runs as code built for AVX2 (3-operand
+/// instructions, fewer register copies); the same IEEE operations in the same order
+/// (Rust never fuses or reorders floating-point operations by itself), so the same bits.
 pub fn sweep<E: FixedDensity, H: HeatFlow, N: Noise>(eos: &Species<E>, d: &Dissipation, sys: &mut System, dt: f64) -> Result<(), StepError> {
+    #[cfg(target_arch = "x86_64")]
+    if std::is_x86_feature_detected!("avx2") {
+        // SAFETY: the processor has AVX2 (just checked)
+        return unsafe { sweep_avx2::<E, H, N>(eos, d, sys, dt) };
+    }
+    sweep_any::<E, H, N>(eos, d, sys, dt)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn sweep_avx2<E: FixedDensity, H: HeatFlow, N: Noise>(eos: &Species<E>, d: &Dissipation, sys: &mut System, dt: f64) -> Result<(), StepError> {
+    sweep_any::<E, H, N>(eos, d, sys, dt)
+}
+
+/// [`sweep`] for the instruction set of its caller.
+#[inline(always)]
+fn sweep_any<E: FixedDensity, H: HeatFlow, N: Noise>(eos: &Species<E>, d: &Dissipation, sys: &mut System, dt: f64) -> Result<(), StepError> {
     let kb = eos.kb();
     let rc = d.cutoff();
     let (inv_rcd, inv_rch) = (1.0 / d.rc_friction, 1.0 / d.rc_heat);
@@ -45,34 +66,35 @@ pub fn sweep<E: FixedDensity, H: HeatFlow, N: Noise>(eos: &Species<E>, d: &Dissi
     let at: Vec<E::At<'_>> = (0..sys.store.mass.len()).map(|i| at_density(eos, &sys.store, i)).collect();
     let mut outcome = Ok(());
     let mut failures = Vec::new();
+    let keys = Keys { seed: d.seed, key, kb };
     for colour in 0..sys.sweep.colours() {
-        let pairs = sys.sweep.within(colour, &sys.store, rc);
+        let (pairs, displacement) = sys.sweep.within_displaced(colour, &sys.store, rc);
         let mut v = Swept::new::<H, N>(&mut sys.store, &at, inv_m);
-        for &[i, j] in pairs {
-            let (i, j) = (i as usize, j as usize);
-            // the one range check of the pair: every slice of `v` has length `v.len`
-            assert!(i < v.len && j < v.len, "sweep pair outside the store");
-            let dr = sub(v.r[i], v.r[j]);
-            let r = dot(dr, dr).sqrt();
-            let wd = (1.0 - r * inv_rcd).max(0.0);
-            let wh = (1.0 - r * inv_rch).max(0.0);
-            let (xi, xibar) = normals.pair(d.seed, key, v.tag[i], v.tag[j], stream::PAIR);
-            let inv_r = 1.0 / r;
-            let pair = Pair {
-                i,
-                j,
-                e: [dr[0] * inv_r, dr[1] * inv_r, dr[2] * inv_r],
-                inv_m: (v.inv_m[i], v.inv_m[j]),
-                gamma: gamma * wd * wd,
-                kappa: d.kappa * wh * wh,
-                seed: d.seed,
-                key,
-                kb,
-            };
-            if let Err(failed) = pair_step::<_, H, N>(&mut v, &pair, xi, xibar, dt, 0, d.substeps, &mut sys.substeps) {
-                sys.rejected += d.reject as u64;
-                if !d.reject {
-                    failures.push(failed);
+        // the pairs' noises a block of LANES ahead, their Philox blocks side by side: the
+        // keys (step, tags) do not change during the sweep
+        for (block, displaced) in pairs.chunks(LANES).zip(displacement.chunks(LANES)) {
+            let last = block.len() - 1;
+            let ends: [(Idx, Idx); LANES] = std::array::from_fn(|l| v.pair(block[l.min(last)]));
+            let tags = ends.map(|(i, j)| (v.tag(i), v.tag(j)));
+            let noises = normals.pairs(d.seed, key, tags, stream::PAIR);
+            for ((&(i, j), &(xi, xibar)), &[dx, dy, dz, r2]) in ends.iter().zip(&noises).zip(displaced) {
+                let r = r2.sqrt();
+                let wd = (1.0 - r * inv_rcd).max(0.0);
+                let wh = (1.0 - r * inv_rch).max(0.0);
+                let inv_r = 1.0 / r;
+                let pair = Pair {
+                    i,
+                    j,
+                    e: [dx * inv_r, dy * inv_r, dz * inv_r],
+                    inv_m: (v.inv_m(i), v.inv_m(j)),
+                    gamma: gamma * wd * wd,
+                    kappa: d.kappa * wh * wh,
+                };
+                if let Err(failed) = pair_step::<_, H, N>(&mut v, &keys, pair, xi, xibar, dt, 0, d.substeps, &mut sys.substeps) {
+                    sys.rejected += d.reject as u64;
+                    if !d.reject {
+                        failures.push(failed);
+                    }
                 }
             }
         }
@@ -126,27 +148,40 @@ pub fn reservoir<E: FixedDensity, H: HeatFlow, N: Noise>(eos: &Species<E>, res: 
     outcome
 }
 
+/// Pairs whose noises are drawn together ([`Normals::pairs`]).
+const LANES: usize = 4;
+
 /// What stays fixed while one pair is updated, over any split of its step.
+#[derive(Clone, Copy)]
 struct Pair {
-    i: usize,
-    j: usize,
+    i: Idx,
+    j: Idx,
     e: [f64; 3],
     /// 1/m_i, 1/m_j.
     inv_m: (f64, f64),
     gamma: f64,
     kappa: f64,
+}
+
+/// What stays fixed during the sweep.
+struct Keys {
     seed: u64,
     /// The noise step ([`System::noise_step`]).
     key: u64,
     kb: f64,
 }
 
+/// An index below the length shared by all [`Swept`] of one sweep, made only by
+/// [`Swept::pair`] after its range check.
+#[derive(Clone, Copy)]
+struct Idx(usize);
+
 /// The fields a pair update reads and writes, owned and ghost particles, as slices of one
-/// length `len` (`inv_tau` empty where the heat law does not read it): after one range
-/// check of i and j the hot loop indexes them without further checks.
+/// length `len`, the length of the sweep's `at` (`inv_tau` empty where the heat law does
+/// not read it). Every [`Idx`] is checked against that length once, by [`Swept::pair`],
+/// so the accessors read and write without further checks.
 struct Swept<'a, A> {
     len: usize,
-    r: &'a [Vec3],
     tag: &'a [u64],
     inv_m: &'a [f64],
     at: &'a [A],
@@ -156,13 +191,31 @@ struct Swept<'a, A> {
     inv_tau: &'a mut [f64],
 }
 
+/// The element `i` of a slice of [`Swept`].
+macro_rules! at {
+    ($slice:expr, $i:expr) => {
+        // SAFETY: every slice of a `Swept` has the length `len` the `Idx` was checked
+        // against (`Swept::new` cuts them all to `at.len()`, the same for every `Swept`
+        // of the sweep); `inv_tau` is read only under the same condition that gave it
+        // that length.
+        unsafe { $slice.get_unchecked($i.0) }
+    };
+}
+
+/// As [`at!`], for writing.
+macro_rules! at_mut {
+    ($slice:expr, $i:expr) => {
+        // SAFETY: as in `at!`.
+        unsafe { $slice.get_unchecked_mut($i.0) }
+    };
+}
+
 impl<'a, A: AtDensity> Swept<'a, A> {
     #[inline(always)]
     fn new<H: HeatFlow, N: Noise>(s: &'a mut Particles, at: &'a [A], inv_m: &'a [f64]) -> Self {
         let len = at.len();
         Self {
             len,
-            r: &s.r[..len],
             tag: &s.tag[..len],
             inv_m: &inv_m[..len],
             at,
@@ -173,16 +226,43 @@ impl<'a, A: AtDensity> Swept<'a, A> {
         }
     }
 
+    /// The checked indices of a pair of the sweep's list (a list entry outside the store
+    /// is a bug of the list build: a panic, never a silent read).
     #[inline(always)]
-    fn load<H: HeatFlow, N: Noise>(&self, i: usize) -> End {
-        End { p: self.p[i], u: self.u[i], theta: self.theta[i], inv_tau: if H::NEEDS_INV_TAU || N::NEEDS_INV_TAU { self.inv_tau[i] } else { 0.0 } }
+    fn pair(&self, [i, j]: [u32; 2]) -> (Idx, Idx) {
+        let (i, j) = (i as usize, j as usize);
+        assert!(i < self.len && j < self.len, "sweep pair outside the store");
+        (Idx(i), Idx(j))
     }
 
     #[inline(always)]
-    fn store<H: HeatFlow, N: Noise>(&mut self, i: usize, e: End) {
-        (self.p[i], self.u[i], self.theta[i]) = (e.p, e.u, e.theta);
+    fn tag(&self, i: Idx) -> u64 {
+        *at!(self.tag, i)
+    }
+
+    #[inline(always)]
+    fn inv_m(&self, i: Idx) -> f64 {
+        *at!(self.inv_m, i)
+    }
+
+    #[inline(always)]
+    fn at(&self, i: Idx) -> &A {
+        at!(self.at, i)
+    }
+
+    #[inline(always)]
+    fn load<H: HeatFlow, N: Noise>(&self, i: Idx) -> End {
+        let inv_tau = if H::NEEDS_INV_TAU || N::NEEDS_INV_TAU { *at!(self.inv_tau, i) } else { 0.0 };
+        End { p: *at!(self.p, i), u: *at!(self.u, i), theta: *at!(self.theta, i), inv_tau }
+    }
+
+    #[inline(always)]
+    fn store<H: HeatFlow, N: Noise>(&mut self, i: Idx, e: End) {
+        *at_mut!(self.p, i) = e.p;
+        *at_mut!(self.u, i) = e.u;
+        *at_mut!(self.theta, i) = e.theta;
         if H::NEEDS_INV_TAU || N::NEEDS_INV_TAU {
-            self.inv_tau[i] = e.inv_tau;
+            *at_mut!(self.inv_tau, i) = e.inv_tau;
         }
     }
 }
@@ -228,7 +308,8 @@ impl Failed {
 #[inline(always)]
 fn pair_step<A: AtDensity, H: HeatFlow, N: Noise>(
     v: &mut Swept<'_, A>,
-    p: &Pair,
+    k: &Keys,
+    p: Pair,
     xi: f64,
     xibar: f64,
     dt: f64,
@@ -241,8 +322,8 @@ fn pair_step<A: AtDensity, H: HeatFlow, N: Noise>(
     let drive = PairDrive { e: p.e, gamma: p.gamma, kappa: p.kappa, ti: a.temps(), tj: b.temps(), xi, xibar };
     let (mut p_i, mut p_j, mut u_i, mut u_j) = (a.p, b.p, a.u, b.u);
     let state = PairState { p_i: &mut p_i, p_j: &mut p_j, u_i: &mut u_i, u_j: &mut u_j, inv_m_i: p.inv_m.0, inv_m_j: p.inv_m.1 };
-    pair_update::<H, N>(state, &drive, p.kb, dt, dt.sqrt());
-    let refreshed = refresh_pair::<A, H, N>([&v.at[i], &v.at[j]], [i, j], [p_i, p_j], [u_i, u_j], [a.theta, b.theta]);
+    pair_update::<H, N>(state, &drive, k.kb, dt, dt.sqrt());
+    let refreshed = refresh_pair::<A, H, N>([v.at(i), v.at(j)], [i.0, j.0], [p_i, p_j], [u_i, u_j], [a.theta, b.theta]);
     match refreshed {
         Ok((a, b)) => {
             v.store::<H, N>(i, a);
@@ -250,7 +331,7 @@ fn pair_step<A: AtDensity, H: HeatFlow, N: Noise>(
             Ok(())
         }
         Err(failed) if levels == 0 => Err(failed),
-        Err(_) => split::<A, H, N>(v, p, (xi, xibar, dt, node, levels), splits),
+        Err(_) => split::<A, H, N>(v, k, p, (xi, xibar, dt, node, levels), splits),
     }
 }
 
@@ -258,19 +339,20 @@ fn pair_step<A: AtDensity, H: HeatFlow, N: Noise>(
 #[cold]
 fn split<A: AtDensity, H: HeatFlow, N: Noise>(
     v: &mut Swept<'_, A>,
-    p: &Pair,
+    k: &Keys,
+    p: Pair,
     (xi, xibar, dt, node, levels): (f64, f64, f64, u32, u32),
     splits: &mut u64,
 ) -> Result<(), Failed> {
     let (i, j) = (p.i, p.j);
     let saved = (v.load::<H, N>(i), v.load::<H, N>(j));
     *splits += 1;
-    let (eta, etabar) = normal_pair(p.seed, p.key, v.tag[i], v.tag[j], stream::SUBSTEP + node);
+    let (eta, etabar) = normal_pair(k.seed, k.key, v.tag(i), v.tag(j), stream::SUBSTEP + node);
     let h = std::f64::consts::FRAC_1_SQRT_2;
     let first = ((xi + eta) * h, (xibar + etabar) * h);
     let second = ((xi - eta) * h, (xibar - etabar) * h);
-    let halves = pair_step::<A, H, N>(v, p, first.0, first.1, 0.5 * dt, 2 * node + 1, levels - 1, splits)
-        .and_then(|_| pair_step::<A, H, N>(v, p, second.0, second.1, 0.5 * dt, 2 * node + 2, levels - 1, splits));
+    let halves = pair_step::<A, H, N>(v, k, p, first.0, first.1, 0.5 * dt, 2 * node + 1, levels - 1, splits)
+        .and_then(|_| pair_step::<A, H, N>(v, k, p, second.0, second.1, 0.5 * dt, 2 * node + 2, levels - 1, splits));
     if halves.is_err() {
         v.store::<H, N>(i, saved.0);
         v.store::<H, N>(j, saved.1);
@@ -302,7 +384,9 @@ fn refresh_pair<A: AtDensity, H: HeatFlow, N: Noise>(at: [&A; 2], k: [usize; 2],
 /// Particle `k`'s new state from the (theta, 1/tau) found, or why it has none.
 #[inline(always)]
 fn end(k: usize, p: Vec3, u: f64, (theta, inv_tau): (f64, f64)) -> Result<End, Failed> {
-    if !(theta > 0.0 && theta.is_finite()) {
+    // theta > 0 and finite (theta - theta is 0 only when finite): three floating-point
+    // instructions, where `is_finite` compiles to integer bit tests
+    if !(theta > 0.0 && theta - theta == 0.0) {
         return Err(Failed { k, u, theta });
     }
     Ok(End { p, u, theta, inv_tau })
