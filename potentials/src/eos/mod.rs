@@ -149,6 +149,14 @@ pub trait AtDensity: Copy {
     fn theta_inv_tau_pair(&self, b: &Self, u: [f64; 2], guess: [f64; 2]) -> [(f64, f64); 2] {
         [self.theta_inv_tau(u[0], guess[0]), b.theta_inv_tau(u[1], guess[1])]
     }
+    /// The guess for the solve after the energy moved by `du` from a state at `theta` with
+    /// 1/tau = `inv_tau` (at this density): the model's own `theta` (the default, for models
+    /// that ignore guesses), or the first-order step theta + du/C_V, 1/C_V = (1 - theta/tau)
+    /// / k_B (eqs 19, 23), for iterative ones (then one Newton step usually converges).
+    #[inline(always)]
+    fn guess_after(&self, theta: f64, _inv_tau: f64, _du: f64) -> f64 {
+        theta
+    }
 }
 
 /// Models that can precompute their density-only parts ([`AtDensity`]).
@@ -186,6 +194,21 @@ impl<E: Eos> AtDensity for AtN<'_, E> {
     fn theta_inv_tau(&self, u: f64, guess: f64) -> (f64, f64) {
         let (theta, cv) = self.eos.theta_cv(u, self.n, guess);
         (theta, self.eos.inv_tau(theta, cv))
+    }
+    #[inline(always)]
+    fn guess_after(&self, theta: f64, inv_tau: f64, du: f64) -> f64 {
+        first_order_guess(theta, du * (1.0 - theta * inv_tau) / self.eos.kb())
+    }
+}
+
+/// theta + dtheta when that is a positive number, else theta (a guess for a solve).
+#[inline(always)]
+fn first_order_guess(theta: f64, dtheta: f64) -> f64 {
+    let g = theta + dtheta;
+    if g > 0.0 && g.is_finite() {
+        g
+    } else {
+        theta
     }
 }
 
