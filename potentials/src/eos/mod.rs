@@ -16,7 +16,7 @@ pub use lj::LennardJones;
 pub use lth::Lth;
 pub use lj::LjAt;
 pub use tait::Tait;
-pub use table::{ErrorAt, TableError, TableErrors, TableGrid, Tabulated};
+pub use table::{ErrorAt, TableAt, TableError, TableErrors, TableGrid, Tabulated};
 
 use std::fmt;
 
@@ -168,6 +168,13 @@ pub trait FixedDensity: Eos {
     /// its theta and 1/tau equal [`Eos::theta`] and [`Eos::theta_cv`] with
     /// [`Eos::inv_tau`] at `n`, bit for bit.
     fn at_density(&self, n: f64) -> Self::At<'_>;
+    /// [`FixedDensity::at_density`] for a particle now at `theta`, whose refreshes will
+    /// stay near it (the sweep's): models may keep data for such states (a table the cubic
+    /// of theta's cell); the same results, bit for bit.
+    #[inline(always)]
+    fn at_state(&self, n: f64, _theta: f64) -> Self::At<'_> {
+        self.at_density(n)
+    }
 }
 
 /// The generic [`AtDensity`]: the model and n, through [`Eos::theta`] and [`Eos::theta_cv`].

@@ -59,7 +59,7 @@
 //! | 61 x 65   | 1.3e-7  | 7.5e-6  | 6.5e-6  | 8.8e-8   |
 //! | 121 x 129 | 8.4e-9  | 5.7e-7  | 8.4e-7  | 5.6e-9   |
 
-use super::{AtN, Eos, EosError, EosState, FixedDensity, ISOLATED_DENSITY};
+use super::{AtDensity, AtN, Eos, EosError, EosState, FixedDensity, ISOLATED_DENSITY};
 use std::fmt;
 
 /// Table grid: (min, max, node count) in theta (nodes uniform in ln theta) and in n
@@ -782,10 +782,79 @@ impl<E: Eos> Eos for Tabulated<E> {
 }
 
 impl<E: Eos> FixedDensity for Tabulated<E> {
-    type At<'a> = AtN<'a, Self> where E: 'a;
+    type At<'a> = TableAt<'a, E> where E: 'a;
     #[inline]
-    fn at_density(&self, n: f64) -> AtN<'_, Self> {
-        AtN { eos: self, n }
+    fn at_density(&self, n: f64) -> TableAt<'_, E> {
+        self.at_state(n, f64::NAN)
+    }
+    /// With the cubic u(t) of theta's cell at this density.
+    #[inline]
+    fn at_state(&self, n: f64, theta: f64) -> TableAt<'_, E> {
+        let mut at = TableAt { full: AtN { eos: self, n }, i: 0, c: [f64::NAN; 4], a: f64::NAN, b: f64::NAN, p1: f64::NAN };
+        if let Some(l) = self.locate(theta, n) {
+            let c = cubic(&self.pu[self.cell(l.i, l.j)], l.s);
+            (at.i, at.c, at.a, at.b, at.p1) = (l.i, c, self.thetas[l.i], self.thetas[l.i + 1], value(&c, 1.0));
+        }
+        at
+    }
+}
+
+/// A table at one density with the cubic u(t) of one cell (theta in [a, b]) at hand: a
+/// solve whose guess lies inside the cell and whose u lies between the cell's end values
+/// (most of the sweep's refreshes) skips the cell lookup and the cubic's assembly, and
+/// does the rest of [`Tabulated::solve`]'s operations (the same bits); others go through
+/// [`Eos::theta_cv`].
+#[derive(Debug)]
+pub struct TableAt<'a, E: Eos> {
+    full: AtN<'a, Tabulated<E>>,
+    i: usize,
+    c: [f64; 4],
+    a: f64,
+    b: f64,
+    /// u at the cell's upper end, value(c, 1).
+    p1: f64,
+}
+
+impl<E: Eos> Clone for TableAt<'_, E> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<E: Eos> Copy for TableAt<'_, E> {}
+
+impl<E: Eos> TableAt<'_, E> {
+    /// theta and C_V from the cell at hand, None when the solve needs the full lookup.
+    #[inline(always)]
+    fn in_cell(&self, u: f64, guess: f64) -> Option<(f64, f64)> {
+        let (a, b, c) = (self.a, self.b, &self.c);
+        if !(a < guess && guess < b && c[0] < u && u < self.p1) {
+            return None;
+        }
+        let inv_h = self.full.eos.inv_h[self.i];
+        let t = newton(c, u, ((guess - a) * inv_h).clamp(0.0, 1.0));
+        Some(((a + t * (b - a)).clamp(a, b), slope(c, t) * inv_h))
+    }
+}
+
+impl<E: Eos> AtDensity for TableAt<'_, E> {
+    #[inline(always)]
+    fn theta(&self, u: f64, guess: f64) -> f64 {
+        match self.in_cell(u, guess) {
+            Some((theta, _)) => theta,
+            None => self.full.theta(u, guess),
+        }
+    }
+    #[inline(always)]
+    fn theta_inv_tau(&self, u: f64, guess: f64) -> (f64, f64) {
+        match self.in_cell(u, guess) {
+            Some((theta, cv)) => (theta, self.full.eos.inv_tau(theta, cv)),
+            None => self.full.theta_inv_tau(u, guess),
+        }
+    }
+    #[inline(always)]
+    fn guess_after(&self, theta: f64, inv_tau: f64, du: f64) -> f64 {
+        self.full.guess_after(theta, inv_tau, du)
     }
 }
 
