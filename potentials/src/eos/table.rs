@@ -230,7 +230,8 @@ const MAX_NODES: usize = 1 << 22;
 const MAX_BUCKETS: f64 = (1 << 14) as f64;
 /// Tolerance of the inner model's own round trip theta(u(theta, n), n) at the nodes.
 const INNER_TOL: f64 = 1e-6;
-/// Error in t (in [0, 1]) below which the Newton solve stops, 1/10 ulp of 1.
+/// Error below which the Newton solve stops, 1/10 ulp: of theta, and at least of t
+/// (in [0, 1]).
 const NEWTON_TOL: f64 = 1e-17;
 const MAX_ITER: usize = 100;
 
@@ -588,6 +589,13 @@ impl<E: Eos> Tabulated<E> {
         }
     }
 
+    /// Tolerance in t of the Newton solve in cell column i: an error of NEWTON_TOL theta,
+    /// at least NEWTON_TOL.
+    #[inline(always)]
+    fn newton_tol(&self, i: usize) -> f64 {
+        NEWTON_TOL * (self.thetas[i] * self.inv_h[i]).max(1.0)
+    }
+
     #[inline(always)]
     fn theta_at(&self, i: usize, t: f64) -> f64 {
         let (a, b) = (self.thetas[i], self.thetas[i + 1]);
@@ -665,7 +673,7 @@ impl<E: Eos> Tabulated<E> {
             } else {
                 (u - p0) / (p1 - p0)
             };
-            newton(&c, u, t0.clamp(0.0, 1.0))
+            newton(&c, u, t0.clamp(0.0, 1.0), self.newton_tol(i))
         };
         Some((Loc { i, j, t, s }, c))
     }
@@ -673,9 +681,10 @@ impl<E: Eos> Tabulated<E> {
 
 /// Root in [0, 1] of the increasing cubic c(t) = u with c(0) < u < c(1): Newton,
 /// bisection whenever a step leaves the bracket. A Newton step dt is the last one when
-/// the error it leaves, c''/(2 c') dt^2 (quadratic convergence), is below NEWTON_TOL.
+/// the error it leaves, c''/(2 c') dt^2 (quadratic convergence), is below `tol`
+/// ([`Tabulated::newton_tol`]).
 #[inline]
-fn newton(c: &[f64; 4], u: f64, mut t: f64) -> f64 {
+fn newton(c: &[f64; 4], u: f64, mut t: f64, tol: f64) -> f64 {
     let (mut lo, mut hi) = (0.0, 1.0);
     for _ in 0..MAX_ITER {
         let r = value(c, t) - u;
@@ -692,7 +701,7 @@ fn newton(c: &[f64; 4], u: f64, mut t: f64) -> f64 {
         let next = t - dt;
         if next >= lo && next <= hi {
             let d2 = 6.0 * c[3] * t + 2.0 * c[2];
-            if (d2 * dt * dt).abs() <= 2.0 * NEWTON_TOL * d1 {
+            if (d2 * dt * dt).abs() <= 2.0 * tol * d1 {
                 return next;
             }
             t = next;
@@ -787,32 +796,46 @@ impl<E: Eos> FixedDensity for Tabulated<E> {
     fn at_density(&self, n: f64) -> TableAt<'_, E> {
         self.at_state(n, f64::NAN)
     }
-    /// With the cubic u(t) of theta's cell at this density.
+    /// With the cubics u(t) of theta's cell and its two neighbours at this density.
     #[inline]
     fn at_state(&self, n: f64, theta: f64) -> TableAt<'_, E> {
-        let mut at = TableAt { full: AtN { eos: self, n }, i: 0, c: [f64::NAN; 4], a: f64::NAN, b: f64::NAN, p1: f64::NAN };
+        let mut at = TableAt {
+            full: AtN { eos: self, n },
+            nodes: [f64::NAN; 4],
+            c: [[f64::NAN; 4]; 3],
+            p1: [f64::NAN; 3],
+            inv_h: [f64::NAN; 3],
+            tol: [f64::NAN; 3],
+        };
         if let Some(l) = self.locate(theta, n) {
-            let c = cubic(&self.pu[self.cell(l.i, l.j)], l.s);
-            (at.i, at.c, at.a, at.b, at.p1) = (l.i, c, self.thetas[l.i], self.thetas[l.i + 1], value(&c, 1.0));
+            let m = self.nt - 1;
+            let first = l.i.saturating_sub(1).min(m.saturating_sub(3));
+            for k in 0..3.min(m) {
+                let i = first + k;
+                let c = cubic(&self.pu[self.cell(i, l.j)], l.s);
+                (at.c[k], at.p1[k], at.inv_h[k], at.tol[k]) = (c, value(&c, 1.0), self.inv_h[i], self.newton_tol(i));
+                (at.nodes[k], at.nodes[k + 1]) = (self.thetas[i], self.thetas[i + 1]);
+            }
         }
         at
     }
 }
 
-/// A table at one density with the cubic u(t) of one cell (theta in [a, b]) at hand: a
-/// solve whose guess lies inside the cell and whose u lies between the cell's end values
-/// (most of the sweep's refreshes) skips the cell lookup and the cubic's assembly, and
-/// does the rest of [`Tabulated::solve`]'s operations (the same bits); others go through
-/// [`Eos::theta_cv`].
+/// A table at one density with the cubics u(t) of three adjacent cells (nodes[k] <= theta
+/// <= nodes[k + 1]) at hand: a solve whose guess lies inside one of them (between its
+/// nodes) and whose u lies between that cell's end values (most of the sweep's refreshes)
+/// skips the cell lookup and the cubic's assembly, and does the rest of
+/// [`Tabulated::solve`]'s operations (the same bits); others go through [`Eos::theta_cv`].
 #[derive(Debug)]
 pub struct TableAt<'a, E: Eos> {
     full: AtN<'a, Tabulated<E>>,
-    i: usize,
-    c: [f64; 4],
-    a: f64,
-    b: f64,
-    /// u at the cell's upper end, value(c, 1).
-    p1: f64,
+    nodes: [f64; 4],
+    c: [[f64; 4]; 3],
+    /// u at each cell's upper end, value(c, 1).
+    p1: [f64; 3],
+    inv_h: [f64; 3],
+    /// [`Tabulated::newton_tol`] of each cell.
+    tol: [f64; 3],
 }
 
 impl<E: Eos> Clone for TableAt<'_, E> {
@@ -824,16 +847,17 @@ impl<E: Eos> Clone for TableAt<'_, E> {
 impl<E: Eos> Copy for TableAt<'_, E> {}
 
 impl<E: Eos> TableAt<'_, E> {
-    /// theta and C_V from the cell at hand, None when the solve needs the full lookup.
+    /// theta and C_V from the cells at hand, None when the solve needs the full lookup.
     #[inline(always)]
     fn in_cell(&self, u: f64, guess: f64) -> Option<(f64, f64)> {
-        let (a, b, c) = (self.a, self.b, &self.c);
-        if !(a < guess && guess < b && c[0] < u && u < self.p1) {
+        let x = &self.nodes;
+        let k = if guess < x[1] { 0 } else if guess < x[2] { 1 } else { 2 };
+        let (a, b, c) = (x[k], x[k + 1], &self.c[k]);
+        if !(a < guess && guess < b && c[0] < u && u < self.p1[k]) {
             return None;
         }
-        let inv_h = self.full.eos.inv_h[self.i];
-        let t = newton(c, u, ((guess - a) * inv_h).clamp(0.0, 1.0));
-        Some(((a + t * (b - a)).clamp(a, b), slope(c, t) * inv_h))
+        let t = newton(c, u, ((guess - a) * self.inv_h[k]).clamp(0.0, 1.0), self.tol[k]);
+        Some(((a + t * (b - a)).clamp(a, b), slope(c, t) * self.inv_h[k]))
     }
 }
 
