@@ -36,7 +36,7 @@
 //! C_V from 0.01 to 1e4 recovered theta to 3e-14 relative). The public formulas
 //! ([`LennardJones::f_res`] etc.) are evaluated without domain checks (NaN once eta >= 1).
 
-use super::{first_order_guess, AtDensity, Eos, FixedDensity};
+use super::{AtDensity, Eos, FixedDensity};
 use std::f64::consts::PI;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
@@ -472,7 +472,7 @@ impl AtDensity for LjAt {
     /// theta + du/C_V with 1/C_V = 1 - theta/tau (k_B = 1).
     #[inline(always)]
     fn guess_after(&self, theta: f64, inv_tau: f64, du: f64) -> f64 {
-        first_order_guess(theta, du * (1.0 - theta * inv_tau))
+        theta + du * (1.0 - theta * inv_tau)
     }
 }
 

@@ -152,7 +152,8 @@ pub trait AtDensity: Copy {
     /// The guess for the solve after the energy moved by `du` from a state at `theta` with
     /// 1/tau = `inv_tau` (at this density): the model's own `theta` (the default, for models
     /// that ignore guesses), or the first-order step theta + du/C_V, 1/C_V = (1 - theta/tau)
-    /// / k_B (eqs 19, 23), for iterative ones (then one Newton step usually converges).
+    /// / k_B (eqs 19, 23), for iterative ones (then one Newton step usually converges; a
+    /// guess that is no positive number makes them start from their own estimate).
     #[inline(always)]
     fn guess_after(&self, theta: f64, _inv_tau: f64, _du: f64) -> f64 {
         theta
@@ -204,18 +205,7 @@ impl<E: Eos> AtDensity for AtN<'_, E> {
     }
     #[inline(always)]
     fn guess_after(&self, theta: f64, inv_tau: f64, du: f64) -> f64 {
-        first_order_guess(theta, du * (1.0 - theta * inv_tau) / self.eos.kb())
-    }
-}
-
-/// theta + dtheta when that is a positive number, else theta (a guess for a solve).
-#[inline(always)]
-fn first_order_guess(theta: f64, dtheta: f64) -> f64 {
-    let g = theta + dtheta;
-    if g > 0.0 && g.is_finite() {
-        g
-    } else {
-        theta
+        theta + du * (1.0 - theta * inv_tau) / self.eos.kb()
     }
 }
 

@@ -230,9 +230,11 @@ const MAX_NODES: usize = 1 << 22;
 const MAX_BUCKETS: f64 = (1 << 14) as f64;
 /// Tolerance of the inner model's own round trip theta(u(theta, n), n) at the nodes.
 const INNER_TOL: f64 = 1e-6;
-/// Error below which the Newton solve stops, 1/10 ulp: of theta, and at least of t
-/// (in [0, 1]).
-const NEWTON_TOL: f64 = 1e-17;
+/// Relative error of theta below which the Newton solve stops (that of the analytic LJ
+/// solve, a few ulps).
+const NEWTON_TOL: f64 = 1e-15;
+/// Smallest tolerance of the Newton solve in t (in [0, 1]), 1/10 ulp of 1.
+const NEWTON_TOL_T: f64 = 1e-17;
 const MAX_ITER: usize = 100;
 
 /// Hermite-to-power basis: p(t) = sum_k t^k (M [f(0), f(1), f'(0), f'(1)])_k.
@@ -590,16 +592,16 @@ impl<E: Eos> Tabulated<E> {
     }
 
     /// Tolerance in t of the Newton solve in cell column i: an error of NEWTON_TOL theta,
-    /// at least NEWTON_TOL.
+    /// at least NEWTON_TOL_T.
     #[inline(always)]
     fn newton_tol(&self, i: usize) -> f64 {
-        NEWTON_TOL * (self.thetas[i] * self.inv_h[i]).max(1.0)
+        (NEWTON_TOL * self.thetas[i] * self.inv_h[i]).max(NEWTON_TOL_T)
     }
 
     #[inline(always)]
     fn theta_at(&self, i: usize, t: f64) -> f64 {
         let (a, b) = (self.thetas[i], self.thetas[i + 1]);
-        (a + t * (b - a)).clamp(a, b)
+        (a + t * (b - a)).max(a).min(b)
     }
 
     /// Cell, local coordinates and the cubic u(t) at this density of the state of energy
@@ -857,7 +859,7 @@ impl<E: Eos> TableAt<'_, E> {
             return None;
         }
         let t = newton(c, u, ((guess - a) * self.inv_h[k]).clamp(0.0, 1.0), self.tol[k]);
-        Some(((a + t * (b - a)).clamp(a, b), slope(c, t) * self.inv_h[k]))
+        Some(((a + t * (b - a)).max(a).min(b), slope(c, t) * self.inv_h[k]))
     }
 }
 
