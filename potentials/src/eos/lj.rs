@@ -16,7 +16,9 @@
 //! C_V(theta, n) = C_V - theta f_res,tt  (eq 22),
 //!
 //! where ,t and ,n denote d/dtheta and d/dn. All derivatives are exact: f_res is evaluated
-//! once over a four-component forward-mode jet (value, d/dtheta, d^2/dtheta^2, d/dn).
+//! once over a four-component forward-mode jet (value, d/dtheta, d^2/dtheta^2, d/dn); u,
+//! C_V and the theta(u, n) solve use the closed form at a fixed density of [`LjAt`] (the
+//! same values to round-off).
 //!
 //! Domain. d(theta) and dB2(theta) diverge as theta -> 0 (like 1/theta and theta^-3.5), so
 //! eta reaches the pole of A_HS at 1 at any density once theta is small enough, and the fit

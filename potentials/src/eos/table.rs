@@ -34,7 +34,10 @@
 //! theta(u, n) inverts the interpolated u: the cell holding u at density n is the guess's
 //! cell or is found by a galloping search from it (then bisection) over the node values of
 //! the interpolated u at this n, then a Newton iteration bracketed in [0, 1] solves the
-//! cubic in t (two iterations from the previous theta of a particle after a pair update).
+//! cubic in t, stopping when the error it predicts is below 1e-15 theta (one iteration
+//! from the sweep's first-order guess after a pair update). The sweep's model at a
+//! particle's density ([`TableAt`]) keeps the cubics of the three cells around the
+//! particle's theta, so that most refreshes skip the lookup (the same bits).
 //! It is consistent with [`Eos::u`] to round-off: theta(u(t, n), n) = t within a few ulps
 //! (tests: 1e-12 relative), so energies round trip exactly through the table.
 //!
@@ -858,7 +861,17 @@ impl<E: Eos> TableAt<'_, E> {
         if !(a < guess && guess < b && c[0] < u && u < self.p1[k]) {
             return None;
         }
-        let t = newton(c, u, ((guess - a) * self.inv_h[k]).clamp(0.0, 1.0), self.tol[k]);
+        let t0 = ((guess - a) * self.inv_h[k]).clamp(0.0, 1.0);
+        // newton's first iteration, which usually ends it (the guess is close), inline
+        let (r, d1) = (value(c, t0) - u, slope(c, t0));
+        let dt = r / d1;
+        let next = t0 - dt;
+        let d2 = 6.0 * c[3] * t0 + 2.0 * c[2];
+        let t = if r != 0.0 && (0.0..=1.0).contains(&next) && (d2 * dt * dt).abs() <= 2.0 * self.tol[k] * d1 {
+            next
+        } else {
+            newton(c, u, t0, self.tol[k])
+        };
         Some(((a + t * (b - a)).max(a).min(b), slope(c, t) * self.inv_h[k]))
     }
 }
