@@ -109,7 +109,7 @@ fn sweep_any<E: FixedDensity, H: HeatFlow, N: Noise>(eos: &Species<E>, d: &Dissi
 /// The EOS of particle `i` at its density (raised to the isolated floor).
 #[inline]
 fn at_density<'a, E: FixedDensity>(eos: &'a Species<E>, s: &Particles, i: usize) -> E::At<'a> {
-    eos.of(s.kind[i]).at_density(density_of(s, i).max(ISOLATED_DENSITY))
+    eos.of(s.kind[i]).at_state(density_of(s, i).max(ISOLATED_DENSITY), s.theta[i])
 }
 
 /// Heat exchange of the owned particles of the reservoir's group with the bath (2019
@@ -323,7 +323,14 @@ fn pair_step<A: AtDensity, H: HeatFlow, N: Noise>(
     let (mut p_i, mut p_j, mut u_i, mut u_j) = (a.p, b.p, a.u, b.u);
     let state = PairState { p_i: &mut p_i, p_j: &mut p_j, u_i: &mut u_i, u_j: &mut u_j, inv_m_i: p.inv_m.0, inv_m_j: p.inv_m.1 };
     pair_update::<H, N>(state, &drive, k.kb, dt, dt.sqrt());
-    let refreshed = refresh_pair::<A, H, N>([v.at(i), v.at(j)], [i.0, j.0], [p_i, p_j], [u_i, u_j], [a.theta, b.theta]);
+    // with 1/tau at hand, iterative models start from theta + du/C_V
+    let (at_i, at_j) = (v.at(i), v.at(j));
+    let guess = if H::NEEDS_INV_TAU || N::NEEDS_INV_TAU {
+        [at_i.guess_after(a.theta, a.inv_tau, u_i - a.u), at_j.guess_after(b.theta, b.inv_tau, u_j - b.u)]
+    } else {
+        [a.theta, b.theta]
+    };
+    let refreshed = refresh_pair::<A, H, N>([at_i, at_j], [i.0, j.0], [p_i, p_j], [u_i, u_j], guess);
     match refreshed {
         Ok((a, b)) => {
             v.store::<H, N>(i, a);

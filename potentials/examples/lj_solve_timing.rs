@@ -1,6 +1,7 @@
-//! Time per theta solve of the analytic LJ EOS, single against paired (the sweep's refresh
-//! of i and j in lockstep), on sweep-like refreshes; the minimum over repetitions, so a
-//! loaded machine still gives the unloaded cost (docs/PERFORMANCE.md, part 3):
+//! Time per theta solve of the analytic LJ EOS on sweep-like refreshes: single and paired
+//! (the sweep's refresh of i and j in lockstep) from the old theta, and paired from the
+//! sweep's first-order guess ([`AtDensity::guess_after`]); the minimum over repetitions,
+//! so a loaded machine still gives the unloaded cost (docs/PERFORMANCE.md, parts 3 and 4):
 //! `cargo run --release -p gendpde-potentials --example lj_solve_timing`.
 
 use gendpde_potentials::{AtDensity, Eos, FixedDensity, LennardJones};
@@ -16,7 +17,9 @@ fn main() {
             let n = 0.05 + 0.05 * k as f64;
             for e in 0..4 {
                 let du = 0.003 * m.cv * theta * if e % 2 == 0 { 1.0 } else { -1.0 } * 10f64.powi(-e);
-                cases.push((m.at_density(n), m.u(theta, n) + du, theta));
+                let at = m.at_density(n);
+                let guess = at.guess_after(theta, (1.0 - 1.0 / m.cv(theta, n)) / theta, du);
+                cases.push((at, m.u(theta, n) + du, theta, guess));
             }
         }
     }
@@ -31,8 +34,16 @@ fn main() {
         1e9 * best / cases.len() as f64
     };
     let single = || cases.iter().map(|c| c.0.theta_inv_tau(black_box(c.1), c.2).0).sum::<f64>();
-    let paired = || cases.chunks_exact(2).map(|c| c[0].0.theta_inv_tau_pair(&c[1].0, black_box([c[0].1, c[1].1]), [c[0].2, c[1].2])).map(|[x, y]| x.0 + y.0).sum::<f64>();
+    let paired = |first_order: bool| {
+        let g = |c: &(_, f64, f64, f64)| if first_order { c.3 } else { c.2 };
+        cases.chunks_exact(2).map(|c| c[0].0.theta_inv_tau_pair(&c[1].0, black_box([c[0].1, c[1].1]), [g(&c[0]), g(&c[1])])).map(|[x, y]| x.0 + y.0).sum::<f64>()
+    };
     for _ in 0..3 {
-        println!("ns per solve: single {:.1}, paired {:.1}", time(&single), time(&paired));
+        println!(
+            "ns per solve: single {:.1}, paired {:.1}, paired from the first-order guess {:.1}",
+            time(&single),
+            time(&|| paired(false)),
+            time(&|| paired(true))
+        );
     }
 }

@@ -16,7 +16,9 @@
 //! C_V(theta, n) = C_V - theta f_res,tt  (eq 22),
 //!
 //! where ,t and ,n denote d/dtheta and d/dn. All derivatives are exact: f_res is evaluated
-//! once over a four-component forward-mode jet (value, d/dtheta, d^2/dtheta^2, d/dn).
+//! once over a four-component forward-mode jet (value, d/dtheta, d^2/dtheta^2, d/dn); u,
+//! C_V and the theta(u, n) solve use the closed form at a fixed density of [`LjAt`] (the
+//! same values to round-off).
 //!
 //! Domain. d(theta) and dB2(theta) diverge as theta -> 0 (like 1/theta and theta^-3.5), so
 //! eta reaches the pole of A_HS at 1 at any density once theta is small enough, and the fit
@@ -74,7 +76,6 @@ pub struct LennardJones {
 struct Fres {
     f: f64,
     ft: f64,
-    ftt: f64,
     fn_: f64,
 }
 
@@ -135,7 +136,7 @@ impl LennardJones {
     #[inline]
     fn eval(theta: f64, n: f64) -> Fres {
         let j = Self::f_res_jet(Jet::var_t(theta), Jet::var_n(n));
-        Fres { f: j.v, ft: j.t, ftt: j.tt, fn_: j.n }
+        Fres { f: j.v, ft: j.t, fn_: j.n }
     }
 
     /// f_res(theta, n) evaluated over jets (eqs 104-107 in the form of SPEC.md sec 3).
@@ -190,53 +191,109 @@ fn a_hs(eta: Jet) -> Jet {
     (5.0 / 3.0) * om.ln() + eta * (34.0 + eta * (-33.0 + 4.0 * eta)) / (6.0 * om * om)
 }
 
-/// The Kolafa-Nezbeda model at one density: the n-only factors of f_res (eq 107's
-/// exp(-gamma n^2) and C_ij n^j rows, eq 104's (pi/6) n) taken once, so each theta(u)
-/// solve evaluates only the theta-dependent parts (bit for bit as [`LennardJones`]'s own
-/// evaluation).
+/// The Kolafa-Nezbeda model at one density, collapsed once per density to what a theta(u)
+/// solve needs: u(theta), C_V(theta) and dC_V/dtheta in closed form, at the cost of one
+/// division, one square root and one logarithm per evaluation.
+///
+/// At fixed n, f_res = theta A_HS(eta(theta)) + B(theta), where B = n e^{-gamma n^2} theta
+/// dB2(theta) + n^2 sum_i C_i(n) theta^{i/2} is a polynomial in s = theta^{-1/2} (plus a
+/// term linear in theta, which drops out of u and its derivatives): B = sum_m b_m s^m,
+/// m = 0..5 (eqs 107-108). With theta^a -> d^k/dtheta^k = a (a-1) .. (a-k+1) theta^a /
+/// theta^k, u_res = f_res - theta f_res,t = sum_m (1 + m/2) b_m s^m - theta^2 dA/dtheta
+/// (A_HS itself cancels, so no ln(1 - eta) is needed), and the derivatives of A_HS(eta)
+/// (eq 106) in eta are polynomials in q = 1/(1 - eta):
+/// A_HS = (5/3) ln(1 - eta) + (5/6) q^2 + (10/3) q - 7/2 - (2/3)(1 - eta).
 #[derive(Clone, Copy, Debug)]
 pub struct LjAt {
     cv: f64,
     n: f64,
-    n2: f64,
     /// (pi/6) n.
     eta_n: f64,
-    /// exp(-gamma_BH n^2).
-    damping: f64,
-    /// sum_j C_ij n^(j-2) for each row i = 0, -1, -2, -4.
-    rows: [f64; 4],
+    /// (1 + m/2) b_m, m = 0..5: u_res's polynomial in s.
+    bu: [f64; 6],
+    /// a (a - 1) b_m and a (a - 1) (a - 2) b_m with a = -m/2, m = 1..5: theta^2 B,tt and
+    /// theta^3 B,ttt as polynomials in s (divided by s).
+    b2: [f64; 5],
+    b3: [f64; 5],
+}
+
+/// u, C_V = du/dtheta, dC_V/dtheta and the packing fraction eta at one theta.
+#[derive(Clone, Copy, Debug)]
+struct Eval {
+    u: f64,
+    cv: f64,
+    dcv: f64,
+    eta: f64,
+}
+
+/// p_0 + s p_1 + s^2 p_2 + ... (Horner).
+#[inline(always)]
+fn horner<const K: usize>(p: &[f64; K], s: f64) -> f64 {
+    p[..K - 1].iter().rev().fold(p[K - 1], |q, &c| q * s + c)
 }
 
 impl LjAt {
     fn new(cv: f64, n: f64) -> Self {
         let row = |r: &[f64; 5]| r[..4].iter().rev().fold(r[4], |q, &c| q * n + c);
-        let n2 = n * n;
+        let (n2, nd) = (n * n, n * (-GAMMA_BH * n * n).exp());
+        let c = [row(&C[0]), row(&C[1]), row(&C[2]), row(&C[3])];
+        // b_m: coefficient of s^m in B(theta) (without B's term linear in theta)
+        let b = [
+            nd * DB2[0] + n2 * c[0],
+            nd * DB2[1] + n2 * c[1],
+            nd * DB2[2] + n2 * c[2],
+            nd * DB2[3],
+            nd * DB2[4] + n2 * c[3],
+            nd * DB2[5],
+        ];
+        let a = |m: usize| -0.5 * m as f64;
         Self {
             cv,
             n,
-            n2,
             eta_n: n * (PI / 6.0),
-            damping: (-GAMMA_BH * n2).exp(),
-            rows: [row(&C[0]), row(&C[1]), row(&C[2]), row(&C[3])],
+            bu: std::array::from_fn(|m| (1.0 - a(m)) * b[m]),
+            b2: std::array::from_fn(|k| a(k + 1) * (a(k + 1) - 1.0) * b[k + 1]),
+            b3: std::array::from_fn(|k| a(k + 1) * (a(k + 1) - 1.0) * (a(k + 1) - 2.0) * b[k + 1]),
         }
     }
 
-    /// f_res over a jet in theta at this n (the theta part of [`LennardJones::f_res_jet`]).
+    /// u, C_V, dC_V/dtheta and eta at theta (see the type's doc).
     #[inline(always)]
-    fn f_res_t(&self, t: Jet) -> Jet {
-        let Theta { s, s2, d, db2 } = Theta::of(t);
-        let a_hs = a_hs(self.eta_n * d * d * d);
-        let virial = db2 * self.n * self.damping;
-        let [c0, c1, c2, c3] = self.rows;
-        let sum = (s * c1 + c0 + s2 * (s2 * c3 + c2)) * self.n2;
-        t * (a_hs + virial) + sum
-    }
-
-    /// u(theta) and C_V(theta) = du/dtheta from one evaluation.
-    #[inline(always)]
-    fn u_and_cv(&self, theta: f64) -> (f64, f64) {
-        let r = self.f_res_t(Jet::var_t(theta));
-        (self.cv * theta + r.v - theta * r.t, self.cv - theta * r.tt)
+    fn eval(&self, x: f64) -> Eval {
+        let r = 1.0 / x;
+        let sq = x.sqrt();
+        let s = sq * r;
+        // d(theta) (eq 105) and its three derivatives: theta^a terms as above, ln theta's
+        // derivatives r, -r^2, 2 r^3
+        let d = D_LN * x.ln() + D_M1 * r + D_MH * s + D_0 + D_H * sq;
+        let d1 = r * (D_LN - D_M1 * r - 0.5 * D_MH * s + 0.5 * D_H * sq);
+        let d2 = r * r * (-D_LN + 2.0 * D_M1 * r + 0.75 * D_MH * s - 0.25 * D_H * sq);
+        let d3 = r * r * r * (2.0 * D_LN - 6.0 * D_M1 * r - 1.875 * D_MH * s + 0.375 * D_H * sq);
+        // eta = (pi/6) n d^3 (eq 104) and its derivatives
+        let dd = d * d;
+        let eta = self.eta_n * dd * d;
+        let e1 = self.eta_n * 3.0 * dd * d1;
+        let e2 = self.eta_n * (3.0 * dd * d2 + 6.0 * d * d1 * d1);
+        let e3 = self.eta_n * (3.0 * dd * d3 + 18.0 * d * d1 * d2 + 6.0 * d1 * d1 * d1);
+        // dA_HS/deta, d^2/deta^2, d^3/deta^3 (eq 106) in q = 1/(1 - eta)
+        let q = 1.0 / (1.0 - eta);
+        let q2 = q * q;
+        let g1 = 2.0 / 3.0 + q * (-5.0 / 3.0 + q * (10.0 / 3.0 + q * (5.0 / 3.0)));
+        let g2 = q2 * (-5.0 / 3.0 + q * (20.0 / 3.0 + q * 5.0));
+        let g3 = q2 * q * (-10.0 / 3.0 + q * (20.0 + q * 20.0));
+        // derivatives of A_HS(eta(theta)) in theta
+        let a1 = g1 * e1;
+        let a2 = g1 * e2 + g2 * e1 * e1;
+        let a3 = g1 * e3 + 3.0 * g2 * e1 * e2 + g3 * e1 * e1 * e1;
+        // f_res,tt and f_res,ttt of theta A_HS + B
+        let ftt = 2.0 * a1 + x * a2 + r * r * s * horner(&self.b2, s);
+        let fttt = 3.0 * a2 + x * a3 + r * r * r * s * horner(&self.b3, s);
+        Eval {
+            u: self.cv * x + horner(&self.bu, s) - x * x * a1,
+            cv: self.cv - x * ftt,
+            dcv: -ftt - x * fttt,
+            eta,
+        }
     }
 
     /// Bracketed Newton solve of u(theta, n) = u on [THETA_MIN, THETA_MAX] (see module doc);
@@ -248,53 +305,31 @@ impl LjAt {
             Ok(s) => s,
             Err(done) => return done,
         };
-        while let Some(x) = s.pending(self.n) {
-            if let Some(done) = s.take(self.u_and_cv(x)) {
+        loop {
+            if let Some(done) = s.take(self.eval(s.x)) {
                 return done;
             }
         }
-        s.ended()
     }
 
     /// The solves of two particles (`ats[k]` at `u[k]` from `guess[k]`) in lockstep, each
     /// step's two evaluations side by side: two independent chains the processor overlaps.
     /// The same bits as two [`LjAt::solve`]s.
     fn solve_pair(ats: [&Self; 2], u: [f64; 2], guess: [f64; 2]) -> [(f64, f64); 2] {
-        let mut out = [(f64::NAN, f64::NAN); 2];
-        let mut live = [None, None];
-        for k in 0..2 {
-            match Newton::new(ats[k], u[k], guess[k]) {
-                Ok(s) => live[k] = Some(s),
-                Err(done) => out[k] = done,
-            }
-        }
+        let (a, b) = (Newton::new(ats[0], u[0], guess[0]), Newton::new(ats[1], u[1], guess[1]));
+        let (mut sa, mut sb) = match (a, b) {
+            (Ok(sa), Ok(sb)) => (sa, sb),
+            (Err(x), Err(y)) => return [x, y],
+            (Err(x), Ok(_)) => return [x, ats[1].solve(u[1], guess[1])],
+            (Ok(_), Err(y)) => return [ats[0].solve(u[0], guess[0]), y],
+        };
         loop {
-            let mut xs = [None, None];
-            for k in 0..2 {
-                if let Some(s) = live[k].as_mut() {
-                    xs[k] = s.pending(ats[k].n);
-                    if xs[k].is_none() {
-                        out[k] = s.ended();
-                        live[k] = None;
-                    }
-                }
-            }
-            let evals = match xs {
-                [Some(x0), Some(x1)] => {
-                    let (e0, e1) = (ats[0].u_and_cv(x0), ats[1].u_and_cv(x1));
-                    [Some(e0), Some(e1)]
-                }
-                [Some(x0), None] => [Some(ats[0].u_and_cv(x0)), None],
-                [None, Some(x1)] => [None, Some(ats[1].u_and_cv(x1))],
-                [None, None] => return out,
-            };
-            for k in 0..2 {
-                if let (Some(e), Some(s)) = (evals[k], live[k].as_mut()) {
-                    if let Some(done) = s.take(e) {
-                        out[k] = done;
-                        live[k] = None;
-                    }
-                }
+            let (ea, eb) = (ats[0].eval(sa.x), ats[1].eval(sb.x));
+            match (sa.take(ea), sb.take(eb)) {
+                (None, None) => {}
+                (Some(x), Some(y)) => return [x, y],
+                (Some(x), None) => return [x, sb.finish(ats[1])],
+                (None, Some(y)) => return [sa.finish(ats[0]), y],
             }
         }
     }
@@ -303,14 +338,14 @@ impl LjAt {
     /// when the solve did not end on a Newton step.
     #[inline]
     fn with_inv_tau(&self, (theta, cv): (f64, f64)) -> (f64, f64) {
-        let cv = if cv.is_finite() { cv } else { self.u_and_cv(theta).1 };
+        let cv = if cv.is_finite() { cv } else { self.eval(theta).cv };
         (theta, (1.0 - 1.0 / cv) / theta)
     }
 }
 
 /// One bracketed Newton solve of u(theta) = u at a fixed density, as a state machine:
-/// [`Newton::pending`] names the next point to evaluate, [`Newton::take`] consumes its
-/// evaluation, [`Newton::ended`] gives the result when no point is left.
+/// `x` is the next point to evaluate, [`Newton::take`] consumes its evaluation and gives
+/// the result when the solve ended.
 struct Newton {
     u: f64,
     lo: f64,
@@ -319,8 +354,6 @@ struct Newton {
     lo_hit: bool,
     hi_hit: bool,
     x: f64,
-    /// (x, C_V) of the previous evaluation when x is its Newton step.
-    prev: Option<(f64, f64)>,
     iter: usize,
 }
 
@@ -337,45 +370,31 @@ impl Newton {
         let x = if guess > 0.0 && guess.is_finite() {
             guess
         } else {
-            let t1 = 1.0;
-            let x0 = if LennardJones::in_domain(t1, n) {
-                let r = at.f_res_t(Jet::var_t(t1));
-                (u - (r.v - t1 * r.t)) / at.cv
-            } else {
-                f64::NAN
-            };
+            let e = at.eval(1.0);
+            let x0 = if e.eta <= LennardJones::ETA_MAX { 1.0 + (u - e.u) / at.cv } else { f64::NAN };
             if x0.is_finite() {
                 x0.max(lo)
             } else {
                 (lo * hi).sqrt()
             }
         };
-        Ok(Self { u, lo, hi, lo_hit: false, hi_hit: false, x: x.clamp(lo, hi), prev: None, iter: 0 })
+        Ok(Self { u, lo, hi, lo_hit: false, hi_hit: false, x: x.clamp(lo, hi), iter: 0 })
     }
 
-    /// The next point to evaluate (inside the domain at density `n`), or None when the
-    /// solve ended without converging.
+    /// Takes the evaluation at `x`: the result when the solve ended (converged, or ran out
+    /// of steps), else moves `x` to the next point.
     #[inline(always)]
-    fn pending(&mut self, n: f64) -> Option<f64> {
-        while self.iter < LennardJones::MAX_ITER {
-            if LennardJones::in_domain(self.x, n) {
-                return Some(self.x);
-            }
+    fn take(&mut self, e: Eval) -> Option<(f64, f64)> {
+        let x = self.x;
+        if !(e.eta <= LennardJones::ETA_MAX) {
             // x in [THETA_MIN, THETA_MAX] is out of the domain only by eta > ETA_MAX:
             // below the floor at this density, so the root lies above
-            self.lo = self.x;
-            self.advance(f64::NAN);
+            self.lo = x;
+            return self.advance(f64::NAN);
         }
-        None
-    }
-
-    /// Takes u and C_V at the pending point: the result when the solve converged.
-    #[inline(always)]
-    fn take(&mut self, (ux, cvx): (f64, f64)) -> Option<(f64, f64)> {
-        let x = self.x;
-        let r = ux - self.u;
+        let r = e.u - self.u;
         if r == 0.0 {
-            return Some((x, cvx));
+            return Some((x, e.cv));
         }
         if r < 0.0 {
             self.lo = x;
@@ -384,41 +403,40 @@ impl Newton {
             self.hi = x;
             self.hi_hit = true;
         }
-        let step = r / cvx;
+        let step = r / e.cv;
         let next = x - step;
-        if step.abs() <= LennardJones::TOL * x && next > 0.0 {
-            return Some((next, cvx));
+        // Newton converges quadratically: the error left after this step is
+        // |u''/(2 u')| step^2 (u'' = dC_V/dtheta), with a step short enough that its own
+        // round-off stays below PREDICTED_TOL; C_V carried to `next` along dC_V/dtheta
+        let left = (e.dcv / (2.0 * e.cv)).abs() * step * step;
+        let converged = step.abs() <= LennardJones::TOL * x && next > 0.0;
+        let predicted = left <= LennardJones::PREDICTED_TOL * x && step.abs() <= 0.01 * x;
+        if converged || (predicted && next > self.lo && next < self.hi) {
+            return Some((next, e.cv - e.dcv * step));
         }
-        if let Some((xp, cvp)) = self.prev.filter(|&(xp, _)| (x - xp).abs() <= 0.01 * x) {
-            // Newton converges quadratically: the error left after this step is
-            // |u''/(2 u')| step^2, u'' = dC_V/dtheta from the last two evaluations
-            // (close enough for a local slope); C_V carried to `next` along it
-            let slope = (cvx - cvp) / (x - xp);
-            let left = (slope / (2.0 * cvx)).abs() * step * step;
-            if left <= LennardJones::PREDICTED_TOL * x && next > self.lo && next < self.hi {
-                return Some((next, cvx - slope * step));
-            }
+        self.advance(next)
+    }
+
+    /// Ends an iteration: the result once the bracket is within TOL or the iterations are
+    /// spent, else moves to `next` (bisection in ln theta when it leaves the bracket: the
+    /// bracket spans decades).
+    #[inline(always)]
+    fn advance(&mut self, next: f64) -> Option<(f64, f64)> {
+        self.iter += 1;
+        if self.hi - self.lo <= LennardJones::TOL * self.lo || self.iter >= LennardJones::MAX_ITER {
+            return Some(self.ended());
         }
-        self.prev = Some((x, cvx));
-        self.advance(next);
+        self.x = if next > self.lo && next < self.hi { next } else { (self.lo * self.hi).sqrt() };
         None
     }
 
-    /// Ends an iteration: stops once the bracket is within TOL, else moves to `next`
-    /// (bisection in ln theta when it leaves the bracket: the bracket spans decades).
-    #[inline(always)]
-    fn advance(&mut self, next: f64) {
-        self.iter += 1;
-        if self.hi - self.lo <= LennardJones::TOL * self.lo {
-            self.iter = LennardJones::MAX_ITER;
-            return;
+    /// The rest of the solve alone.
+    fn finish(&mut self, at: &LjAt) -> (f64, f64) {
+        loop {
+            if let Some(done) = self.take(at.eval(self.x)) {
+                return done;
+            }
         }
-        self.x = if next > self.lo && next < self.hi {
-            next
-        } else {
-            self.prev = None;
-            (self.lo * self.hi).sqrt()
-        };
     }
 
     /// The result of a solve that ran out of Newton steps: the bracket's middle, or the
@@ -453,6 +471,11 @@ impl AtDensity for LjAt {
         let [x, y] = LjAt::solve_pair([self, b], u, guess);
         [self.with_inv_tau(x), b.with_inv_tau(y)]
     }
+    /// theta + du/C_V with 1/C_V = 1 - theta/tau (k_B = 1).
+    #[inline(always)]
+    fn guess_after(&self, theta: f64, inv_tau: f64, du: f64) -> f64 {
+        theta + du * (1.0 - theta * inv_tau)
+    }
 }
 
 impl FixedDensity for LennardJones {
@@ -480,12 +503,12 @@ impl Eos for LennardJones {
         let at = self.at_density(n);
         match at.solve(u, guess) {
             (theta, cv) if cv.is_finite() => (theta, cv),
-            (theta, _) => (theta, at.u_and_cv(theta).1),
+            (theta, _) => (theta, at.eval(theta).cv),
         }
     }
     #[inline]
     fn u(&self, theta: f64, n: f64) -> f64 {
-        self.cv * theta + self.u_res(theta, n)
+        self.at_density(n).eval(theta).u
     }
     #[inline]
     fn pn2(&self, theta: f64, n: f64) -> f64 {
@@ -493,7 +516,7 @@ impl Eos for LennardJones {
     }
     #[inline]
     fn cv(&self, theta: f64, n: f64) -> f64 {
-        self.cv - theta * Self::eval(theta, n).ftt
+        self.at_density(n).eval(theta).cv
     }
     fn entropy(&self, u: f64, n: f64) -> Option<f64> {
         let theta = self.at_density(n).solve(u, f64::NAN).0;

@@ -16,7 +16,7 @@ pub use lj::LennardJones;
 pub use lth::Lth;
 pub use lj::LjAt;
 pub use tait::Tait;
-pub use table::{ErrorAt, TableError, TableErrors, TableGrid, Tabulated};
+pub use table::{ErrorAt, TableAt, TableError, TableErrors, TableGrid, Tabulated};
 
 use std::fmt;
 
@@ -149,6 +149,15 @@ pub trait AtDensity: Copy {
     fn theta_inv_tau_pair(&self, b: &Self, u: [f64; 2], guess: [f64; 2]) -> [(f64, f64); 2] {
         [self.theta_inv_tau(u[0], guess[0]), b.theta_inv_tau(u[1], guess[1])]
     }
+    /// The guess for the solve after the energy moved by `du` from a state at `theta` with
+    /// 1/tau = `inv_tau` (at this density): the model's own `theta` (the default, for models
+    /// that ignore guesses), or the first-order step theta + du/C_V, 1/C_V = (1 - theta/tau)
+    /// / k_B (eqs 19, 23), for iterative ones (then one Newton step usually converges; a
+    /// guess that is no positive number makes them start from their own estimate).
+    #[inline(always)]
+    fn guess_after(&self, theta: f64, _inv_tau: f64, _du: f64) -> f64 {
+        theta
+    }
 }
 
 /// Models that can precompute their density-only parts ([`AtDensity`]).
@@ -160,6 +169,13 @@ pub trait FixedDensity: Eos {
     /// its theta and 1/tau equal [`Eos::theta`] and [`Eos::theta_cv`] with
     /// [`Eos::inv_tau`] at `n`, bit for bit.
     fn at_density(&self, n: f64) -> Self::At<'_>;
+    /// [`FixedDensity::at_density`] for a particle now at `theta`, whose refreshes will
+    /// stay near it (the sweep's): models may keep data for such states (a table the cubic
+    /// of theta's cell); the same results, bit for bit.
+    #[inline(always)]
+    fn at_state(&self, n: f64, _theta: f64) -> Self::At<'_> {
+        self.at_density(n)
+    }
 }
 
 /// The generic [`AtDensity`]: the model and n, through [`Eos::theta`] and [`Eos::theta_cv`].
@@ -186,6 +202,10 @@ impl<E: Eos> AtDensity for AtN<'_, E> {
     fn theta_inv_tau(&self, u: f64, guess: f64) -> (f64, f64) {
         let (theta, cv) = self.eos.theta_cv(u, self.n, guess);
         (theta, self.eos.inv_tau(theta, cv))
+    }
+    #[inline(always)]
+    fn guess_after(&self, theta: f64, inv_tau: f64, du: f64) -> f64 {
+        theta + du * (1.0 - theta * inv_tau) / self.eos.kb()
     }
 }
 

@@ -36,52 +36,94 @@ fn kolafa_nezbeda_check_values() {
     assert!((m.pressure(1.3, 0.4) - 0.1125328).abs() < 1e-7);
 }
 
-/// The theta-only evaluation at a fixed density gives the bits of the full jet.
+/// d^2 f_res/dtheta^2 from the full jet.
+fn ftt(theta: f64, n: f64) -> f64 {
+    LennardJones::f_res_jet(Jet::var_t(theta), Jet::var_n(n)).tt
+}
+
+/// The closed-form evaluation at a fixed density agrees with the full jet to round-off
+/// (u, C_V), and its dC_V/dtheta with a finite difference of C_V.
 #[test]
 fn fixed_density_evaluation_is_the_full_one() {
     let m = LennardJones::new(60.0);
+    let mut worst = [0.0f64; 3];
     for (theta, n) in grid() {
         let r = LennardJones::eval(theta, n);
-        let (u, cv) = m.at_density(n).u_and_cv(theta);
-        assert_eq!(u, m.cv * theta + r.f - theta * r.ft, "u at ({theta}, {n})");
-        assert_eq!(cv, m.cv - theta * r.ftt, "C_V at ({theta}, {n})");
+        let at = m.at_density(n);
+        let e = at.eval(theta);
+        let fd_dcv = d1(|t| at.eval(t).cv, theta, 1e-3 * theta);
+        let devs = [
+            rel(e.u, m.cv * theta + r.f - theta * r.ft),
+            rel(e.cv, m.cv - theta * ftt(theta, n)),
+            (e.dcv - fd_dcv).abs() / fd_dcv.abs().max(1e-3),
+        ];
+        for (w, d) in worst.iter_mut().zip(devs) {
+            *w = w.max(d);
+        }
+        assert!((e.eta - LennardJones::packing_fraction(theta, n)).abs() < 1e-15, "eta at ({theta}, {n})");
     }
+    eprintln!("worst relative deviation of u, C_V from the full jet, dC_V/dtheta from FD: {:.2e} {:.2e} {:.2e}", worst[0], worst[1], worst[2]);
+    assert!(worst[0] < 1e-14 && worst[1] < 1e-14 && worst[2] < 1e-8, "{worst:?}");
+}
+
+/// Evaluations of one [`LjAt::solve`], replayed through its state machine.
+fn evaluations(at: &LjAt, u: f64, guess: f64) -> usize {
+    let Ok(mut s) = Newton::new(at, u, guess) else { return 0 };
+    let mut count = 1;
+    while s.take(at.eval(s.x)).is_none() {
+        count += 1;
+    }
+    count
 }
 
 /// theta, C_V and 1/tau after the stop on the predicted error, against Newton run until
 /// its step is below 1e-16 relative, over refreshes like the sweep's: u moved from a
-/// state at theta by up to 3 % of C_V theta, the old theta as the guess.
+/// state at theta by up to 3 % of C_V theta, from the old theta and from the sweep's
+/// first-order guess ([`AtDensity::guess_after`]).
 #[test]
 fn predicted_stop_agrees_with_the_converged_solve() {
     let mut worst = [0.0f64; 3];
+    let mut evals = [0usize; 2];
+    let mut solves = 0;
     for cv in [1.5, 60.0] {
         let m = LennardJones::new(cv);
         for (theta, n) in grid() {
             let at = m.at_density(n);
+            let inv_tau = |t: f64, c: f64| (1.0 - 1.0 / c) / t;
+            let tau0 = inv_tau(theta, m.cv(theta, n));
             for k in 0..=16 {
                 let du = 0.03 * cv * theta * (if k % 2 == 0 { 1.0 } else { -1.0 }) * 10f64.powi(-(k / 2));
                 let u = m.u(theta, n) + du;
-                let (t, c) = at.solve(u, theta);
-                let (mut x, mut cx) = (t, c);
+                let guesses = [theta, at.guess_after(theta, tau0, du)];
+                for (e, guess) in evals.iter_mut().zip(guesses) {
+                    *e += evaluations(&at, u, guess);
+                }
+                solves += 1;
+                let (mut x, mut cx) = (theta, 0.0);
                 for _ in 0..20 {
-                    let (ux, cvx) = at.u_and_cv(x);
+                    let Eval { u: ux, cv: cvx, .. } = at.eval(x);
                     let step = (ux - u) / cvx;
                     (x, cx) = (x - step, cvx);
                     if step.abs() <= 1e-16 * x {
                         break;
                     }
                 }
-                let inv_tau = |t: f64, c: f64| (1.0 - 1.0 / c) / t;
-                for (w, e) in worst.iter_mut().zip([rel(t, x), rel(c, cx), rel(inv_tau(t, c), inv_tau(x, cx))]) {
-                    *w = w.max(e);
+                for guess in guesses {
+                    let (t, c) = at.solve(u, guess);
+                    for (w, e) in worst.iter_mut().zip([rel(t, x), rel(c, cx), rel(inv_tau(t, c), inv_tau(x, cx))]) {
+                        *w = w.max(e);
+                    }
                 }
             }
         }
     }
+    let per = evals.map(|e| e as f64 / solves as f64);
+    eprintln!("evaluations per solve from the old theta {:.3}, from the first-order guess {:.3}", per[0], per[1]);
     eprintln!("worst relative deviation of theta, C_V, 1/tau from the converged solve: {:.2e} {:.2e} {:.2e}", worst[0], worst[1], worst[2]);
-    // theta to round-off; C_V (so 1/tau) carried along the secant slope of C_V, whose
-    // error is ~ C_V'' (x - x_prev) step / 2
-    assert!(worst[0] < 1e-14 && worst[1] < 1e-9 && worst[2] < 1e-9, "{worst:?}");
+    // theta to round-off; C_V (so 1/tau) carried along dC_V/dtheta, whose error is
+    // ~ C_V'' step^2 / 2
+    assert!(worst[0] < 1e-14 && worst[1] < 1e-13 && worst[2] < 1e-13, "{worst:?}");
+    assert!(per[1] < per[0], "{per:?}");
 }
 
 /// The interleaved solves of two particles give the bits of two single solves, over
@@ -134,14 +176,14 @@ fn derivatives_match_finite_differences() {
         let fd_s = -d1(|t| m.f_res(t, n) - m.cv * t * (t.ln() - 1.0), theta, ht);
         for (w, (a, b)) in worst.iter_mut().zip([
             (r.ft, fd_t),
-            (r.ftt, fd_tt),
+            (ftt(theta, n), fd_tt),
             (r.fn_, fd_n),
             (m.cv(theta, n), fd_cv),
         ]) {
             *w = w.max((a - b).abs() / b.abs().max(1.0));
         }
         assert!(close(r.ft, fd_t, 1e-9), "f_t at ({theta}, {n}): {} vs {fd_t}", r.ft);
-        assert!(close(r.ftt, fd_tt, 1e-9), "f_tt at ({theta}, {n}): {} vs {fd_tt}", r.ftt);
+        assert!(close(ftt(theta, n), fd_tt, 1e-9), "f_tt at ({theta}, {n}): {} vs {fd_tt}", ftt(theta, n));
         assert!(close(r.fn_, fd_n, 1e-9), "f_n at ({theta}, {n}): {} vs {fd_n}", r.fn_);
         assert_eq!(m.pn2(theta, n), r.fn_);
         assert!(close(m.cv(theta, n), fd_cv, 1e-9), "cv at ({theta}, {n})");
@@ -196,7 +238,7 @@ fn u_at_entropy(m: &LennardJones, s: f64, n: f64, mut theta: f64) -> f64 {
     for _ in 0..100 {
         let r = LennardJones::eval(theta, n);
         let g = m.cv * theta.ln() - r.ft - s;
-        let step = g / (m.cv / theta - r.ftt); // ds/dtheta = C_V(theta, n)/theta
+        let step = g / (m.cv / theta - ftt(theta, n)); // ds/dtheta = C_V(theta, n)/theta
         theta -= step;
         if step.abs() < 1e-15 * theta {
             break;

@@ -296,3 +296,32 @@ fn non_monotone_interpolant_is_refused() {
 }
 
 use super::super::EosError;
+
+/// The sweep's model at a state ([`FixedDensity::at_state`], the cubic of its cell at
+/// hand) gives the bits of the full lookup, from the old theta and from the first-order
+/// guess, for refreshes inside the cell, across cells and out of the table.
+#[test]
+fn cell_at_hand_gives_the_full_solve() {
+    let t = lj_table(61, 65);
+    let mut in_cell = 0;
+    let mut count = 0;
+    for (theta, n) in states(&t, 400) {
+        let at = t.at_state(n, theta);
+        let full = AtN { eos: &t, n };
+        let cv = t.cv(theta, n);
+        let inv_tau = t.inv_tau(theta, cv);
+        for k in 0..=12 {
+            let du = 0.1 * cv * theta * (if k % 2 == 0 { 1.0 } else { -1.0 }) * 10f64.powi(-(k / 2));
+            let u = t.u(theta, n) + du;
+            for guess in [theta, at.guess_after(theta, inv_tau, du), f64::NAN] {
+                let bits = |(a, b): (f64, f64)| (a.to_bits(), b.to_bits());
+                assert_eq!(bits(at.theta_inv_tau(u, guess)), bits(full.theta_inv_tau(u, guess)), "({theta}, {n}) u {u} guess {guess}");
+                assert_eq!(at.theta(u, guess).to_bits(), full.theta(u, guess).to_bits());
+                in_cell += usize::from(at.in_cell(u, guess).is_some());
+                count += 1;
+            }
+        }
+    }
+    eprintln!("{in_cell} of {count} refreshes solved in the cell at hand");
+    assert!(in_cell > count / 4 && in_cell < count, "{in_cell} of {count}");
+}
