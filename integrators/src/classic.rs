@@ -478,7 +478,10 @@ impl ClassicDpd {
         } else {
             self.relist(sys);
         }
-        sys.comm.forward(&mut sys.store, self.moved());
+        let read = self.read_by_forces();
+        if !read.is_empty() {
+            sys.comm.forward(&mut sys.store, read);
+        }
         self.rho(sys);
         self.forces(sys, sys.step + 1);
         self.many_body_energy(sys)?;
@@ -533,6 +536,19 @@ impl ClassicDpd {
     /// Whether the pair pass reads theta (velocity-Verlet DPDE).
     fn vv_dpde(&self) -> bool {
         matches!(self.force, PairForce::DpdEnergy { .. })
+    }
+
+    /// What the forces read of ghosts besides positions: the momenta when they include
+    /// friction or noise, and the energies and theta of velocity-Verlet DPDE.
+    fn read_by_forces(&self) -> Fields {
+        let conservative = |gamma: f64, sigma: f64| gamma == 0.0 && sigma == 0.0;
+        match &self.force {
+            PairForce::DpdEnergy(_) => self.moved(),
+            PairForce::Dpd(t) if t.iter().all(|c| conservative(c.gamma, c.sigma)) => Fields::NONE,
+            PairForce::Mdpd(t) if t.iter().all(|c| conservative(c.gamma, c.sigma)) => Fields::NONE,
+            PairForce::MultiLucy(_) | PairForce::Off => Fields::NONE,
+            PairForce::Dpd(_) | PairForce::Mdpd(_) | PairForce::DpdExt(_) => Fields::MOMENTUM,
+        }
     }
 
     /// What ghosts need after the particles moved: momenta, and the energies and theta
@@ -616,11 +632,18 @@ impl Physics for ClassicDpd {
 
     fn step(&self, sys: &mut System) -> Result<(), StepError> {
         let dt = self.settings.dt;
+        // the ghosts of the sweep's particles are current after its last colour but for
+        // theta and 1/theta (and u, if fix dpd/energy moves it): these travel with the
+        // momenta at the end of the step, as nothing between reads them
+        let mut ends = self.moved();
         if let Some(p) = &self.shardlow {
             self.sweep(sys, p);
             let outcome = self.eos(sys);
-            sys.comm.forward(&mut sys.store, SWEPT);
             sys.settle(outcome)?;
+            ends = ends | Fields::THETA | Fields::INV_TAU;
+            if self.energy {
+                ends = ends | Fields::ENERGY | Fields::U_COND;
+            }
         }
         match (self.integration, &self.barostat) {
             (Integration::Nve, Some(b)) => self.barostat_step(sys, b)?,
@@ -646,7 +669,7 @@ impl Physics for ClassicDpd {
                 }
             }
         }
-        sys.comm.forward(&mut sys.store, self.moved());
+        sys.comm.forward(&mut sys.store, ends);
         sys.step += 1;
         sys.time += dt;
         Ok(())
