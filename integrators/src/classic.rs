@@ -294,12 +294,18 @@ impl ClassicDpd {
         let normals = Normals::get();
         let noise = move |s: &Particles, i: usize, j: usize| normals.pair(seed, key, s.tag[i].min(s.tag[j]), s.tag[i].max(s.tag[j]), stream::FORCE);
         match &self.force {
-            // w = 0 beyond rc: no branch to mispredict on the skin's pairs
-            PairForce::Dpd(t) if t.iter().all(|c| c.gamma == 0.0 && c.sigma == 0.0) => tally::<true, false, false>(s, pairs, |_, _| f64::INFINITY, |s, i, j, _, r| {
-                let DpdCoeff { a0, rc, inv_rc, .. } = *t.get(s.kind[i], s.kind[j]);
-                let w = (1.0 - r * inv_rc).max(0.0);
-                Terms::conservative(a0 * w, 0.25 * a0 * rc * w * w)
-            }),
+            // the pairs within the largest cutoff selected without a branch (at rc = 1 more
+            // than half the list lies in the skin), then w = 0 beyond each pair's own rc
+            // (the pairs left out would add exact zeros)
+            PairForce::Dpd(t) if t.iter().all(|c| c.gamma == 0.0 && c.sigma == 0.0) => {
+                within(s, pairs, t.max_of(|c| c.rc), &mut sys.active);
+                let close = sys.active.iter().map(|&k| &pairs[k as usize]);
+                tally::<true, false, false>(s, close, |_, _| f64::INFINITY, |s, i, j, _, r| {
+                    let DpdCoeff { a0, rc, inv_rc, .. } = *t.get(s.kind[i], s.kind[j]);
+                    let w = (1.0 - r * inv_rc).max(0.0);
+                    Terms::conservative(a0 * w, 0.25 * a0 * rc * w * w)
+                })
+            }
             PairForce::Dpd(t) => tally::<false, false, false>(s, pairs, |s, k| t.get(s.kind[k[0]], s.kind[k[1]]).rc, |s, i, j, d, r| {
                 let DpdCoeff { a0, rc, gamma, sigma, inv_rc } = *t.get(s.kind[i], s.kind[j]);
                 let w = 1.0 - r * inv_rc;
@@ -703,12 +709,12 @@ impl Terms {
 /// Sums pair forces, energies and virials (and with `DU` the energy rates) over the half
 /// list into the owned particles (see [`gendpde_engine::NeighborList::pairs`]).
 /// `pair(s, i, j, r_ij, r)` gives the [`Terms`] of a pair closer than its cutoff
-/// `rc(s, [i, j])`; with `CLAMPED` it is called for every pair of the list and must give
+/// `rc(s, [i, j])`; with `CLAMPED` it is called for every pair of `pairs` and must give
 /// zeros beyond the cutoff; with `PERP` its force across the axis is added.
 #[inline(always)]
-fn tally<const CLAMPED: bool, const DU: bool, const PERP: bool>(
+fn tally<'a, const CLAMPED: bool, const DU: bool, const PERP: bool>(
     s: &mut Particles,
-    pairs: &[[u32; 2]],
+    pairs: impl IntoIterator<Item = &'a [u32; 2]>,
     rc: impl Fn(&Particles, [usize; 2]) -> f64,
     pair: impl Fn(&Particles, usize, usize, Vec3, f64) -> Terms,
 ) {
@@ -752,6 +758,20 @@ fn tally<const CLAMPED: bool, const DU: bool, const PERP: bool>(
             }
         }
     }
+}
+
+/// The indices of the list pairs closer than `rc` (and farther than 1e-10), in list
+/// order, into `active`, selected without a branch per pair.
+fn within(s: &Particles, pairs: &[[u32; 2]], rc: f64, active: &mut Vec<u32>) {
+    active.resize(pairs.len(), 0);
+    let mut m = 0;
+    for (k, &[i, j]) in pairs.iter().enumerate() {
+        let d = sub(s.r[i as usize], s.r[j as usize]);
+        let r2 = dot(d, d);
+        active[m] = k as u32;
+        m += (r2 < rc * rc && r2 >= 1e-20) as usize;
+    }
+    active.truncate(m);
 }
 
 /// rho of owned particles from the half list: `w(s, i, j, r^2)` gives what the pair adds
