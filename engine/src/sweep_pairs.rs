@@ -48,11 +48,6 @@ impl SweepPairs {
         self.active.truncate(m);
         &self.active
     }
-
-    /// The pairs the last [`SweepPairs::within`] selected.
-    pub fn active(&self) -> &[[u32; 2]] {
-        &self.active
-    }
 }
 
 #[cfg(test)]

@@ -47,6 +47,10 @@ pub struct Comm {
     written: Vec<bool>,
     /// Particles whose new values go to their ghosts in [`Comm::after_colour`].
     fresh: Vec<bool>,
+    /// Per colour, the particles of its sweep pairs (list radius), gathered at the first
+    /// colour after each exchange (`members_stale`): they hold every particle it touches.
+    members: Vec<Vec<u32>>,
+    members_stale: bool,
     /// Per swap, the bit mask of the slots whose ghosts returned their values in the
     /// last reverse exchange (those ghosts hold the values their owners would forward).
     returned: Vec<Vec<f64>>,
@@ -95,6 +99,8 @@ impl Comm {
             recv: Vec::new(),
             written: Vec::new(),
             fresh: Vec::new(),
+            members: Vec::new(),
+            members_stale: true,
             returned: Vec::new(),
             slots: Vec::new(),
             idx: Vec::new(),
@@ -189,6 +195,7 @@ impl Comm {
     pub fn exchange(&mut self, store: &mut Particles, domain: &Domain, grid: &CellGrid, keep_cells: bool) {
         let start = std::time::Instant::now();
         store.truncate_ghosts();
+        self.members_stale = true;
         (self.lo, self.hi) = self.owned_cells(grid);
         if !keep_cells {
             for i in 0..store.nlocal {
@@ -305,23 +312,27 @@ impl Comm {
         self.time.set(self.time.get() + start.elapsed());
     }
 
-    /// After colour `colour` of a sweep wrote `fields` of the particles of its pairs
-    /// (`sweep`'s last [`SweepPairs::within`]): the ghosts written return their values to
-    /// their owners, then every particle touched (owned and written, or reached by a
-    /// returning ghost) forwards its values to its ghosts, but not to the ghosts that
-    /// returned them (they hold them). Ghosts of particles the colour left alone keep
-    /// theirs, which are current, so they do not travel. On one rank every swap is a
-    /// copy, and all ghosts are copied (marking costs more than it saves).
+    /// After colour `colour` of a sweep wrote `fields` of the particles of its pairs: the
+    /// ghosts written return their values to their owners, then every particle the colour
+    /// may have touched (owned and in its pairs, or reached by a returning ghost) forwards
+    /// its values to its ghosts, but not to the ghosts that returned them (they hold
+    /// them). Ghosts of particles outside the colour's pairs keep theirs, which are
+    /// current, so they do not travel (particles of its pairs whose partners all lay
+    /// beyond the cutoff forward values unchanged: marking from the colour's list costs a
+    /// pass per list build, not per step). On one rank every swap is a copy, and all
+    /// ghosts are copied (marking costs more than it saves).
     pub fn after_colour(&mut self, store: &mut Particles, sweep: &SweepPairs, colour: usize, fields: Fields) {
         let start = std::time::Instant::now();
         let me = self.t.rank();
         let remote = self.swaps.iter().any(|s| s.dest != me || s.src != me);
         self.fresh.clear();
         if remote {
+            if self.members_stale {
+                self.gather_members(store.len(), sweep);
+            }
             self.fresh.resize(store.len(), false);
-            for &[i, j] in sweep.active() {
-                self.fresh[i as usize] = true;
-                self.fresh[j as usize] = true;
+            for &k in &self.members[colour] {
+                self.fresh[k as usize] = true;
             }
         }
         self.reverse(store, &sweep.ghost_writes[colour], fields);
@@ -331,6 +342,24 @@ impl Comm {
         } else {
             self.forward(store, fields);
         }
+    }
+
+    /// `members`: the particles of each colour's pairs, each once.
+    fn gather_members(&mut self, len: usize, sweep: &SweepPairs) {
+        let seen = &mut self.slots;
+        seen.clear();
+        seen.resize(len, u32::MAX);
+        self.members.resize_with(sweep.colours(), Vec::new);
+        for (c, members) in self.members.iter_mut().enumerate() {
+            members.clear();
+            for &k in sweep.colour(c).iter().flatten() {
+                if seen[k as usize] != c as u32 {
+                    seen[k as usize] = c as u32;
+                    members.push(k);
+                }
+            }
+        }
+        self.members_stale = false;
     }
 
     /// Copies `fields` of the listed ghosts back to their owners (values, not deltas; a
