@@ -719,12 +719,16 @@ fn tally<'a, const CLAMPED: bool, const DU: bool, const PERP: bool>(
     pair: impl Fn(&Particles, usize, usize, Vec3, f64) -> Terms,
 ) {
     let n = s.nlocal;
-    s.f[..n].fill([0.0; 3]);
-    s.epair[..n].fill(0.0);
-    s.virial[..n].fill([0.0; 3]);
+    // the sums leave the store while the pairs are read (`pair` reads none of them)
+    let take = |v: &mut Vec<f64>| if DU { std::mem::take(v) } else { Vec::new() };
+    let (mut f, mut virial, mut epair) = (std::mem::take(&mut s.f), std::mem::take(&mut s.virial), std::mem::take(&mut s.epair));
+    let (mut du_mech, mut du_cond) = (take(&mut s.du_mech), take(&mut s.du_cond));
+    f[..n].fill([0.0; 3]);
+    epair[..n].fill(0.0);
+    virial[..n].fill([0.0; 3]);
     if DU {
-        s.du_mech[..n].fill(0.0);
-        s.du_cond[..n].fill(0.0);
+        du_mech[..n].fill(0.0);
+        du_cond[..n].fill(0.0);
     }
     for &[i, j] in pairs {
         let (i, j) = (i as usize, j as usize);
@@ -743,20 +747,32 @@ fn tally<'a, const CLAMPED: bool, const DU: bool, const PERP: bool>(
                 df[c] += t.perp[c];
             }
         }
-        let virial = [0.5 * df[0] * d[0], 0.5 * df[1] * d[1], 0.5 * df[2] * d[2]];
-        for (k, sign) in [(i, 1.0), (j, -1.0)] {
-            if k < n {
-                for c in 0..3 {
-                    s.f[k][c] += sign * df[c];
-                    s.virial[k][c] += virial[c];
-                }
-                s.epair[k] += t.energy;
-                if DU {
-                    s.du_mech[k] += t.du_mech;
-                    s.du_cond[k] += sign * t.du_cond;
-                }
+        let w = [0.5 * df[0] * d[0], 0.5 * df[1] * d[1], 0.5 * df[2] * d[2]];
+        // + df into i, - df into j (the same bits as adding -1 df)
+        if i < n {
+            let (fi, vi) = (&mut f[i], &mut virial[i]);
+            (fi[0], fi[1], fi[2]) = (fi[0] + df[0], fi[1] + df[1], fi[2] + df[2]);
+            (vi[0], vi[1], vi[2]) = (vi[0] + w[0], vi[1] + w[1], vi[2] + w[2]);
+            epair[i] += t.energy;
+            if DU {
+                du_mech[i] += t.du_mech;
+                du_cond[i] += t.du_cond;
             }
         }
+        if j < n {
+            let (fj, vj) = (&mut f[j], &mut virial[j]);
+            (fj[0], fj[1], fj[2]) = (fj[0] - df[0], fj[1] - df[1], fj[2] - df[2]);
+            (vj[0], vj[1], vj[2]) = (vj[0] + w[0], vj[1] + w[1], vj[2] + w[2]);
+            epair[j] += t.energy;
+            if DU {
+                du_mech[j] += t.du_mech;
+                du_cond[j] -= t.du_cond;
+            }
+        }
+    }
+    (s.f, s.virial, s.epair) = (f, virial, epair);
+    if DU {
+        (s.du_mech, s.du_cond) = (du_mech, du_cond);
     }
 }
 
