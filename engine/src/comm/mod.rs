@@ -481,3 +481,23 @@ fn masked_slots<'a>(msg: &'a [f64], n: usize, slots: &mut Vec<u32>) -> &'a [f64]
     }
     records
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn masks_carry_the_travelling_slots_and_their_records() {
+        for n in [0, 1, 63, 64, 65, 200] {
+            let travel: Vec<u32> = (0..n as u32).filter(|k| k % 3 == 0 || k % 7 == 1).collect();
+            let mut msg = Vec::new();
+            lead_with_mask(&mut msg, n, &travel);
+            assert_eq!(msg.len(), n.div_ceil(64));
+            msg.extend(travel.iter().map(|&k| k as f64 + 0.5));
+            let mut slots = vec![7];
+            let records = masked_slots(&msg, n, &mut slots);
+            assert_eq!(slots, travel);
+            assert_eq!(records, travel.iter().map(|&k| k as f64 + 0.5).collect::<Vec<_>>());
+        }
+    }
+}
