@@ -422,10 +422,15 @@ impl ClassicDpd {
     }
 
     /// The Shardlow sweep with LAMMPS's DPDE (or isothermal) pair update.
-    fn sweep(&self, sys: &mut System, p: &ShardlowDpd) {
+    /// Returns the fields whose ghosts are left to the end-of-step forward: the last
+    /// colour's values return to their owners but travel on only then, when nothing reads
+    /// ghost momenta or energies before (the forces are conservative).
+    fn sweep(&self, sys: &mut System, p: &ShardlowDpd) -> Fields {
         let (dt, kb) = (self.settings.dt, self.kb);
         let sqrt_dt = dt.sqrt();
         let (step, normals, reach) = (sys.noise_step(sys.step), Normals::get(), p.cutoff());
+        let fields = Fields::MOMENTUM | Fields::ENERGY | Fields::U_COND;
+        let defer = self.read_by_forces().is_empty();
         for colour in 0..sys.sweep.colours() {
             let pairs = sys.sweep.within(colour, &sys.store, reach);
             let s = &mut sys.store;
@@ -466,8 +471,16 @@ impl ClassicDpd {
                 }
             }
             // theta (and 1/theta) stay as they are until the sweep is over
-            let fields = Fields::MOMENTUM | Fields::ENERGY | Fields::U_COND;
-            sys.comm.after_colour(&mut sys.store, &sys.sweep, colour, fields);
+            if defer && colour + 1 == sys.sweep.colours() {
+                sys.comm.reverse_colour(&mut sys.store, &sys.sweep, colour, fields);
+            } else {
+                sys.comm.after_colour(&mut sys.store, &sys.sweep, colour, fields);
+            }
+        }
+        if defer {
+            fields
+        } else {
+            Fields::NONE
         }
     }
 
@@ -638,15 +651,15 @@ impl Physics for ClassicDpd {
 
     fn step(&self, sys: &mut System) -> Result<(), StepError> {
         let dt = self.settings.dt;
-        // the ghosts of the sweep's particles are current after its last colour but for
-        // theta and 1/theta (and u, if fix dpd/energy moves it): these travel with the
-        // momenta at the end of the step, as nothing between reads them
+        // theta and 1/theta of the ghosts (and u, if fix dpd/energy moves it, and what
+        // the sweep's last colour left) travel with the momenta at the end of the step, as
+        // nothing between reads them
         let mut ends = self.moved();
         if let Some(p) = &self.shardlow {
-            self.sweep(sys, p);
+            let deferred = self.sweep(sys, p);
             let outcome = self.eos(sys);
             sys.settle(outcome)?;
-            ends = ends | Fields::THETA | Fields::INV_TAU;
+            ends = ends | deferred | Fields::THETA | Fields::INV_TAU;
             if self.energy {
                 ends = ends | Fields::ENERGY | Fields::U_COND;
             }

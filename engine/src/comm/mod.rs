@@ -344,6 +344,16 @@ impl Comm {
         }
     }
 
+    /// [`Comm::after_colour`] without its forward: the ghosts written return their values
+    /// to their owners, whose ghosts keep the old ones until a [`Comm::forward`] of
+    /// `fields` (the last colour of a sweep, when nothing reads them before).
+    pub fn reverse_colour(&mut self, store: &mut Particles, sweep: &SweepPairs, colour: usize, fields: Fields) {
+        let start = std::time::Instant::now();
+        self.fresh.clear();
+        self.reverse(store, &sweep.ghost_writes[colour], fields);
+        self.time.set(self.time.get() + start.elapsed());
+    }
+
     /// `members`: the particles of each colour's pairs, each once.
     fn gather_members(&mut self, len: usize, sweep: &SweepPairs) {
         let seen = &mut self.slots;
