@@ -213,19 +213,27 @@ macro_rules! particle_fields {
                 k
             }
 
-            /// Appends the exchanged fields `fields` of particle `i`, in table order.
-            fn pack_comm(&self, i: usize, fields: Fields, buf: &mut Vec<f64>) {
-                $( if !$comm.is_empty() && fields.contains($comm) && !self.$name.is_empty() { self.$name[i].pack(buf); } )*
+            /// Appends the exchanged fields `fields` of the particles `idx`, field by field
+            /// (in table order), each field's values in the order of `idx`.
+            fn pack_comm(&self, idx: &[u32], fields: Fields, buf: &mut Vec<f64>) {
+                $( if !$comm.is_empty() && fields.contains($comm) && !self.$name.is_empty() {
+                    for &i in idx {
+                        self.$name[i as usize].pack(buf);
+                    }
+                } )*
             }
 
-            /// Reads a `pack_comm` record into particle `i`.
-            fn unpack_comm(&mut self, i: usize, fields: Fields, rec: &[f64]) {
+            /// Reads a `pack_comm` message into the particles `idx`.
+            fn unpack_comm(&mut self, idx: &[u32], fields: Fields, msg: &[f64]) {
                 let mut k = 0;
                 $( if !$comm.is_empty() && fields.contains($comm) && !self.$name.is_empty() {
-                    self.$name[i] = <$ty as Column>::unpack(&rec[k..]);
-                    k += <$ty as Column>::WIDTH;
+                    let column = &mut self.$name;
+                    for (&i, rec) in idx.iter().zip(msg[k..].chunks_exact(<$ty as Column>::WIDTH)) {
+                        column[i as usize] = <$ty as Column>::unpack(rec);
+                    }
+                    k += idx.len() * <$ty as Column>::WIDTH;
                 } )*
-                debug_assert_eq!(k, rec.len());
+                debug_assert_eq!(k, msg.len());
             }
 
             /// Copies the exchanged fields `fields` from `from` to `to` for each pair.
@@ -493,19 +501,22 @@ impl Particles {
         FIELDS.iter().filter(|f| !f.comm.is_empty() && fields.contains(f.comm) && self.allocates(f.gate)).map(|f| f.width).sum()
     }
 
-    /// Appends `fields` of particle `i`, the position shifted by `shift` (dimension,
-    /// length) when given: the position leads the record.
-    pub fn pack_fields(&self, i: usize, fields: Fields, shift: Option<(usize, f64)>, buf: &mut Vec<f64>) {
+    /// Appends `fields` of the particles `idx` (a message of `idx.len()` records stored
+    /// field by field), the positions shifted by `shift` (dimension, length) when given:
+    /// the positions lead the message.
+    pub fn pack_fields(&self, idx: &[u32], fields: Fields, shift: Option<(usize, f64)>, buf: &mut Vec<f64>) {
         let start = buf.len();
-        self.pack_comm(i, fields, buf);
+        self.pack_comm(idx, fields, buf);
         if let (Some((d, s)), true) = (shift, fields.contains(Fields::POSITION)) {
-            buf[start + d] += s;
+            for r in buf[start..start + 3 * idx.len()].chunks_exact_mut(3) {
+                r[d] += s;
+            }
         }
     }
 
-    /// Reads a `pack_fields` record into particle `i`.
-    pub fn unpack_fields(&mut self, i: usize, fields: Fields, rec: &[f64]) {
-        self.unpack_comm(i, fields, rec);
+    /// Reads a `pack_fields` message into the particles `idx`.
+    pub fn unpack_fields(&mut self, idx: &[u32], fields: Fields, msg: &[f64]) {
+        self.unpack_comm(idx, fields, msg);
     }
 
     /// Copies `fields` from particle `from` to particle `to` for each (from, to) of

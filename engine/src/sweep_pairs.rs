@@ -75,8 +75,8 @@ impl SweepPairs {
         self.selected = m;
     }
 
-    /// The pairs the last [`SweepPairs::within`] selected.
-    pub fn active(&self) -> &[[u32; 2]] {
+    /// The pairs the last selection kept.
+    fn active(&self) -> &[[u32; 2]] {
         &self.active[..self.selected]
     }
 }

@@ -294,12 +294,18 @@ impl ClassicDpd {
         let normals = Normals::get();
         let noise = move |s: &Particles, i: usize, j: usize| normals.pair(seed, key, s.tag[i].min(s.tag[j]), s.tag[i].max(s.tag[j]), stream::FORCE);
         match &self.force {
-            // w = 0 beyond rc: no branch to mispredict on the skin's pairs
-            PairForce::Dpd(t) if t.iter().all(|c| c.gamma == 0.0 && c.sigma == 0.0) => tally::<true, false, false>(s, pairs, |_, _| f64::INFINITY, |s, i, j, _, r| {
-                let DpdCoeff { a0, rc, inv_rc, .. } = *t.get(s.kind[i], s.kind[j]);
-                let w = (1.0 - r * inv_rc).max(0.0);
-                Terms::conservative(a0 * w, 0.25 * a0 * rc * w * w)
-            }),
+            // the pairs within the largest cutoff selected without a branch (at rc = 1 more
+            // than half the list lies in the skin), then w = 0 beyond each pair's own rc
+            // (the pairs left out would add exact zeros)
+            PairForce::Dpd(t) if t.iter().all(|c| c.gamma == 0.0 && c.sigma == 0.0) => {
+                within(s, pairs, t.max_of(|c| c.rc), &mut sys.active);
+                let close = sys.active.iter().map(|&k| &pairs[k as usize]);
+                tally::<true, false, false>(s, close, |_, _| f64::INFINITY, |s, i, j, _, r| {
+                    let DpdCoeff { a0, rc, inv_rc, .. } = *t.get(s.kind[i], s.kind[j]);
+                    let w = (1.0 - r * inv_rc).max(0.0);
+                    Terms::conservative(a0 * w, 0.25 * a0 * rc * w * w)
+                })
+            }
             PairForce::Dpd(t) => tally::<false, false, false>(s, pairs, |s, k| t.get(s.kind[k[0]], s.kind[k[1]]).rc, |s, i, j, d, r| {
                 let DpdCoeff { a0, rc, gamma, sigma, inv_rc } = *t.get(s.kind[i], s.kind[j]);
                 let w = 1.0 - r * inv_rc;
@@ -416,10 +422,15 @@ impl ClassicDpd {
     }
 
     /// The Shardlow sweep with LAMMPS's DPDE (or isothermal) pair update.
-    fn sweep(&self, sys: &mut System, p: &ShardlowDpd) {
+    /// Returns the fields whose ghosts are left to the end-of-step forward: the last
+    /// colour's values return to their owners but travel on only then, when nothing reads
+    /// ghost momenta or energies before (the forces are conservative).
+    fn sweep(&self, sys: &mut System, p: &ShardlowDpd) -> Fields {
         let (dt, kb) = (self.settings.dt, self.kb);
         let sqrt_dt = dt.sqrt();
         let (step, normals, reach) = (sys.noise_step(sys.step), Normals::get(), p.cutoff());
+        let fields = Fields::MOMENTUM | Fields::ENERGY | Fields::U_COND;
+        let defer = self.read_by_forces().is_empty();
         for colour in 0..sys.sweep.colours() {
             let pairs = sys.sweep.within(colour, &sys.store, reach);
             let s = &mut sys.store;
@@ -460,8 +471,16 @@ impl ClassicDpd {
                 }
             }
             // theta (and 1/theta) stay as they are until the sweep is over
-            let fields = Fields::MOMENTUM | Fields::ENERGY | Fields::U_COND;
-            sys.comm.after_colour(&mut sys.store, &sys.sweep, colour, fields);
+            if defer && colour + 1 == sys.sweep.colours() {
+                sys.comm.reverse_colour(&mut sys.store, &sys.sweep, colour, fields);
+            } else {
+                sys.comm.after_colour(&mut sys.store, &sys.sweep, colour, fields);
+            }
+        }
+        if defer {
+            fields
+        } else {
+            Fields::NONE
         }
     }
 
@@ -478,7 +497,10 @@ impl ClassicDpd {
         } else {
             self.relist(sys);
         }
-        sys.comm.forward(&mut sys.store, self.moved());
+        let read = self.read_by_forces();
+        if !read.is_empty() {
+            sys.comm.forward(&mut sys.store, read);
+        }
         self.rho(sys);
         self.forces(sys, sys.step + 1);
         self.many_body_energy(sys)?;
@@ -533,6 +555,19 @@ impl ClassicDpd {
     /// Whether the pair pass reads theta (velocity-Verlet DPDE).
     fn vv_dpde(&self) -> bool {
         matches!(self.force, PairForce::DpdEnergy { .. })
+    }
+
+    /// What the forces read of ghosts besides positions: the momenta when they include
+    /// friction or noise, and the energies and theta of velocity-Verlet DPDE.
+    fn read_by_forces(&self) -> Fields {
+        let conservative = |gamma: f64, sigma: f64| gamma == 0.0 && sigma == 0.0;
+        match &self.force {
+            PairForce::DpdEnergy(_) => self.moved(),
+            PairForce::Dpd(t) if t.iter().all(|c| conservative(c.gamma, c.sigma)) => Fields::NONE,
+            PairForce::Mdpd(t) if t.iter().all(|c| conservative(c.gamma, c.sigma)) => Fields::NONE,
+            PairForce::MultiLucy(_) | PairForce::Off => Fields::NONE,
+            PairForce::Dpd(_) | PairForce::Mdpd(_) | PairForce::DpdExt(_) => Fields::MOMENTUM,
+        }
     }
 
     /// What ghosts need after the particles moved: momenta, and the energies and theta
@@ -616,11 +651,18 @@ impl Physics for ClassicDpd {
 
     fn step(&self, sys: &mut System) -> Result<(), StepError> {
         let dt = self.settings.dt;
+        // theta and 1/theta of the ghosts (and u, if fix dpd/energy moves it, and what
+        // the sweep's last colour left) travel with the momenta at the end of the step, as
+        // nothing between reads them
+        let mut ends = self.moved();
         if let Some(p) = &self.shardlow {
-            self.sweep(sys, p);
+            let deferred = self.sweep(sys, p);
             let outcome = self.eos(sys);
-            sys.comm.forward(&mut sys.store, SWEPT);
             sys.settle(outcome)?;
+            ends = ends | deferred | Fields::THETA | Fields::INV_TAU;
+            if self.energy {
+                ends = ends | Fields::ENERGY | Fields::U_COND;
+            }
         }
         match (self.integration, &self.barostat) {
             (Integration::Nve, Some(b)) => self.barostat_step(sys, b)?,
@@ -646,7 +688,7 @@ impl Physics for ClassicDpd {
                 }
             }
         }
-        sys.comm.forward(&mut sys.store, self.moved());
+        sys.comm.forward(&mut sys.store, ends);
         sys.step += 1;
         sys.time += dt;
         Ok(())
@@ -680,22 +722,26 @@ impl Terms {
 /// Sums pair forces, energies and virials (and with `DU` the energy rates) over the half
 /// list into the owned particles (see [`gendpde_engine::NeighborList::pairs`]).
 /// `pair(s, i, j, r_ij, r)` gives the [`Terms`] of a pair closer than its cutoff
-/// `rc(s, [i, j])`; with `CLAMPED` it is called for every pair of the list and must give
+/// `rc(s, [i, j])`; with `CLAMPED` it is called for every pair of `pairs` and must give
 /// zeros beyond the cutoff; with `PERP` its force across the axis is added.
 #[inline(always)]
-fn tally<const CLAMPED: bool, const DU: bool, const PERP: bool>(
+fn tally<'a, const CLAMPED: bool, const DU: bool, const PERP: bool>(
     s: &mut Particles,
-    pairs: &[[u32; 2]],
+    pairs: impl IntoIterator<Item = &'a [u32; 2]>,
     rc: impl Fn(&Particles, [usize; 2]) -> f64,
     pair: impl Fn(&Particles, usize, usize, Vec3, f64) -> Terms,
 ) {
     let n = s.nlocal;
-    s.f[..n].fill([0.0; 3]);
-    s.epair[..n].fill(0.0);
-    s.virial[..n].fill([0.0; 3]);
+    // the sums leave the store while the pairs are read (`pair` reads none of them)
+    let take = |v: &mut Vec<f64>| if DU { std::mem::take(v) } else { Vec::new() };
+    let (mut f, mut virial, mut epair) = (std::mem::take(&mut s.f), std::mem::take(&mut s.virial), std::mem::take(&mut s.epair));
+    let (mut du_mech, mut du_cond) = (take(&mut s.du_mech), take(&mut s.du_cond));
+    f[..n].fill([0.0; 3]);
+    epair[..n].fill(0.0);
+    virial[..n].fill([0.0; 3]);
     if DU {
-        s.du_mech[..n].fill(0.0);
-        s.du_cond[..n].fill(0.0);
+        du_mech[..n].fill(0.0);
+        du_cond[..n].fill(0.0);
     }
     for &[i, j] in pairs {
         let (i, j) = (i as usize, j as usize);
@@ -714,21 +760,47 @@ fn tally<const CLAMPED: bool, const DU: bool, const PERP: bool>(
                 df[c] += t.perp[c];
             }
         }
-        let virial = [0.5 * df[0] * d[0], 0.5 * df[1] * d[1], 0.5 * df[2] * d[2]];
-        for (k, sign) in [(i, 1.0), (j, -1.0)] {
-            if k < n {
-                for c in 0..3 {
-                    s.f[k][c] += sign * df[c];
-                    s.virial[k][c] += virial[c];
-                }
-                s.epair[k] += t.energy;
-                if DU {
-                    s.du_mech[k] += t.du_mech;
-                    s.du_cond[k] += sign * t.du_cond;
-                }
+        let w = [0.5 * df[0] * d[0], 0.5 * df[1] * d[1], 0.5 * df[2] * d[2]];
+        // + df into i, - df into j (the same bits as adding -1 df)
+        if i < n {
+            let (fi, vi) = (&mut f[i], &mut virial[i]);
+            (fi[0], fi[1], fi[2]) = (fi[0] + df[0], fi[1] + df[1], fi[2] + df[2]);
+            (vi[0], vi[1], vi[2]) = (vi[0] + w[0], vi[1] + w[1], vi[2] + w[2]);
+            epair[i] += t.energy;
+            if DU {
+                du_mech[i] += t.du_mech;
+                du_cond[i] += t.du_cond;
+            }
+        }
+        if j < n {
+            let (fj, vj) = (&mut f[j], &mut virial[j]);
+            (fj[0], fj[1], fj[2]) = (fj[0] - df[0], fj[1] - df[1], fj[2] - df[2]);
+            (vj[0], vj[1], vj[2]) = (vj[0] + w[0], vj[1] + w[1], vj[2] + w[2]);
+            epair[j] += t.energy;
+            if DU {
+                du_mech[j] += t.du_mech;
+                du_cond[j] -= t.du_cond;
             }
         }
     }
+    (s.f, s.virial, s.epair) = (f, virial, epair);
+    if DU {
+        (s.du_mech, s.du_cond) = (du_mech, du_cond);
+    }
+}
+
+/// The indices of the list pairs closer than `rc` (and farther than 1e-10), in list
+/// order, into `active`, selected without a branch per pair.
+fn within(s: &Particles, pairs: &[[u32; 2]], rc: f64, active: &mut Vec<u32>) {
+    active.resize(pairs.len(), 0);
+    let mut m = 0;
+    for (k, &[i, j]) in pairs.iter().enumerate() {
+        let d = sub(s.r[i as usize], s.r[j as usize]);
+        let r2 = dot(d, d);
+        active[m] = k as u32;
+        m += (r2 < rc * rc && r2 >= 1e-20) as usize;
+    }
+    active.truncate(m);
 }
 
 /// rho of owned particles from the half list: `w(s, i, j, r^2)` gives what the pair adds

@@ -47,6 +47,16 @@ pub struct Comm {
     written: Vec<bool>,
     /// Particles whose new values go to their ghosts in [`Comm::after_colour`].
     fresh: Vec<bool>,
+    /// Per colour, the particles of its sweep pairs (list radius), gathered at the first
+    /// colour after each exchange (`members_stale`): they hold every particle it touches.
+    members: Vec<Vec<u32>>,
+    members_stale: bool,
+    /// Per swap, the bit mask of the slots whose ghosts returned their values in the
+    /// last reverse exchange (those ghosts hold the values their owners would forward).
+    returned: Vec<Vec<f64>>,
+    /// Scratch: the slots of a swap that travel, and the particles packed or unpacked.
+    slots: Vec<u32>,
+    idx: Vec<u32>,
     /// Wall time spent in exchanges and collectives.
     time: std::cell::Cell<std::time::Duration>,
     traffic: Traffic,
@@ -89,6 +99,11 @@ impl Comm {
             recv: Vec::new(),
             written: Vec::new(),
             fresh: Vec::new(),
+            members: Vec::new(),
+            members_stale: true,
+            returned: Vec::new(),
+            slots: Vec::new(),
+            idx: Vec::new(),
             time: Default::default(),
             traffic: Traffic::default(),
         }
@@ -180,6 +195,7 @@ impl Comm {
     pub fn exchange(&mut self, store: &mut Particles, domain: &Domain, grid: &CellGrid, keep_cells: bool) {
         let start = std::time::Instant::now();
         store.truncate_ghosts();
+        self.members_stale = true;
         (self.lo, self.hi) = self.owned_cells(grid);
         if !keep_cells {
             for i in 0..store.nlocal {
@@ -279,7 +295,6 @@ impl Comm {
     /// Copies `fields` from the owners to all their ghosts.
     pub fn forward(&mut self, store: &mut Particles, fields: Fields) {
         let start = std::time::Instant::now();
-        let width = store.comm_width(fields);
         let me = self.t.rank();
         for s in &self.swaps {
             if s.dest == me && s.src == me {
@@ -288,33 +303,36 @@ impl Comm {
                 continue;
             }
             self.send.clear();
-            for &i in &s.send {
-                store.pack_fields(i as usize, fields, Some((s.dim, s.shift)), &mut self.send);
-            }
+            store.pack_fields(&s.send, fields, Some((s.dim, s.shift)), &mut self.send);
             self.traffic.sendrecv(self.t.as_ref(), &self.send, s.dest, s.src, &mut self.recv);
-            for (k, rec) in self.recv.chunks_exact(width).enumerate() {
-                store.unpack_fields(s.recv_start + k, fields, rec);
-            }
+            self.idx.clear();
+            self.idx.extend(s.recv_start as u32..(s.recv_start + s.recv_count) as u32);
+            store.unpack_fields(&self.idx, fields, &self.recv);
         }
         self.time.set(self.time.get() + start.elapsed());
     }
 
-    /// After colour `colour` of a sweep wrote `fields` of the particles of its pairs
-    /// (`sweep`'s last [`SweepPairs::within`]): the ghosts written return their values to
-    /// their owners, then every particle touched (owned and written, or reached by a
-    /// returning ghost) forwards its values to its ghosts. Ghosts of particles the colour
-    /// left alone keep theirs, which are current, so they do not travel. On one rank every
-    /// swap is a copy, and all ghosts are copied (marking costs more than it saves).
+    /// After colour `colour` of a sweep wrote `fields` of the particles of its pairs: the
+    /// ghosts written return their values to their owners, then every particle the colour
+    /// may have touched (owned and in its pairs, or reached by a returning ghost) forwards
+    /// its values to its ghosts, but not to the ghosts that returned them (they hold
+    /// them). Ghosts of particles outside the colour's pairs keep theirs, which are
+    /// current, so they do not travel (particles of its pairs whose partners all lay
+    /// beyond the cutoff forward values unchanged: marking from the colour's list costs a
+    /// pass per list build, not per step). On one rank every swap is a copy, and all
+    /// ghosts are copied (marking costs more than it saves).
     pub fn after_colour(&mut self, store: &mut Particles, sweep: &SweepPairs, colour: usize, fields: Fields) {
         let start = std::time::Instant::now();
         let me = self.t.rank();
         let remote = self.swaps.iter().any(|s| s.dest != me || s.src != me);
         self.fresh.clear();
         if remote {
+            if self.members_stale {
+                self.gather_members(store.len(), sweep);
+            }
             self.fresh.resize(store.len(), false);
-            for &[i, j] in sweep.active() {
-                self.fresh[i as usize] = true;
-                self.fresh[j as usize] = true;
+            for &k in &self.members[colour] {
+                self.fresh[k as usize] = true;
             }
         }
         self.reverse(store, &sweep.ghost_writes[colour], fields);
@@ -326,21 +344,49 @@ impl Comm {
         }
     }
 
+    /// [`Comm::after_colour`] without its forward: the ghosts written return their values
+    /// to their owners, whose ghosts keep the old ones until a [`Comm::forward`] of
+    /// `fields` (the last colour of a sweep, when nothing reads them before).
+    pub fn reverse_colour(&mut self, store: &mut Particles, sweep: &SweepPairs, colour: usize, fields: Fields) {
+        let start = std::time::Instant::now();
+        self.fresh.clear();
+        self.reverse(store, &sweep.ghost_writes[colour], fields);
+        self.time.set(self.time.get() + start.elapsed());
+    }
+
+    /// `members`: the particles of each colour's pairs, each once.
+    fn gather_members(&mut self, len: usize, sweep: &SweepPairs) {
+        let seen = &mut self.slots;
+        seen.clear();
+        seen.resize(len, u32::MAX);
+        self.members.resize_with(sweep.colours(), Vec::new);
+        for (c, members) in self.members.iter_mut().enumerate() {
+            members.clear();
+            for &k in sweep.colour(c).iter().flatten() {
+                if seen[k as usize] != c as u32 {
+                    seen[k as usize] = c as u32;
+                    members.push(k);
+                }
+            }
+        }
+        self.members_stale = false;
+    }
+
     /// Copies `fields` of the listed ghosts back to their owners (values, not deltas; a
     /// message leads with one bit per ghost of the swap saying whether its record
-    /// follows), marking the owners reached in `fresh` (when it is in use). Within one
-    /// colour of the sweep each particle has exactly one writer, so only the ghosts
-    /// written travel back, hop by hop through the swaps in reverse order.
+    /// follows, kept in `returned`), marking the owners reached in `fresh` (when it is in
+    /// use). Within one colour of the sweep each particle has exactly one writer, so only
+    /// the ghosts written travel back, hop by hop through the swaps in reverse order.
     fn reverse(&mut self, store: &mut Particles, ghosts: &[u32], fields: Fields) {
         let fields = fields.without(Fields::POSITION);
-        let width = store.comm_width(fields);
         self.written.clear();
         self.written.resize(store.len(), false);
         for &g in ghosts {
             self.written[g as usize] = true;
         }
+        self.returned.resize_with(self.swaps.len(), Vec::new);
         let me = self.t.rank();
-        for s in self.swaps.iter().rev() {
+        for (n, s) in self.swaps.iter().enumerate().rev() {
             if s.dest == me && s.src == me {
                 let written = &self.written;
                 let moves = (0..s.recv_count).filter(|&k| written[s.recv_start + k]).map(|k| (s.recv_start + k, s.send[k] as usize));
@@ -358,15 +404,21 @@ impl Comm {
                 }
                 continue;
             }
-            let written = &self.written;
-            lead_with_mask(&mut self.send, s.recv_count, |k| written[s.recv_start + k]);
-            for k in (0..s.recv_count).filter(|&k| written[s.recv_start + k]) {
-                store.pack_fields(s.recv_start + k, fields, None, &mut self.send);
-            }
+            self.slots.clear();
+            self.slots.extend((0..s.recv_count as u32).filter(|&k| self.written[s.recv_start + k as usize]));
+            self.idx.clear();
+            self.idx.extend(self.slots.iter().map(|&k| s.recv_start as u32 + k));
+            lead_with_mask(&mut self.send, s.recv_count, &self.slots);
+            store.pack_fields(&self.idx, fields, None, &mut self.send);
             self.traffic.sendrecv(self.t.as_ref(), &self.send, s.src, s.dest, &mut self.recv);
-            for (k, rec) in masked_records(&self.recv, s.send.len(), width) {
-                let i = s.send[k] as usize;
-                store.unpack_fields(i, fields, rec);
+            let records = masked_slots(&self.recv, s.send.len(), &mut self.slots);
+            self.returned[n].clear();
+            self.returned[n].extend_from_slice(&self.recv[..self.recv.len() - records.len()]);
+            self.idx.clear();
+            self.idx.extend(self.slots.iter().map(|&k| s.send[k as usize]));
+            store.unpack_fields(&self.idx, fields, records);
+            for &i in &self.idx {
+                let i = i as usize;
                 self.written[i] |= i >= store.nlocal;
                 if let Some(f) = self.fresh.get_mut(i) {
                     *f = true;
@@ -376,13 +428,13 @@ impl Comm {
     }
 
     /// Copies `fields` from the particles marked in `fresh` to their ghosts, which are
-    /// marked in turn (they travel on in later swaps). A message leads with one bit per
-    /// ghost of the swap saying whether its record follows.
+    /// marked in turn (they travel on in later swaps), except to the ghosts that returned
+    /// their values through the same swap in [`Comm::reverse`]. A message leads with one
+    /// bit per ghost of the swap saying whether its record follows.
     fn forward_fresh(&mut self, store: &mut Particles, fields: Fields) {
         let start = std::time::Instant::now();
-        let width = store.comm_width(fields);
         let me = self.t.rank();
-        for s in &self.swaps {
+        for (n, s) in self.swaps.iter().enumerate() {
             let fresh = &mut self.fresh;
             if s.dest == me && s.src == me {
                 // every ghost copied (unchanged values are the same bits), the marks passed on
@@ -393,33 +445,69 @@ impl Comm {
                 store.copy_fields(moves, fields, Some((s.dim, s.shift)));
                 continue;
             }
-            lead_with_mask(&mut self.send, s.send.len(), |k| fresh[s.send[k] as usize]);
-            for &i in s.send.iter().filter(|&&i| fresh[i as usize]) {
-                store.pack_fields(i as usize, fields, Some((s.dim, s.shift)), &mut self.send);
-            }
+            let returned = &self.returned[n];
+            let back = |k: usize| returned.get(k / 64).is_some_and(|w| w.to_bits() >> (k % 64) & 1 == 1);
+            self.slots.clear();
+            self.slots.extend((0..s.send.len() as u32).filter(|&k| fresh[s.send[k as usize] as usize] && !back(k as usize)));
+            self.idx.clear();
+            self.idx.extend(self.slots.iter().map(|&k| s.send[k as usize]));
+            lead_with_mask(&mut self.send, s.send.len(), &self.slots);
+            store.pack_fields(&self.idx, fields, Some((s.dim, s.shift)), &mut self.send);
             self.traffic.sendrecv(self.t.as_ref(), &self.send, s.dest, s.src, &mut self.recv);
-            for (k, rec) in masked_records(&self.recv, s.recv_count, width) {
-                store.unpack_fields(s.recv_start + k, fields, rec);
-                fresh[s.recv_start + k] = true;
+            let records = masked_slots(&self.recv, s.recv_count, &mut self.slots);
+            self.idx.clear();
+            self.idx.extend(self.slots.iter().map(|&k| s.recv_start as u32 + k));
+            store.unpack_fields(&self.idx, fields, records);
+            for &g in &self.idx {
+                fresh[g as usize] = true;
             }
         }
         self.time.set(self.time.get() + start.elapsed());
     }
 }
 
-/// Starts message `buf` with one bit per record slot 0..n: slot k's record follows when
-/// `travels(k)` (records in slot order).
-fn lead_with_mask(buf: &mut Vec<f64>, n: usize, travels: impl Fn(usize) -> bool) {
+/// Starts message `buf` with one bit per record slot 0..n, set for the slots `travel`
+/// (ascending) whose records follow.
+fn lead_with_mask(buf: &mut Vec<f64>, n: usize, travel: &[u32]) {
     buf.clear();
-    for w in 0..n.div_ceil(64) {
-        let bits = (64 * w..n.min(64 * w + 64)).fold(0u64, |m, k| m | (travels(k) as u64) << (k - 64 * w));
-        buf.push(f64::from_bits(bits));
+    buf.resize(n.div_ceil(64), 0.0);
+    for &k in travel {
+        let w = &mut buf[k as usize / 64];
+        *w = f64::from_bits(w.to_bits() | 1 << (k % 64));
     }
 }
 
-/// The slots of a [`lead_with_mask`] message of n slots that travelled, each with its
-/// record of `width` values.
-fn masked_records(msg: &[f64], n: usize, width: usize) -> impl Iterator<Item = (usize, &[f64])> {
+/// The slots of a [`lead_with_mask`] message of n slots that travelled, ascending, into
+/// `slots`; returns the records that follow the mask.
+fn masked_slots<'a>(msg: &'a [f64], n: usize, slots: &mut Vec<u32>) -> &'a [f64] {
     let (mask, records) = msg.split_at(n.div_ceil(64));
-    (0..n).filter(move |&k| mask[k / 64].to_bits() >> (k % 64) & 1 == 1).zip(records.chunks_exact(width))
+    slots.clear();
+    for (w, word) in mask.iter().enumerate() {
+        let mut bits = word.to_bits();
+        while bits != 0 {
+            slots.push((64 * w) as u32 + bits.trailing_zeros());
+            bits &= bits - 1;
+        }
+    }
+    records
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn masks_carry_the_travelling_slots_and_their_records() {
+        for n in [0, 1, 63, 64, 65, 200] {
+            let travel: Vec<u32> = (0..n as u32).filter(|k| k % 3 == 0 || k % 7 == 1).collect();
+            let mut msg = Vec::new();
+            lead_with_mask(&mut msg, n, &travel);
+            assert_eq!(msg.len(), n.div_ceil(64));
+            msg.extend(travel.iter().map(|&k| k as f64 + 0.5));
+            let mut slots = vec![7];
+            let records = masked_slots(&msg, n, &mut slots);
+            assert_eq!(slots, travel);
+            assert_eq!(records, travel.iter().map(|&k| k as f64 + 0.5).collect::<Vec<_>>());
+        }
+    }
 }

@@ -38,8 +38,10 @@ impl Transport for MpiTransport {
         mpi::request::scope(|scope| {
             let sent = dest.immediate_send(scope, data);
             let (message, status) = src.matched_probe();
-            recv.clear();
-            recv.resize(status.count(f64::equivalent_datatype()) as usize, 0.0);
+            // the message overwrites every value: only new capacity is zeroed
+            let count = status.count(f64::equivalent_datatype()) as usize;
+            recv.truncate(count);
+            recv.resize(count, 0.0);
             message.matched_receive_into(&mut recv[..]);
             sent.wait();
         });
