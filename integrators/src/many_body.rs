@@ -28,24 +28,27 @@ pub fn density<W: Weight>(w: &W, volume: Option<&PartitionVolume>, sys: &mut Sys
     let n = s.nlocal;
     s.n[..n].fill(0.0);
     // the pairs inside the cutoff, selected without a branch per pair (a quarter of the
-    // list lies in the skin, a branch the processor cannot predict)
-    let (pairs, active, r2s) = (&sys.nlist.pairs, &mut sys.active, &mut sys.active_r2);
-    active.resize(pairs.len(), 0);
-    r2s.resize(pairs.len(), 0.0);
+    // list lies in the skin, a branch the processor cannot predict), with r^2 kept in
+    // their g slot; the later passes walk this compact list
+    let (pairs, active, geometry, r) = (&sys.nlist.pairs, &mut sys.active, &mut sys.pair_geometry, &s.r[..]);
+    active.resize(pairs.len(), [0; 2]);
+    geometry.resize(pairs.len(), 0.0);
     let mut m = 0;
-    for (k, &[i, j]) in pairs.iter().enumerate() {
-        let d = sub(s.r[i as usize], s.r[j as usize]);
+    for &[i, j] in pairs {
+        let d = sub(r[i as usize], r[j as usize]);
         let r2 = dot(d, d);
-        (active[m], r2s[m]) = (k as u32, r2);
+        (active[m], geometry[m]) = ([i, j], r2);
         m += (r2 < rc2) as usize;
     }
     active.truncate(m);
-    for (&k, &r2) in active.iter().zip(&r2s[..m]) {
-        let [i, j] = pairs[k as usize];
+    geometry.truncate(m);
+    let density = &mut s.n[..];
+    for (&[i, j], g) in active.iter().zip(geometry.iter_mut()) {
+        let r2 = *g;
         let r = r2.sqrt();
         let (wij, dw) = w.eval(r);
-        add(&mut s.n, n, i as usize, j as usize, wij);
-        sys.pair_geometry[k as usize] = if r2 > 0.0 { dw / r } else { 0.0 };
+        add(density, n, i as usize, j as usize, wij);
+        *g = if r2 > 0.0 { dw / r } else { 0.0 };
     }
     let zeta = &mut sys.zeta;
     zeta.clear();
@@ -108,20 +111,23 @@ pub fn forces(sys: &mut System) {
     let n = s.nlocal;
     s.f[..n].fill([0.0; 3]);
     s.virial[..n].fill([0.0; 3]);
-    sys.pair_force.fill(0.0);
-    for &k in &sys.active {
-        let k = k as usize;
-        let [i, j] = sys.nlist.pairs[k];
+    let (active, geometry, r, pn2) = (&sys.active[..], &sys.pair_geometry[..], &s.r[..], &s.pn2[..]);
+    let (f, virial) = (&mut s.f[..], &mut s.virial[..]);
+    sys.pair_force.resize(active.len(), 0.0);
+    for ((&[i, j], &g), big_f_out) in active.iter().zip(geometry).zip(sys.pair_force.iter_mut()) {
         let (i, j) = (i as usize, j as usize);
-        let d = sub(s.r[i], s.r[j]);
-        let big_f = -(s.pn2[i] + s.pn2[j]) * sys.pair_geometry[k];
-        kick(&mut s.f, n, i, j, big_f, d);
-        for o in [i, j].into_iter().filter(|&o| o < n) {
-            for c in 0..3 {
-                s.virial[o][c] += big_f * d[c] * d[c];
+        let d = sub(r[i], r[j]);
+        let big_f = -(pn2[i] + pn2[j]) * g;
+        kick(f, n, i, j, big_f, d);
+        let dd = [big_f * d[0] * d[0], big_f * d[1] * d[1], big_f * d[2] * d[2]];
+        for o in [i, j] {
+            if o < n {
+                for c in 0..3 {
+                    virial[o][c] += dd[c];
+                }
             }
         }
-        sys.pair_force[k] = big_f;
+        *big_f_out = big_f;
     }
     for v in &mut s.virial[..n] {
         *v = v.map(|x| 0.5 * x);
@@ -135,12 +141,11 @@ pub fn work(sys: &mut System, c: f64) {
     let (sums, v) = (&mut sys.pair_sums, velocities(s, &mut sys.velocity));
     sums.clear();
     sums.resize(n, 0.0);
-    for &k in &sys.active {
-        let big_f = sys.pair_force[k as usize];
+    let r = &s.r[..];
+    for (&[i, j], &big_f) in sys.active.iter().zip(&sys.pair_force) {
         if big_f != 0.0 {
-            let [i, j] = sys.nlist.pairs[k as usize];
             let (i, j) = (i as usize, j as usize);
-            add(sums, n, i, j, big_f * dot(sub(v[i], v[j]), sub(s.r[i], s.r[j])));
+            add(sums, n, i, j, big_f * dot(sub(v[i], v[j]), sub(r[i], r[j])));
         }
     }
     for i in 0..n {
@@ -159,15 +164,15 @@ pub fn refresh_forces(sys: &mut System, work: Option<f64>) {
     sums.resize(n, 0.0);
     let v = if work.is_some() { velocities(s, &mut sys.velocity) } else { &[] };
     s.f[..n].fill([0.0; 3]);
-    for &k in &sys.active {
-        let k = k as usize;
-        let [i, j] = sys.nlist.pairs[k];
+    let (active, geometry, r, pn2, f) = (&sys.active[..], &sys.pair_geometry[..], &s.r[..], &s.pn2[..], &mut s.f[..]);
+    sys.pair_force.resize(active.len(), 0.0);
+    for ((&[i, j], &g), big_f_out) in active.iter().zip(geometry).zip(sys.pair_force.iter_mut()) {
         let (i, j) = (i as usize, j as usize);
-        let big_f = -(s.pn2[i] + s.pn2[j]) * sys.pair_geometry[k];
-        sys.pair_force[k] = big_f;
+        let big_f = -(pn2[i] + pn2[j]) * g;
+        *big_f_out = big_f;
         if big_f != 0.0 {
-            let d = sub(s.r[i], s.r[j]);
-            kick(&mut s.f, n, i, j, big_f, d);
+            let d = sub(r[i], r[j]);
+            kick(f, n, i, j, big_f, d);
             if work.is_some() {
                 add(sums, n, i, j, big_f * dot(sub(v[i], v[j]), d));
             }

@@ -143,7 +143,7 @@ impl<E: FixedEntropy, W: Weight> Sdpd<E, W> {
         let (v, s) = (&sys.velocity, &sys.store);
         sc.grad.clear();
         sc.grad.resize(nl, [0.0; 9]);
-        for (i, j, w) in omegas(sys.active.as_slice(), &sys.nlist.pairs, &sys.pair_geometry, &s.r) {
+        for (i, j, w) in omegas(&sys.active, &sys.pair_geometry, &s.r) {
             let dv = sub(v[j], v[i]);
             for o in [i, j].into_iter().filter(|&o| o < nl) {
                 for a in 0..3 {
@@ -197,7 +197,7 @@ impl<E: FixedEntropy, W: Weight> Sdpd<E, W> {
         sc.dp.resize(nl, [0.0; 3]);
         {
             let s = &sys.store;
-            for (i, j, w) in omegas(sys.active.as_slice(), &sys.nlist.pairs, &sys.pair_geometry, &s.r) {
+            for (i, j, w) in omegas(&sys.active, &sys.pair_geometry, &s.r) {
                 let (di, dj) = (Self::d(sc.alpha, sys, i), Self::d(sc.alpha, sys, j));
                 let (mi, mj) = (tensor(s.sdpd_stress[i], s.sdpd_shear[i]), tensor(s.sdpd_stress[j], s.sdpd_shear[j]));
                 let mut t = [0.0; 3];
@@ -247,7 +247,7 @@ impl<E: FixedEntropy, W: Weight> Sdpd<E, W> {
             sc.a.resize(nl, [0.0; 3]);
             sc.b.clear();
             sc.b.resize(nl, [0.0; 3]);
-            for (i, j, w) in omegas(sys.active.as_slice(), &sys.nlist.pairs, &sys.pair_geometry, &s.r) {
+            for (i, j, w) in omegas(&sys.active, &sys.pair_geometry, &s.r) {
                 let dt_inv = sc.inv_tau[j] - sc.inv_tau[i];
                 for o in [i, j].into_iter().filter(|&o| o < nl) {
                     for c in 0..3 {
@@ -283,7 +283,7 @@ impl<E: FixedEntropy, W: Weight> Sdpd<E, W> {
         let sums = &mut sys.pair_sums;
         sums.clear();
         sums.resize(nl, 0.0);
-        for (i, j, w) in omegas(sys.active.as_slice(), &sys.nlist.pairs, &sys.pair_geometry, &s.r) {
+        for (i, j, w) in omegas(&sys.active, &sys.pair_geometry, &s.r) {
             let (di, dj) = (sc.alpha * s.n[i], sc.alpha * s.n[j]);
             let du: f64 = (0..3).map(|c| -w[c] * (s.sdpd_flux[i][c] / (di * di) + s.sdpd_flux[j][c] / (dj * dj))).sum();
             if i < nl {
@@ -319,10 +319,9 @@ impl<E: FixedEntropy, W: Weight> Sdpd<E, W> {
 /// (i, j, omega_ij = W'(r_ij) e_ij) for the pairs within the kernel support (from the
 /// g = w'/([w] r) the density pass kept).
 #[inline(always)]
-fn omegas<'a>(active: &'a [u32], pairs: &'a [[u32; 2]], geometry: &'a [f64], r: &'a [Vec3]) -> impl Iterator<Item = (usize, usize, Vec3)> + 'a {
-    active.iter().filter_map(move |&k| {
-        let g = geometry[k as usize];
-        let [i, j] = pairs[k as usize].map(|x| x as usize);
+fn omegas<'a>(active: &'a [[u32; 2]], geometry: &'a [f64], r: &'a [Vec3]) -> impl Iterator<Item = (usize, usize, Vec3)> + 'a {
+    active.iter().zip(geometry).filter_map(move |(&[i, j], &g)| {
+        let (i, j) = (i as usize, j as usize);
         (g != 0.0).then(|| (i, j, sub(r[i], r[j]).map(|x| g * x)))
     })
 }

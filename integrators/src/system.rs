@@ -19,17 +19,14 @@ pub struct System {
     pub nlist: NeighborList,
     /// Coloured pair lists for the Shardlow sweep.
     pub sweep: SweepPairs,
-    /// F_ij of each pair of the neighbour list (f_ij = F_ij r_ij).
-    pub pair_force: Vec<f64>,
-    /// w'(r_ij)/([w] r_ij) of the pairs of the neighbour list inside the density cutoff (those
-    /// in `active`), from the last density pass.
+    /// The neighbour pairs closer than the density cutoff at the last density pass, in
+    /// list order: the pairs the force and work passes visit (the others, in the skin,
+    /// contribute exact zeros). Emptied by a list build.
+    pub active: Vec<[u32; 2]>,
+    /// w'(r_ij)/([w] r_ij) of each pair of `active`, from the last density pass.
     pub pair_geometry: Vec<f64>,
-    /// Indices of the neighbour pairs closer than the density cutoff at the last density
-    /// pass, in list order: the pairs the force and work passes visit (the others, in the
-    /// skin, contribute exact zeros).
-    pub active: Vec<u32>,
-    /// r_ij^2 of the pairs in `active` (scratch of the density pass).
-    pub active_r2: Vec<f64>,
+    /// F_ij of each pair of `active` (f_ij = F_ij r_ij), from the last force pass.
+    pub pair_force: Vec<f64>,
     /// Per-particle sums of the pair passes, or multi/lucy's table values (scratch).
     pub pair_sums: Vec<f64>,
     /// zeta_i = dn_i/dn^b_i of the owned particles at the last density pass (corrected
@@ -100,7 +97,6 @@ impl System {
             pair_force: Vec::new(),
             pair_geometry: Vec::new(),
             active: Vec::new(),
-            active_r2: Vec::new(),
             pair_sums: Vec::new(),
             zeta: Vec::new(),
             friction: Vec::new(),
@@ -209,8 +205,9 @@ impl System {
         let req = ListRequest { nlist: density_radius.map(|r| (&mut self.nlist, r)), sweep: sweep_radius.map(|r| (&mut self.sweep, r)) };
         build_lists(&self.store, &self.bins, lo, hi, req);
         if density_radius.is_some() {
-            self.pair_force.resize(self.nlist.pairs.len(), 0.0);
-            self.pair_geometry.resize(self.nlist.pairs.len(), 0.0);
+            self.active.clear();
+            self.pair_geometry.clear();
+            self.pair_force.clear();
         }
         if !restored {
             self.last_build = at_step;

@@ -70,9 +70,11 @@ pub fn start<H: HeatFlow>(d: Option<&Dissipation>, kb: f64, sys: &mut System, dt
     }
     sums.clear();
     sums.resize(n, 0.0);
-    for (k, &[i, j]) in sys.nlist.pairs.iter().enumerate() {
-        let (i, j, dr, v) = oriented(s, i, j);
-        let big_f = sys.pair_force.get(k).copied().unwrap_or(0.0);
+    // F_ij of the pairs the force pass visited (a subsequence of the list, in order)
+    let mut forced = sys.active.iter().zip(&sys.pair_force).peekable();
+    for &pair in &sys.nlist.pairs {
+        let big_f = forced.next_if(|&(&p, _)| p == pair).map_or(0.0, |(_, &f)| f);
+        let (i, j, dr, v) = oriented(s, pair[0], pair[1]);
         let r2 = dot(dr, dr);
         let near = r2 < rc * rc && r2 > 0.0;
         if big_f == 0.0 && !near {
