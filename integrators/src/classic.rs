@@ -299,8 +299,7 @@ impl ClassicDpd {
             // (the pairs left out would add exact zeros)
             PairForce::Dpd(t) if t.iter().all(|c| c.gamma == 0.0 && c.sigma == 0.0) => {
                 within(s, pairs, t.max_of(|c| c.rc), &mut sys.active);
-                let close = sys.active.iter().map(|&k| &pairs[k as usize]);
-                tally::<true, false, false>(s, close, |_, _| f64::INFINITY, |s, i, j, _, r| {
+                tally::<true, false, false>(s, sys.active.iter(), |_, _| f64::INFINITY, |s, i, j, _, r| {
                     let DpdCoeff { a0, rc, inv_rc, .. } = *t.get(s.kind[i], s.kind[j]);
                     let w = (1.0 - r * inv_rc).max(0.0);
                     Terms::conservative(a0 * w, 0.25 * a0 * rc * w * w)
@@ -789,15 +788,15 @@ fn tally<'a, const CLAMPED: bool, const DU: bool, const PERP: bool>(
     }
 }
 
-/// The indices of the list pairs closer than `rc` (and farther than 1e-10), in list
+/// The list pairs closer than `rc` (and farther than 1e-10), in list
 /// order, into `active`, selected without a branch per pair.
-fn within(s: &Particles, pairs: &[[u32; 2]], rc: f64, active: &mut Vec<u32>) {
-    active.resize(pairs.len(), 0);
+fn within(s: &Particles, pairs: &[[u32; 2]], rc: f64, active: &mut Vec<[u32; 2]>) {
+    active.resize(pairs.len(), [0; 2]);
     let mut m = 0;
-    for (k, &[i, j]) in pairs.iter().enumerate() {
+    for &[i, j] in pairs {
         let d = sub(s.r[i as usize], s.r[j as usize]);
         let r2 = dot(d, d);
-        active[m] = k as u32;
+        active[m] = [i, j];
         m += (r2 < rc * rc && r2 >= 1e-20) as usize;
     }
     active.truncate(m);
