@@ -22,7 +22,7 @@ fuzz_target!(|bytes: &[u8]| {
             Ok(None) => break,
             Ok(Some(cmd)) => {
                 if cmd.name == "variable" {
-                    if vars.define(&cmd, &thermo).is_ok() {
+                    if vars.define(&cmd).is_ok() {
                         if let Some(name) = cmd.args.first() {
                             let _ = vars.value(name, &thermo);
                             // atom-style: once per particle, names resolved per particle

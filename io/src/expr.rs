@@ -548,7 +548,7 @@ mod tests {
                     line: 1,
                 },
             };
-            vars.define(&cmd, &|_| None).unwrap();
+            vars.define(&cmd).unwrap();
         };
         define(&mut vars, "a", "v_b+1");
         define(&mut vars, "b", "v_a+1");
@@ -580,7 +580,7 @@ mod tests {
         let mut printed = None;
         while let Some(cmd) = reader.next_command(&vars, &none).unwrap() {
             if cmd.name == "variable" {
-                vars.define(&cmd, &|_| None).unwrap();
+                vars.define(&cmd).unwrap();
             } else {
                 printed = Some(cmd.args);
             }

@@ -211,7 +211,7 @@ mod tests {
         let mut out = Vec::new();
         while let Some(cmd) = reader.next_command(vars, &thermo)? {
             match cmd.name.as_str() {
-                "variable" => vars.define(&cmd, &|_| None)?,
+                "variable" => vars.define(&cmd)?,
                 "next" => {
                     vars.next(&cmd.args)?;
                 }
@@ -492,7 +492,7 @@ mod tests {
                 match reader.next_command(&vars, &none) {
                     Ok(None) => break,
                     Ok(Some(cmd)) if cmd.name == "variable" => {
-                        let _ = vars.define(&cmd, &|_| None);
+                        let _ = vars.define(&cmd);
                         let _ = vars.value("v", &none);
                     }
                     Err(e) => {

@@ -47,10 +47,9 @@ impl Variables {
 
     /// Applies a `variable NAME STYLE args...` command. Existing `index` and
     /// `loop` variables are left unchanged (so command-line values win);
-    /// `equal` and `string` variables are redefined. A `string` value is substituted
-    /// now (`resolve` for thermo keywords), its quotes having kept it from the line's
-    /// substitution, as LAMMPS's variable.cpp does.
-    pub fn define(&mut self, cmd: &Command, resolve: &dyn Fn(&str) -> Option<f64>) -> Result<(), ScriptError> {
+    /// `equal` and `string` variables are redefined. (A `string` value arrives
+    /// substituted: the interpreter substitutes it, as LAMMPS's variable.cpp does.)
+    pub fn define(&mut self, cmd: &Command) -> Result<(), ScriptError> {
         let err = |msg: String| ScriptError::at(cmd, msg);
         let [name, style, rest @ ..] = cmd.args.as_slice() else {
             return Err(err("expected a name and a style".into()));
@@ -86,7 +85,7 @@ impl Variables {
                     }
                     _ if style == "equal" => Var::Equal(value.clone()),
                     _ if style == "atom" => Var::Atom(value.clone()),
-                    _ => Var::Str(crate::script::substitute(value, self, resolve).map_err(err)?),
+                    _ => Var::Str(value.clone()),
                 }
             }
             "delete" | "index" => {
@@ -284,9 +283,9 @@ mod tests {
     #[test]
     fn atom_variables_evaluate_per_particle() {
         let mut vars = Variables::new();
-        vars.define(&cmd("variable k equal 3"), &none).unwrap();
-        vars.define(&cmd("variable a atom x*v_k+type"), &none).unwrap();
-        vars.define(&cmd("variable b atom v_a^2"), &none).unwrap();
+        vars.define(&cmd("variable k equal 3")).unwrap();
+        vars.define(&cmd("variable a atom x*v_k+type")).unwrap();
+        vars.define(&cmd("variable b atom v_a^2")).unwrap();
         for (x, t) in [(1.0, 2.0), (-0.5, 1.0)] {
             let particle = |n: &str| match n {
                 "x" => Some(x),
@@ -298,15 +297,15 @@ mod tests {
         }
         assert_eq!(vars.style("a"), Some("atom"));
         assert!(vars.value("a", &none).unwrap_err().contains("atom-style"));
-        vars.define(&cmd("variable e equal v_a+1"), &none).unwrap();
+        vars.define(&cmd("variable e equal v_a+1")).unwrap();
         assert!(vars.value("e", &none).unwrap_err().contains("atom-style"));
-        assert!(vars.define(&cmd("variable k atom x"), &none).is_err(), "equal redefined as atom");
+        assert!(vars.define(&cmd("variable k atom x")).is_err(), "equal redefined as atom");
     }
 
     #[test]
     fn index_values_advance_and_exhaust() {
         let mut vars = Variables::new();
-        vars.define(&cmd("variable T index 300 400"), &none).unwrap();
+        vars.define(&cmd("variable T index 300 400")).unwrap();
         assert_eq!(val(&vars, "T"), "300");
         assert!(!vars.next(&["T".into()]).unwrap());
         assert_eq!(val(&vars, "T"), "400");
@@ -318,15 +317,15 @@ mod tests {
     fn command_line_index_takes_precedence() {
         let mut vars = Variables::new();
         vars.set_command_line("T", vec!["1.5".into()]);
-        vars.define(&cmd("variable T index 300"), &none).unwrap();
-        vars.define(&cmd("variable T loop 5"), &none).unwrap();
+        vars.define(&cmd("variable T index 300")).unwrap();
+        vars.define(&cmd("variable T loop 5")).unwrap();
         assert_eq!(val(&vars, "T"), "1.5");
     }
 
     #[test]
     fn loop_counts_then_exhausts() {
         let mut vars = Variables::new();
-        vars.define(&cmd("variable i loop 2 4"), &none).unwrap();
+        vars.define(&cmd("variable i loop 2 4")).unwrap();
         let mut seen = vec![val(&vars, "i")];
         while !vars.next(&["i".into()]).unwrap() {
             seen.push(val(&vars, "i"));
@@ -339,10 +338,10 @@ mod tests {
     #[test]
     fn loop_pad_and_bad_ranges() {
         let mut vars = Variables::new();
-        vars.define(&cmd("variable n loop 100 pad"), &none).unwrap();
+        vars.define(&cmd("variable n loop 100 pad")).unwrap();
         assert_eq!(val(&vars, "n"), "001");
         let max = i64::MAX;
-        vars.define(&cmd(&format!("variable big loop {max} {max}")), &none)
+        vars.define(&cmd(&format!("variable big loop {max} {max}")))
             .unwrap();
         assert!(vars.next(&["big".into()]).unwrap());
         for bad in [
@@ -351,29 +350,29 @@ mod tests {
             "variable a loop x",
             "variable a loop",
         ] {
-            assert!(vars.define(&cmd(bad), &none).is_err(), "{bad}");
+            assert!(vars.define(&cmd(bad)).is_err(), "{bad}");
         }
     }
 
     #[test]
     fn equal_and_string_are_redefined() {
         let mut vars = Variables::new();
-        vars.define(&cmd("variable x equal 1+2"), &none).unwrap();
-        vars.define(&cmd("variable x equal 3/2"), &none).unwrap();
+        vars.define(&cmd("variable x equal 1+2")).unwrap();
+        vars.define(&cmd("variable x equal 3/2")).unwrap();
         assert_eq!(val(&vars, "x"), "1.5");
-        vars.define(&cmd("variable s string abc"), &none).unwrap();
-        vars.define(&cmd("variable s string def"), &none).unwrap();
+        vars.define(&cmd("variable s string abc")).unwrap();
+        vars.define(&cmd("variable s string def")).unwrap();
         assert_eq!(val(&vars, "s"), "def");
-        let err = vars.define(&cmd("variable s equal 1"), &none).unwrap_err();
+        let err = vars.define(&cmd("variable s equal 1")).unwrap_err();
         assert!(err.message.contains("cannot redefine"), "{err}");
     }
 
     #[test]
     fn equal_formats_like_lammps() {
         let mut vars = Variables::new();
-        vars.define(&cmd("variable a equal 1e-20"), &none).unwrap();
-        vars.define(&cmd("variable b equal 6/2"), &none).unwrap();
-        vars.define(&cmd("variable c equal v_b*step"), &none).unwrap();
+        vars.define(&cmd("variable a equal 1e-20")).unwrap();
+        vars.define(&cmd("variable b equal 6/2")).unwrap();
+        vars.define(&cmd("variable c equal v_b*step")).unwrap();
         assert_eq!(val(&vars, "a"), "1e-20");
         assert_eq!(val(&vars, "b"), "3");
         let step = |k: &str| (k == "step").then_some(1000.0);
@@ -383,8 +382,8 @@ mod tests {
     #[test]
     fn delete_and_errors() {
         let mut vars = Variables::new();
-        vars.define(&cmd("variable s string abc"), &none).unwrap();
-        vars.define(&cmd("variable s delete"), &none).unwrap();
+        vars.define(&cmd("variable s string abc")).unwrap();
+        vars.define(&cmd("variable s delete")).unwrap();
         assert!(!vars.contains("s"));
         assert_eq!(vars.value("s", &none).unwrap_err(), "unknown variable 's'");
         for bad in [
@@ -395,13 +394,13 @@ mod tests {
             "variable x world a b",
             "variable x-y string a",
         ] {
-            let err = vars.define(&cmd(bad), &none).unwrap_err();
+            let err = vars.define(&cmd(bad)).unwrap_err();
             assert!(
                 err.to_string().starts_with("test.in:1: variable: "),
                 "{err}"
             );
         }
-        vars.define(&cmd("variable e equal 1"), &none).unwrap();
+        vars.define(&cmd("variable e equal 1")).unwrap();
         let err = vars.next(&["e".into()]).unwrap_err();
         assert_eq!(
             err.to_string(),
@@ -413,8 +412,8 @@ mod tests {
     #[test]
     fn non_numeric_variable_in_expression() {
         let mut vars = Variables::new();
-        vars.define(&cmd("variable s string abc"), &none).unwrap();
-        vars.define(&cmd("variable x equal v_s+1"), &none).unwrap();
+        vars.define(&cmd("variable s string abc")).unwrap();
+        vars.define(&cmd("variable x equal v_s+1")).unwrap();
         let err = vars.value("x", &none).unwrap_err();
         assert!(err.contains("'s' is not numeric"), "{err}");
     }

@@ -200,9 +200,16 @@ impl Interpreter {
             "log" => output::log(&mut self.out, self.mode, a)?,
             "echo" => self.echo_screen = output::echo(a)?,
             "variable" => {
-                let (sim, thermo) = (&*sim, &outputs.thermo);
-                let vars = self.vars.clone();
-                self.vars.define(cmd, &|name| resolve(sim, thermo, &vars, name))?
+                // a string value is substituted as it is defined, its quotes having kept
+                // it from the line's substitution (LAMMPS's variable.cpp)
+                let mut cmd = cmd.clone();
+                if let [_, style, value] = cmd.args.as_mut_slice() {
+                    if style == "string" {
+                        let (sim, thermo, vars) = (&*sim, &outputs.thermo, &self.vars);
+                        *value = gendpde_io::substitute(value, vars, &|name| resolve(sim, thermo, vars, name)).map_err(|e| a.err(e))?;
+                    }
+                }
+                self.vars.define(&cmd)?
             }
             "run" => self.run(a)?,
             "if" => self.if_then(a)?,
