@@ -20,8 +20,8 @@ COLLECTIVES = 3      # per step (neighbour-list check, thermo sums, signal/blow-
 # scene: density, cutoff + skin, single-core atom-steps/s (quiet machine), messages per
 # step per rank on a 3D grid, bytes per ghost per step, share of the step in pair passes
 SCENES = {
-    "GenDPDE vdW (rho 0.5, rc 4, skin 0.4)": dict(rho=0.5, cut=4.4, rate=2.1e5, messages=127.5, per_ghost=447.0, pass_share=0.3),
-    "classic DPDE (rho 3, rc 1, skin 0.3)": dict(rho=3.0, cut=1.3, rate=2.1e6, messages=121.2, per_ghost=283.0, pass_share=0.3),
+    "GenDPDE vdW (rho 0.5, rc 4, skin 0.4)": dict(rho=0.5, cut=4.4, rate=2.1e5, messages=127.5, per_ghost=418.0, pass_share=0.3),
+    "classic DPDE (rho 3, rc 1, skin 0.3)": dict(rho=3.0, cut=1.3, rate=1.9e6, messages=103.2, per_ghost=230.0, pass_share=0.3),
 }
 
 
