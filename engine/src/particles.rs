@@ -189,7 +189,7 @@ macro_rules! particle_fields {
             /// Appends the fields of `stages` of particle `i` (unallocated fields of the
             /// stage: skipped when `dense`, defaults otherwise).
             pub fn pack(&self, i: usize, stages: u32, dense: bool, buf: &mut Vec<f64>) {
-                $( if $stages & stages != 0 {
+                $( if shares($stages, stages) {
                     match self.$name.get(i) {
                         Some(&v) => v.pack(buf),
                         None if !dense => <$ty>::default().pack(buf),
@@ -201,7 +201,7 @@ macro_rules! particle_fields {
             /// Reads a `pack` record into particle `i`; returns the values read.
             pub fn unpack(&mut self, i: usize, stages: u32, dense: bool, rec: &[f64]) -> usize {
                 let mut k = 0;
-                $( if $stages & stages != 0 {
+                $( if shares($stages, stages) {
                     let allocated = !self.$name.is_empty();
                     if allocated || !dense {
                         if allocated {
@@ -319,6 +319,12 @@ particle_fields! {
     du_cond: f64, "duCond", gate Fields::DU, comm NONE, stages RESTART | RESUME;
     /// duMech/dt of velocity-Verlet DPDE from the last force pass (LAMMPS's duMech).
     du_mech: f64, "duMech", gate Fields::DU, comm NONE, stages RESTART | RESUME;
+}
+
+/// Whether a field of stages `field` (0 for none) belongs to any of `stages`.
+#[inline(always)]
+const fn shares(field: u32, stages: u32) -> bool {
+    field & stages != 0
 }
 
 fn permute<T: Copy>(v: &mut Vec<T>, order: &[u32]) {

@@ -8,6 +8,7 @@
 //! s_i has to travel with a particle that changes rank in the list rebuild between the
 //! drift and the density pass. The theta field carries it there ([`hold`]): theta is a
 //! function of (u, n) that [`release`] sets again, before anything reads it.
+#![allow(clippy::approx_constant)] // 1.4142 is the vdW b of the 2019 paper, not sqrt 2
 
 use crate::error::{lowest, StepError};
 use crate::many_body::density_of;

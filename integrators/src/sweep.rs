@@ -390,6 +390,7 @@ fn refresh_pair<A: AtDensity, H: HeatFlow, N: Noise>(at: [&A; 2], k: [usize; 2],
 
 /// Particle `k`'s new state from the (theta, 1/tau) found, or why it has none.
 #[inline(always)]
+#[allow(clippy::eq_op)] // theta - theta on purpose (below)
 fn end(k: usize, p: Vec3, u: f64, (theta, inv_tau): (f64, f64)) -> Result<End, Failed> {
     // theta > 0 and finite (theta - theta is 0 only when finite): three floating-point
     // instructions, where `is_finite` compiles to integer bit tests

@@ -10,6 +10,7 @@
 //! Density cap: 1 - b n must stay positive. Above n_s = cap/b (cap < 1) ln psi is
 //! continued by its second-order Taylor polynomial at n_s, so the model stays smooth
 //! (C^2), finite and strongly repulsive at any density; below n_s it is exact.
+#![allow(clippy::approx_constant)] // 1.4142 is the vdW b of the 2019 paper, not sqrt 2
 
 use super::{AffineAt, Eos, FixedDensity};
 
