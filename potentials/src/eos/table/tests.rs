@@ -1,6 +1,6 @@
 //! Tests of `table`.
 
-use super::super::{LennardJones, LinearTheta};
+use super::super::{AtDensity, AtN, FixedDensity, LennardJones, LinearTheta};
 use super::*;
 
 fn rel(a: f64, b: f64) -> f64 {
