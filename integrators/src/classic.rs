@@ -156,6 +156,13 @@ pub struct ShardlowCoeff {
     pub sigma: f64,
     pub kappa: f64,
     pub rc: f64,
+    inv_rc: f64,
+}
+
+impl ShardlowCoeff {
+    pub fn new(sigma: f64, kappa: f64, rc: f64) -> Self {
+        Self { sigma, kappa, rc, inv_rc: 1.0 / rc }
+    }
 }
 
 /// `fix shardlow` with `pair dpd/fdt` (fixed T) or `dpd/fdt/energy` (per-particle theta).
@@ -430,6 +437,9 @@ impl ClassicDpd {
         let (step, normals, reach) = (sys.noise_step(sys.step), Normals::get(), p.cutoff());
         let fields = Fields::MOMENTUM | Fields::ENERGY | Fields::U_COND;
         let defer = self.read_by_forces().is_empty();
+        let inv_m = &mut sys.inv_mass;
+        inv_m.clear();
+        inv_m.extend(sys.store.mass.iter().map(|m| 1.0 / m));
         for colour in 0..sys.sweep.colours() {
             let pairs = sys.sweep.within(colour, &sys.store, reach);
             let s = &mut sys.store;
@@ -443,7 +453,7 @@ impl ClassicDpd {
                 }
                 let r = r2.sqrt();
                 let inv_r = 1.0 / r;
-                let w = 1.0 - r * (1.0 / c.rc);
+                let w = 1.0 - r * c.inv_rc;
                 let (theta_ij, inv_i, inv_j) = match p.temperature {
                     Some(t) => (t, 0.0, 0.0),
                     None => (2.0 / (s.inv_tau[i] + s.inv_tau[j]), s.inv_tau[i], s.inv_tau[j]),
@@ -461,7 +471,7 @@ impl ClassicDpd {
                     xibar,
                 };
                 let (mut p_i, mut p_j, mut u_i, mut u_j) = (s.p[i], s.p[j], s.u[i], s.u[j]);
-                let state = PairState { p_i: &mut p_i, p_j: &mut p_j, u_i: &mut u_i, u_j: &mut u_j, inv_m_i: 1.0 / s.mass[i], inv_m_j: 1.0 / s.mass[j] };
+                let state = PairState { p_i: &mut p_i, p_j: &mut p_j, u_i: &mut u_i, u_j: &mut u_j, inv_m_i: inv_m[i], inv_m_j: inv_m[j] };
                 let moved = pair_update::<Original, Arithmetic>(state, &drive, kb, dt, sqrt_dt);
                 (s.p[i], s.p[j], s.u[i], s.u[j]) = (p_i, p_j, u_i, u_j);
                 if !s.u_cond.is_empty() {

@@ -219,7 +219,7 @@ fn pairwise(cmd: &Command, p: &Pairwise, fixes: &[Fix], settings: Settings, kb: 
     let conservative = || table(cmd, ntypes, c.iter().map(|c| DpdCoeff::new(c.a, c.rc, 0.0, 0.0)).collect());
     let sweep_of = |temperature: Option<f64>| {
         let kappa = |k: f64| if temperature.is_some() { 0.0 } else { k };
-        table(cmd, ntypes, c.iter().map(|c| ShardlowCoeff { sigma: c.sigma, kappa: kappa(c.kappa), rc: c.rc }).collect()).map(|coeff| ShardlowDpd { coeff, temperature })
+        table(cmd, ntypes, c.iter().map(|c| ShardlowCoeff::new(c.sigma, kappa(c.kappa), c.rc)).collect()).map(|coeff| ShardlowDpd { coeff, temperature })
     };
     // dpd/ext and the thermostats (a0 = 0, gamma_perp = 0 and s = 1 for dpd/tstat)
     let ext = |start: f64, stop: f64| {
