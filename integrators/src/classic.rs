@@ -36,7 +36,7 @@
 use crate::barostat::{Nph, NphState};
 use crate::error::{lowest, StepError};
 use crate::heat::{Original, Temps};
-use crate::noise::Arithmetic;
+use crate::noise::Harmonic;
 use crate::pair_update::{pair_update, PairDrive, PairState};
 use crate::physics::{Physics, SetupError};
 use crate::rng::{stream, Normals};
@@ -437,6 +437,7 @@ impl ClassicDpd {
         let (step, normals, reach) = (sys.noise_step(sys.step), Normals::get(), p.cutoff());
         let fields = Fields::MOMENTUM | Fields::ENERGY | Fields::U_COND;
         let defer = self.read_by_forces().is_empty();
+        let inv_2kb = 1.0 / (2.0 * kb);
         let inv_m = &mut sys.inv_mass;
         inv_m.clear();
         inv_m.extend(sys.store.mass.iter().map(|m| 1.0 / m));
@@ -454,25 +455,25 @@ impl ClassicDpd {
                 let r = r2.sqrt();
                 let inv_r = 1.0 / r;
                 let w = 1.0 - r * c.inv_rc;
-                let (theta_ij, inv_i, inv_j) = match p.temperature {
-                    Some(t) => (t, 0.0, 0.0),
-                    None => (2.0 / (s.inv_tau[i] + s.inv_tau[j]), s.inv_tau[i], s.inv_tau[j]),
+                let (inv_i, inv_j) = match p.temperature {
+                    Some(t) => (1.0 / t, 1.0 / t),
+                    None => (s.inv_tau[i], s.inv_tau[j]),
                 };
                 let (xi, xibar) = normals.pair(self.seed, step, s.tag[i], s.tag[j], stream::PAIR);
                 // friction from sigma and theta_ij; heat on 1/theta (the Original law reads
                 // `inv_tau`, here set to 1/theta as LAMMPS's dpd/fdt/energy does)
                 let drive = PairDrive {
                     e: [dr[0] * inv_r, dr[1] * inv_r, dr[2] * inv_r],
-                    gamma: c.sigma * c.sigma * w * w / (2.0 * kb * theta_ij),
+                    gamma: c.sigma * c.sigma * w * w * inv_2kb,
                     kappa: if p.temperature.is_none() { c.kappa * w * w } else { 0.0 },
-                    ti: Temps { theta: theta_ij, inv_tau: inv_i },
-                    tj: Temps { theta: theta_ij, inv_tau: inv_j },
+                    ti: Temps { theta: 0.0, inv_tau: inv_i },
+                    tj: Temps { theta: 0.0, inv_tau: inv_j },
                     xi,
                     xibar,
                 };
                 let (mut p_i, mut p_j, mut u_i, mut u_j) = (s.p[i], s.p[j], s.u[i], s.u[j]);
                 let state = PairState { p_i: &mut p_i, p_j: &mut p_j, u_i: &mut u_i, u_j: &mut u_j, inv_m_i: inv_m[i], inv_m_j: inv_m[j] };
-                let moved = pair_update::<Original, Arithmetic>(state, &drive, kb, dt, sqrt_dt);
+                let moved = pair_update::<Original, Harmonic>(state, &drive, kb, dt, sqrt_dt);
                 (s.p[i], s.p[j], s.u[i], s.u[j]) = (p_i, p_j, u_i, u_j);
                 if !s.u_cond.is_empty() {
                     s.u_cond[i] += moved.heat;
