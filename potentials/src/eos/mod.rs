@@ -74,6 +74,11 @@ impl std::error::Error for EosError {}
 pub trait Eos: Send + Sync {
     /// Boltzmann's constant in the units of the script.
     fn kb(&self) -> f64;
+    /// 1/k_B (a multiplication where k_B would divide; exact for k_B = 1).
+    #[inline(always)]
+    fn inv_kb(&self) -> f64 {
+        1.0 / self.kb()
+    }
     /// Whether pi depends on n; a pairwise scene skips the density pass when false.
     fn density_dependent(&self) -> bool;
     /// theta(u, n); `guess` seeds iterative models (the last theta of the particle).
@@ -122,10 +127,11 @@ pub trait Eos: Send + Sync {
         None
     }
 
-    /// 1/tau = (1 - k_B/C_V)/theta, the inverse dressed temperature (eqs 19, 23).
+    /// 1/tau = (1 - k_B/C_V)/theta, the inverse dressed temperature (eqs 19, 23), as
+    /// (C_V - k_B)/(C_V theta): one division (the sweep refreshes it after every pair).
     #[inline]
     fn inv_tau(&self, theta: f64, cv: f64) -> f64 {
-        (1.0 - self.kb() / cv) / theta
+        (cv - self.kb()) / (cv * theta)
     }
 }
 
@@ -205,7 +211,7 @@ impl<E: Eos> AtDensity for AtN<'_, E> {
     }
     #[inline(always)]
     fn guess_after(&self, theta: f64, inv_tau: f64, du: f64) -> f64 {
-        theta + du * (1.0 - theta * inv_tau) / self.eos.kb()
+        theta + du * (1.0 - theta * inv_tau) * self.eos.inv_kb()
     }
 }
 
