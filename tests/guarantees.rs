@@ -516,3 +516,59 @@ fn runs_continued_with_pre_no_end_as_one_run() {
         assert_eq!(set_up == straight, setup_repeats_forces, "{name}: a set-up between the runs");
     }
 }
+
+/// A step after which nothing is written skips the per-particle pair energies and
+/// virials (LAMMPS's eflag/vflag): what a run prints does not depend on how often it
+/// prints. Thermo every 3 steps (and a per-particle dump every 4) gives, at its steps,
+/// the rows of thermo every step, on 1 and 2 ranks, for the classic styles whose force
+/// pass skips them (shardlow DPDE, dpd with noise, mdpd, multi/lucy, dpd/ext, the
+/// velocity-Verlet DPDE) and the pair-table overlay that adds to them.
+#[test]
+fn what_a_run_prints_does_not_depend_on_how_often_it_prints() {
+    let dir = tempdir("print-interval");
+    let lammps = Path::new(env!("CARGO_MANIFEST_DIR")).join("scripts/lammps");
+    for (script, vars) in [
+        ("in.dpde-shardlow", vec![("equil", "0")]),
+        ("in.dpd-isothermal", vec![]),
+        ("in.mdpd-liquid", vec![("equil", "0")]),
+        ("in.multi-lucy-parity", vec![("tstyle", "lookup")]),
+        ("in.dpd-ext", vec![("T", "1.0")]),
+        ("in.dpde-vv-lj", vec![("equil", "0")]),
+        ("in.table-water", vec![("gamma", "10.0")]),
+    ] {
+        for entry in std::fs::read_dir(&lammps).unwrap() {
+            let p = entry.unwrap().path();
+            if p.is_file() {
+                std::fs::copy(&p, dir.join(p.file_name().unwrap())).unwrap();
+            }
+        }
+        let mut args: Vec<String> = vec!["run".into(), "in.every".into(), "-log".into(), "none".into()];
+        for (k, v) in &vars {
+            args.extend(["-var".into(), k.to_string(), v.to_string()]);
+        }
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        // the script's set-up without its runs, then 12 steps printed every `every`
+        let base: String = std::fs::read_to_string(dir.join(script)).unwrap().lines().filter(|l| !l.trim_start().starts_with("run")).map(|l| format!("{l}\n")).collect();
+        let rows = |every: u64, np: usize| {
+            let text = format!(
+                "{base}\nthermo {every}\nthermo_modify format float %.17g\ncompute peatom all pe/atom\n\
+                 dump d all custom 4 every{every}.dump id c_peatom\nrun 12\n"
+            );
+            std::fs::write(dir.join("in.every"), &text).unwrap();
+            let out = mpirun(np, &dir, &args);
+            assert!(out.status.success(), "{script} on {np} ranks:\n{}", String::from_utf8_lossy(&out.stderr));
+            let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
+            let last = stdout.rsplit("Setting up").next().unwrap_or_default().to_string();
+            (thermo_rows(last.as_bytes()), std::fs::read_to_string(dir.join(format!("every{every}.dump"))).unwrap())
+        };
+        let (all, dump1) = rows(1, 1);
+        for np in [1, 2] {
+            let (sparse, dump3) = rows(3, np);
+            let at = |r: &String| r.split_whitespace().next().unwrap().parse::<u64>().unwrap();
+            let first = at(&all[0]);
+            let expected: Vec<&String> = all.iter().filter(|r| at(r) % 3 == 0 || at(r) == first || at(r) == first + 12).collect();
+            assert_eq!(sparse.iter().collect::<Vec<_>>(), expected, "{script}: thermo every 3 on {np} ranks against every step on 1");
+            assert!(dump3 == dump1, "{script}: the per-particle energies dumped every 4 steps differ when thermo prints every 3 ({np} ranks)");
+        }
+    }
+}

@@ -295,6 +295,9 @@ impl ClassicDpd {
 
     /// Pair forces at the current positions and velocities; the noise of step `step`.
     fn forces(&self, sys: &mut System, step: u64) {
+        // fix nph reads the virial every step
+        let energies = sys.tally || self.barostat.is_some();
+        sys.tallied = energies;
         let inv_sqrt_dt = 1.0 / self.settings.dt.sqrt();
         let key = sys.noise_step(step);
         let (seed, pairs, s) = (self.seed, &sys.nlist.pairs, &mut sys.store);
@@ -306,19 +309,19 @@ impl ClassicDpd {
             // (the pairs left out would add exact zeros)
             PairForce::Dpd(t) if t.iter().all(|c| c.gamma == 0.0 && c.sigma == 0.0) => {
                 within(s, pairs, t.max_of(|c| c.rc), &mut sys.active);
-                tally::<true, false, false>(s, sys.active.iter(), |_, _| f64::INFINITY, |s, i, j, _, r| {
+                tally::<true, false, false>(s, energies, sys.active.iter(), |_, _| f64::INFINITY, |s, i, j, _, r| {
                     let DpdCoeff { a0, rc, inv_rc, .. } = *t.get(s.kind[i], s.kind[j]);
                     let w = (1.0 - r * inv_rc).max(0.0);
                     Terms::conservative(a0 * w, 0.25 * a0 * rc * w * w)
                 })
             }
-            PairForce::Dpd(t) => tally::<false, false, false>(s, pairs, |s, k| t.get(s.kind[k[0]], s.kind[k[1]]).rc, |s, i, j, d, r| {
+            PairForce::Dpd(t) => tally::<false, false, false>(s, energies, pairs, |s, k| t.get(s.kind[k[0]], s.kind[k[1]]).rc, |s, i, j, d, r| {
                 let DpdCoeff { a0, rc, gamma, sigma, inv_rc } = *t.get(s.kind[i], s.kind[j]);
                 let w = 1.0 - r * inv_rc;
                 let fp = a0 * w - gamma * w * w * dot(d, sub(velocity(s, i), velocity(s, j))) / r + sigma * w * noise(s, i, j).0 * inv_sqrt_dt;
                 Terms::conservative(fp, 0.25 * a0 * rc * w * w)
             }),
-            PairForce::Mdpd(t) => tally::<false, false, false>(s, pairs, |s, k| t.get(s.kind[k[0]], s.kind[k[1]]).rc, |s, i, j, d, r| {
+            PairForce::Mdpd(t) => tally::<false, false, false>(s, energies, pairs, |s, k| t.get(s.kind[k[0]], s.kind[k[1]]).rc, |s, i, j, d, r| {
                 let MdpdCoeff { a, b, rc, rd, gamma, sigma, .. } = *t.get(s.kind[i], s.kind[j]);
                 let wc = 1.0 - r * (1.0 / rc);
                 let wd = (1.0 - r / rd).max(0.0);
@@ -359,9 +362,9 @@ impl ClassicDpd {
                 let rc = |s: &Particles, k: [usize; 2]| e.coeff.get(s.kind[k[0]], s.kind[k[1]]).rc;
                 // dpd/tstat (no perpendicular terms) draws one pair of normals and skips them
                 if e.coeff.iter().all(|c| c.gamma_perp == 0.0) {
-                    tally::<false, false, false>(s, pairs, rc, |s, i, j, d, r| ext_pair(s, i, j, d, r, false))
+                    tally::<false, false, false>(s, energies, pairs, rc, |s, i, j, d, r| ext_pair(s, i, j, d, r, false))
                 } else {
-                    tally::<false, false, true>(s, pairs, rc, |s, i, j, d, r| ext_pair(s, i, j, d, r, true))
+                    tally::<false, false, true>(s, energies, pairs, rc, |s, i, j, d, r| ext_pair(s, i, j, d, r, true))
                 }
             }
             PairForce::MultiLucy(t) => {
@@ -373,17 +376,17 @@ impl ClassicDpd {
                     a.extend(t.tables.iter().map(|table| table.eval(rho * rho).map_or(f64::NAN, |v| v.0)));
                 }
                 let a = &*a;
-                tally::<false, false, false>(s, pairs, |s, k| t.of(s.kind[k[0]], s.kind[k[1]]).map_or(0.0, |t| t.cut), |s, i, j, _, r| {
+                tally::<false, false, false>(s, energies, pairs, |s, k| t.of(s.kind[k[0]], s.kind[k[1]]).map_or(0.0, |t| t.cut), |s, i, j, _, r| {
                     let Some(m) = t.slot(s.kind[i], s.kind[j]) else { return Terms::conservative(0.0, 0.0) };
                     let x = r / t.tables[m].cut;
                     let w = 1.0 - x;
                     Terms::conservative(0.5 * (a[i * nt + m] + a[j * nt + m]) * (1.0 + 3.0 * x) * w * w * w, 0.0)
                 })
             }
-            PairForce::Off => tally::<false, false, false>(s, &[], |_, _| 0.0, |_, _, _, _, _| Terms::conservative(0.0, 0.0)),
+            PairForce::Off => tally::<false, false, false>(s, energies, &[], |_, _| 0.0, |_, _, _, _, _| Terms::conservative(0.0, 0.0)),
             PairForce::DpdEnergy(t) => {
                 let kb = self.kb;
-                tally::<false, true, false>(s, pairs, |s, k| t.get(s.kind[k[0]], s.kind[k[1]]).rc, |s, i, j, d, r| {
+                tally::<false, true, false>(s, energies, pairs, |s, k| t.get(s.kind[k[0]], s.kind[k[1]]).rc, |s, i, j, d, r| {
                     let DpdEnergyCoeff { a0, rc, sigma, kappa } = *t.get(s.kind[i], s.kind[j]);
                     let w = 1.0 - r * (1.0 / rc);
                     let wd = w * w;
@@ -730,12 +733,29 @@ impl Terms {
 }
 
 /// Sums pair forces, energies and virials (and with `DU` the energy rates) over the half
-/// list into the owned particles (see [`gendpde_engine::NeighborList::pairs`]).
-/// `pair(s, i, j, r_ij, r)` gives the [`Terms`] of a pair closer than its cutoff
+/// list into the owned particles (see [`gendpde_engine::NeighborList::pairs`]); with
+/// `energies` false the energies and virials are left at zero (a step nothing reads them
+/// after). `pair(s, i, j, r_ij, r)` gives the [`Terms`] of a pair closer than its cutoff
 /// `rc(s, [i, j])`; with `CLAMPED` it is called for every pair of `pairs` and must give
 /// zeros beyond the cutoff; with `PERP` its force across the axis is added.
 #[inline(always)]
 fn tally<'a, const CLAMPED: bool, const DU: bool, const PERP: bool>(
+    s: &mut Particles,
+    energies: bool,
+    pairs: impl IntoIterator<Item = &'a [u32; 2]>,
+    rc: impl Fn(&Particles, [usize; 2]) -> f64,
+    pair: impl Fn(&Particles, usize, usize, Vec3, f64) -> Terms,
+) {
+    if energies {
+        tally_with::<CLAMPED, DU, PERP, true>(s, pairs, rc, pair)
+    } else {
+        tally_with::<CLAMPED, DU, PERP, false>(s, pairs, rc, pair)
+    }
+}
+
+/// [`tally`] with the energies and virials summed or not (`ENERGIES`).
+#[inline(always)]
+fn tally_with<'a, const CLAMPED: bool, const DU: bool, const PERP: bool, const ENERGIES: bool>(
     s: &mut Particles,
     pairs: impl IntoIterator<Item = &'a [u32; 2]>,
     rc: impl Fn(&Particles, [usize; 2]) -> f64,
@@ -773,20 +793,26 @@ fn tally<'a, const CLAMPED: bool, const DU: bool, const PERP: bool>(
         let w = [0.5 * df[0] * d[0], 0.5 * df[1] * d[1], 0.5 * df[2] * d[2]];
         // + df into i, - df into j (the same bits as adding -1 df)
         if i < n {
-            let (fi, vi) = (&mut f[i], &mut virial[i]);
+            let fi = &mut f[i];
             (fi[0], fi[1], fi[2]) = (fi[0] + df[0], fi[1] + df[1], fi[2] + df[2]);
-            (vi[0], vi[1], vi[2]) = (vi[0] + w[0], vi[1] + w[1], vi[2] + w[2]);
-            epair[i] += t.energy;
+            if ENERGIES {
+                let vi = &mut virial[i];
+                (vi[0], vi[1], vi[2]) = (vi[0] + w[0], vi[1] + w[1], vi[2] + w[2]);
+                epair[i] += t.energy;
+            }
             if DU {
                 du_mech[i] += t.du_mech;
                 du_cond[i] += t.du_cond;
             }
         }
         if j < n {
-            let (fj, vj) = (&mut f[j], &mut virial[j]);
+            let fj = &mut f[j];
             (fj[0], fj[1], fj[2]) = (fj[0] - df[0], fj[1] - df[1], fj[2] - df[2]);
-            (vj[0], vj[1], vj[2]) = (vj[0] + w[0], vj[1] + w[1], vj[2] + w[2]);
-            epair[j] += t.energy;
+            if ENERGIES {
+                let vj = &mut virial[j];
+                (vj[0], vj[1], vj[2]) = (vj[0] + w[0], vj[1] + w[1], vj[2] + w[2]);
+                epair[j] += t.energy;
+            }
             if DU {
                 du_mech[j] += t.du_mech;
                 du_cond[j] -= t.du_cond;

@@ -71,6 +71,13 @@ pub struct System {
     /// Smallest cell side the grid must have beyond the styles' own reach (outputs that
     /// search pairs farther out, e.g. `compute rdf ... cutoff`).
     pub min_cell: f64,
+    /// Whether the force passes of the coming step must sum the per-particle pair
+    /// energies and virials (a step after which nothing is written skips them, as
+    /// LAMMPS's eflag/vflag; the run sets it before each step).
+    pub tally: bool,
+    /// Whether the stored per-particle energies and virials belong to the current state
+    /// (false after a step that skipped them).
+    pub tallied: bool,
     /// The number of a signal this rank received (set by the program's handler; 0: none).
     pub interrupt: Arc<AtomicUsize>,
     /// The largest `interrupt` of all ranks at the last `settle` (0: none): the ranks
@@ -118,6 +125,8 @@ impl System {
             min_cell: 0.0,
             interrupt: Arc::default(),
             interrupted: Cell::new(0),
+            tally: true,
+            tallied: true,
         }
     }
 
@@ -238,6 +247,7 @@ pub struct Snapshot {
     step: u64,
     time: f64,
     last_build: u64,
+    tallied: bool,
     /// The box and the barostat (which `fix nph` changes every step).
     domain: Option<Domain>,
     barostat: Option<NphState>,
@@ -250,7 +260,7 @@ impl System {
         for i in 0..self.store.nlocal {
             self.store.pack_owned(i, &mut snap.records);
         }
-        (snap.step, snap.time, snap.last_build) = (self.step, self.time, self.last_build);
+        (snap.step, snap.time, snap.last_build, snap.tallied) = (self.step, self.time, self.last_build, self.tallied);
         snap.domain = Some(self.domain.clone());
         snap.barostat.clone_from(&self.barostat);
     }
@@ -267,7 +277,7 @@ impl System {
         for rec in snap.records.chunks_exact(width) {
             s.unpack_owned(rec);
         }
-        (self.step, self.time, self.last_build) = (snap.step, snap.time, snap.last_build);
+        (self.step, self.time, self.last_build, self.tallied) = (snap.step, snap.time, snap.last_build, snap.tallied);
         if let Some(d) = &snap.domain {
             self.domain = d.clone();
         }

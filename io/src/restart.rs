@@ -23,6 +23,7 @@
 //! | `ntypes`          | u64                       | number of particle types                  |
 //! | `last_build`      | u64                       | step of the last neighbour-list build     |
 //! | `noise_shift`     | u64                       | only present when not 0: the noise key's shift (`reset_timestep`) |
+//! | `stale_tallies`   | u8                        | only present (1) when the per-particle energies and virials were not computed at `step` |
 //! | `energy0`         | f64                       | only present when `energy0` is `Some`     |
 //! | `cell_counts`     | u64 `[3]`                 | only present when `cell_counts` is `Some` |
 //!
@@ -110,6 +111,10 @@ pub struct RestartHeader {
     /// What `reset_timestep` moved the step by (wrapping sum): the noise is keyed by
     /// step + noise_shift.
     pub noise_shift: u64,
+    /// The per-particle pair energies and virials are not those of `step` (a step
+    /// without output skips them, as LAMMPS's eflag/vflag): a continuation keeps the
+    /// ones its set-up computes.
+    pub stale_tallies: bool,
     /// Global cell grid at the last build.
     pub cell_counts: Option<[usize; 3]>,
     /// Script commands that re-create the styles (pair_style, pair_coeff,
@@ -317,6 +322,9 @@ impl RestartWriter {
         write_attr(&file, "last_build", &header.last_build).map_err(h5)?;
         if header.noise_shift != 0 {
             write_attr(&file, "noise_shift", &header.noise_shift).map_err(h5)?;
+        }
+        if header.stale_tallies {
+            write_attr(&file, "stale_tallies", &1u8).map_err(h5)?;
         }
         if let Some(e0) = header.energy0 {
             write_attr(&file, "energy0", &e0).map_err(h5)?;

@@ -141,11 +141,21 @@ pub fn prepare(sim: &mut Sim, averages: &[AveTime], cmd: &Command, part: RunPart
     // a continuation keeps the forces of the step its restart was written at: they
     // depend on that step's velocities and noise, which the set-up cannot redo
     let resume = sys.restored.then(|| sys.store.save_by_tag(gendpde_engine::stage::RESUME));
+    // energies and virials stored without having been computed at their step (a restart
+    // written on a signal or a failure after a step without output) give way to the
+    // set-up's
+    let stale = !sys.tallied;
+    sys.tally = true;
     physics.setup(sys).map_err(|e| err(e.to_string()))?;
     if let Some(saved) = resume.filter(|_| sys.restored_grid == sys.grid.as_ref().map(|g| g.count)) {
+        let fresh = stale.then(|| (sys.store.virial.clone(), sys.store.epair.clone()));
         let exchanged = sys.store.restore_by_tag(&saved);
+        if let Some((virial, epair)) = fresh {
+            (sys.store.virial, sys.store.epair) = (virial, epair);
+        }
         sys.comm.forward(&mut sys.store, exchanged);
     }
+    sys.tallied = true;
     if let Some(grid) = &sys.grid {
         log::info!(
             "cell grid {:?} of side {:?}; {} ghosts; {} neighbour pairs; {} sweep pairs",
@@ -189,7 +199,13 @@ pub fn run(sim: &mut Sim, outputs: &mut Outputs, out: &mut Output, vars: &Variab
         if k % 16 == 0 {
             progress.set_position(k);
         }
+        // energies and virials only for a step after which something is written, as
+        // LAMMPS's eflag/vflag (the same on every rank: a restart written on a signal
+        // after another step says its tallies are stale)
+        let next = sim.system.as_ref().map_or(0, |s| s.step + 1);
+        let wanted = next >= run.last || outputs.all().any(|o| o.next_step(next, run).is_some_and(|at| at <= next));
         let sys = sim.system.as_mut().expect("system exists during a run");
+        sys.tally = wanted;
         sys.save(&mut last_good);
         if let Err(mut e) = physics.step(sys) {
             progress.finish_and_clear();

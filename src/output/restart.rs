@@ -33,6 +33,7 @@ pub fn write(sim: &Sim, file: &str) -> Result<(), String> {
         energy0: sim.energy0,
         last_build: sys.last_build,
         noise_shift: sys.noise_shift,
+        stale_tallies: !sys.tallied,
         cell_counts: sys.grid.as_ref().map(|g| g.count),
         commands: sim.style_commands(),
         creator_version: env!("CARGO_PKG_VERSION").into(),
@@ -99,6 +100,7 @@ pub fn read(sim: &mut Sim, file: &str, transport: Box<dyn Transport>) -> Result<
     sys.time = h.time;
     sys.last_build = h.last_build;
     sys.noise_shift = h.noise_shift;
+    sys.tallied = !h.stale_tallies;
     sys.restored = true;
     sys.restored_grid = h.cell_counts;
     sim.ntypes = h.ntypes;

@@ -302,6 +302,7 @@ impl RestartReader {
         let last_build = c.scalar::<u64>("last_build")?;
         let energy0 = c.optional_scalar::<f64>("energy0")?;
         let noise_shift = c.optional_scalar::<u64>("noise_shift")?.unwrap_or(0);
+        let stale_tallies = c.optional_scalar::<u8>("stale_tallies")?.is_some_and(|v| v != 0);
         let cell_counts = if c
             .file
             .attr_names()
@@ -411,6 +412,7 @@ impl RestartReader {
             energy0,
             last_build,
             noise_shift,
+            stale_tallies,
             cell_counts,
             commands,
             creator_version,

@@ -73,6 +73,7 @@ fn header(natoms: u64) -> RestartHeader {
         energy0: Some(-1_234.567_890_123_456_7),
         last_build: 123_456_789_000,
         noise_shift: u64::MAX - 399,
+        stale_tallies: true,
         cell_counts: Some([7, 3, 11]),
         commands: vec![
             "pair_style gendpde 1.0 12345".into(),
@@ -154,6 +155,7 @@ fn assert_header_bit_exact(a: &RestartHeader, b: &RestartHeader) {
     assert_eq!(a.energy0.map(f64::to_bits), b.energy0.map(f64::to_bits));
     assert_eq!(a.last_build, b.last_build);
     assert_eq!(a.noise_shift, b.noise_shift);
+    assert_eq!(a.stale_tallies, b.stale_tallies);
     assert_eq!(a.cell_counts, b.cell_counts);
     assert_eq!(a.commands, b.commands);
     assert_eq!(a.creator_version, b.creator_version);
