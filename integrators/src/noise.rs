@@ -31,7 +31,7 @@ impl Noise for Arithmetic {
     const NEEDS_INV_TAU: bool = false;
     #[inline(always)]
     fn coefficients(kb: f64, g: f64, i: Temps, j: Temps) -> (f64, f64) {
-        (g, (kb * (i.theta + j.theta) * g).sqrt())
+        (g, ((i.theta + j.theta) * (kb * g)).sqrt())
     }
 }
 

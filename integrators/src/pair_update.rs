@@ -52,18 +52,18 @@ pub fn pair_update<H: HeatFlow, N: Noise>(s: PairState<'_>, d: &PairDrive, kb: f
     let mut qj = pj;
     let mut half_dk = 0.0;
     if d.gamma > 0.0 {
-        // both half steps folded into one kick delta = a + b: the relative velocity
-        // after the explicit half kick is v.e + mu a, so no intermediate kick (which can
-        // overshoot by orders of magnitude when gamma dt mu >> 1) is rounded into p
+        // the explicit half kick a = -h (v.e) + noise and the implicit one
+        // b = -h/(1 + mu h) (v.e + mu a + mu noise) + noise (h = gamma dt / 2) folded into
+        // one kick A = a + b = 2 (noise - h v.e)/(1 + mu h): no intermediate kick (which can
+        // overshoot by orders of magnitude when gamma dt mu >> 1) is rounded into p, no a
+        // and b of opposite signs cancel, and theta reaches A through few operations
         let mu = s.inv_m_i + s.inv_m_j;
         let (gamma, sigma) = N::coefficients(kb, d.gamma, d.ti, d.tj);
-        let noise = 0.5 * sqrt_dt * sigma * d.xi;
+        let h = 0.5 * dt * gamma;
+        let noise = (0.5 * sqrt_dt * d.xi) * sigma;
         let v = [pi[0] * s.inv_m_i - pj[0] * s.inv_m_j, pi[1] * s.inv_m_i - pj[1] * s.inv_m_j, pi[2] * s.inv_m_i - pj[2] * s.inv_m_j];
         let ve = dot(v, e);
-        let a = -0.5 * dt * gamma * ve + noise;
-        let implicit = 0.5 * dt * gamma / (1.0 + 0.5 * mu * gamma * dt);
-        let b = -implicit * (ve + mu * a + sqrt_dt * mu * sigma * d.xi * 0.5) + noise;
-        let big_a = a + b;
+        let big_a = (noise - h * ve) * (2.0 / (1.0 + mu * h));
         kick(&mut qi, &mut qj, e, big_a);
         // K' - K of p_i + A e, p_j - A e: A (v.e) + A^2 mu / 2, without the cancellation
         // of two kinetic energies
