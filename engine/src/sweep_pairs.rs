@@ -112,7 +112,7 @@ mod tests {
         comm.exchange(&mut s, &domain, &grid, false);
         let mut bins = CellBins::default();
         let (lo, hi) = comm.owned_cells(&grid);
-        bins.build(&s.cell, &s.tag, lo, hi, grid.reach);
+        bins.build(&s.cell, &s.tag, &s.r, &grid, lo, hi);
         (s, bins, grid, domain)
     }
 
