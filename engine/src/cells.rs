@@ -212,11 +212,11 @@ mod tests {
 }
 
 /// Particles (owned and ghost) sorted by cell over the owned range plus the ghost
-/// cells (k on every side), by octant within each cell ([`CellGrid::octant`]), and by tag
-/// within each octant. Walking cells in a fixed stencil order, octants in a fixed order
-/// and particles in tag order gives every list an order that no decomposition can
-/// change (the lists need no sorting of their own); the octants let the pair search skip
-/// the parts of a cell pair out of range.
+/// cells (k on every side), by octant within each cell ([`CellGrid::octant`] at the
+/// last rebuild), and by tag within each octant. Walking cells in a fixed stencil order,
+/// octants in a fixed order and particles in tag order gives every list an order that
+/// no decomposition can change (the lists need no sorting of their own); the octants let
+/// the pair search skip the parts of a cell pair out of range.
 #[derive(Clone, Debug, Default)]
 pub struct CellBins {
     /// The grid's reach k: the bins hold k ghost cells on every side.
@@ -234,10 +234,11 @@ pub struct CellBins {
 }
 
 impl CellBins {
-    /// Bins particles (positions `r`) by their `cell` for the owned range [lo, hi) and the
-    /// grid's reach of ghost cells on every side, by octant within a cell, ordered by
-    /// `tag` within an octant.
-    pub fn build(&mut self, cells: &[[i32; 3]], tags: &[u64], r: &[Vec3], grid: &CellGrid, lo: [i32; 3], hi: [i32; 3]) {
+    /// Bins particles by their `cell` for the owned range [lo, hi) and the grid's reach
+    /// of ghost cells on every side, by `octant` within a cell (kept from the last
+    /// rebuild, like the cell, so that a restart continues with the same order), ordered
+    /// by `tag` within an octant.
+    pub fn build(&mut self, cells: &[[i32; 3]], octants: &[u32], tags: &[u64], grid: &CellGrid, lo: [i32; 3], hi: [i32; 3]) {
         let reach = grid.reach;
         let k = reach as i32;
         self.reach = reach;
@@ -249,7 +250,7 @@ impl CellBins {
         self.start.resize(nbin + 1, 0);
         let mut bin_of = std::mem::take(&mut self.bin_of);
         bin_of.clear();
-        bin_of.extend(cells.iter().zip(r).map(|(&c, &ri)| (8 * self.index(c) + grid.octant(c, ri)) as u32));
+        bin_of.extend(cells.iter().zip(octants).map(|(&c, &q)| 8 * self.index(c) as u32 + q));
         for &b in &bin_of {
             self.start[b as usize + 1] += 1;
         }

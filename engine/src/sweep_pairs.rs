@@ -114,7 +114,7 @@ mod tests {
         comm.exchange(&mut s, &domain, &grid, false);
         let mut bins = CellBins::default();
         let (lo, hi) = comm.owned_cells(&grid);
-        bins.build(&s.cell, &s.tag, &s.r, &grid, lo, hi);
+        bins.build(&s.cell, &s.octant, &s.tag, &grid, lo, hi);
         (s, bins, grid, domain)
     }
 
