@@ -250,7 +250,7 @@ impl Comm {
                         if !keep_cells {
                             let i = store.nlocal - 1;
                             store.cell[i] = grid.locate(store.r[i]);
-                store.octant[i] = grid.octant(store.cell[i], store.r[i]) as u32;
+                            store.octant[i] = grid.octant(store.cell[i], store.r[i]) as u32;
                         }
                     }
                 }
