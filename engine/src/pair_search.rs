@@ -123,27 +123,13 @@ pub fn build_lists(store: &Particles, bins: &CellBins, lo: [i32; 3], hi: [i32; 3
                         if ca.is_empty() || cb.is_empty() {
                             continue;
                         }
-                        // few particles a cell: one group of all octants in order
-                        let split = ca.len() >= SPLIT_FROM && cb.len() >= SPLIT_FROM;
-                        let (oa, ob) = if split { (bins.octants(cell_a), bins.octants(cell_b)) } else { ([ca; 8], [cb; 8]) };
-                        for qa in 0..if split { 8 } else { 1 } {
-                            let sa = if split { oa[qa] } else { ca };
-                            if sa.is_empty() {
-                                continue;
-                            }
-                            // the candidates of octant qa, gathered once for its particles
-                            // (within one cell, qa's own particles first)
-                            candidates.clear();
-                            let mut mask = if split { masks[qa] } else { 0 };
-                            while mask != 0 {
-                                let qb = mask.trailing_zeros() as usize;
-                                mask &= mask - 1;
-                                candidates.extend_from_slice(ob[qb]);
-                            }
-                            let group = if split { &candidates[..] } else { cb };
+                        // the particles of `sa` against their partners in `group` (within
+                        // one cell, `group` starts with `sa`: each pair is tested once)
+                        let same = a == b;
+                        let mut test = |sa: &[u32], group: &[u32]| {
                             for (t, &i) in sa.iter().enumerate() {
                                 let ri = store.r[i as usize];
-                                let partners = if a == b { &group[t + 1..] } else { group };
+                                let partners = if same { &group[t + 1..] } else { group };
                                 for &j in partners {
                                     let d = sub(ri, store.r[j as usize]);
                                     let d2 = dot(d, d);
@@ -159,6 +145,27 @@ pub fn build_lists(store: &Particles, bins: &CellBins, lo: [i32; 3], hi: [i32; 3
                                     }
                                 }
                             }
+                        };
+                        if ca.len() < SPLIT_FROM || cb.len() < SPLIT_FROM {
+                            // few particles a cell: the cells whole, octant after octant
+                            test(ca, cb);
+                            continue;
+                        }
+                        let (oa, ob) = (bins.octants(cell_a), bins.octants(cell_b));
+                        for (sa, &mask) in oa.iter().zip(masks) {
+                            if sa.is_empty() {
+                                continue;
+                            }
+                            // the candidates of octant qa, gathered once for its particles
+                            // (within one cell, qa's own particles first)
+                            candidates.clear();
+                            let mut mask = mask;
+                            while mask != 0 {
+                                let qb = mask.trailing_zeros() as usize;
+                                mask &= mask - 1;
+                                candidates.extend_from_slice(ob[qb]);
+                            }
+                            test(sa, &candidates);
                         }
                     }
                     let block = &sweep_pairs[block_start..];
