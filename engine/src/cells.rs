@@ -118,9 +118,10 @@ impl CellGrid {
         c
     }
 
-    /// The octant of position `r` within cell `c` (which may be a ghost cell, `r` then the
-    /// shifted image): bit d set where r_d lies in the upper half of the cell along d. A
-    /// function of the copy's position and cell alone, so the same on every rank count.
+    /// The octant of position `r` within cell `c`: bit d set where r_d lies in the upper
+    /// half of the cell along d. Taken for owned particles with their cell at a rebuild;
+    /// ghosts carry their owner's (the `octant` field), so it is the same on every rank
+    /// count.
     #[inline]
     pub fn octant(&self, c: [i32; 3], r: Vec3) -> usize {
         let mut q = 0;

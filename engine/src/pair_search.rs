@@ -6,13 +6,14 @@
 //! of offsets (a, b) with min(a_d, b_d) = 0 in every dimension. The pass walks the
 //! blocks of C in [lo - k, hi) colour by colour, in lexicographic order within a colour,
 //! then the cell pairs of a block (14 for k = 1, 63 for k = 2), then the particles of the
-//! first cell by octant and tag, then for each the octants of the second cell in range
-//! of its octant, in octant order, then their particles by tag (the bins hold each
-//! octant in tag order), and tests each particle pair once (the octants out of range,
-//! ~40 % of the candidates of cells of side cutoff + skin, are skipped). A cell A lies
-//! in exactly one block per colour, so the order in which a particle meets its
-//! neighbours depends only on the parity of its cell, the octants (functions of each
-//! copy's position) and the tags: no decomposition can change it. Pairs of owned blocks (C in [lo, hi)) are the sweep's;
+//! first cell by octant and tag (the bins hold each cell so), each against the second
+//! cell's particles in the same order; where both cells hold at least `SPLIT_FROM` (16)
+//! particles, only against the second cell's octants in range of its own octant (~40 %
+//! of the candidates of cells of side cutoff + skin are skipped). Each particle pair is
+//! tested once. A cell A lies in exactly one block per colour, so the order in which a
+//! particle meets its neighbours depends only on the parity of its cell, the octants
+//! (kept from the last rebuild, ghosts carrying their owner's) and the tags: no
+//! decomposition can change it. Pairs of owned blocks (C in [lo, hi)) are the sweep's;
 //! every pair with an owned particle enters the neighbour list, in pass order.
 
 use crate::cells::CellBins;
