@@ -167,19 +167,75 @@ fn isentropic_step_keeps_every_entropy() {
     assert!(change[1] > 1e-6, "the split should change entropies measurably: {:e}", change[1]);
 }
 
+/// `count` initial states for the order test: the equilibrated scene, then every 0.5 time
+/// units (50 eSSA steps) of its continuation; the interpreter is left without `fix ssa`.
+fn equilibrated_states(count: usize) -> (gendpde::Interpreter, Vec<gendpde_integrators::Snapshot>) {
+    let mut it = scene("");
+    let mut states = vec![gendpde_integrators::Snapshot::default(); count];
+    for (k, snap) in states.iter_mut().enumerate() {
+        if k > 0 {
+            it.execute_str("more.in", "run 50\n").unwrap();
+        }
+        it.system().unwrap().save(snap);
+    }
+    it.execute_str("switch.in", "unfix ssa\n").unwrap();
+    (it, states)
+}
+
+/// RMS of (E(t) - E(0))/E(0) over `duration` time units at timestep `dt` from `state`,
+/// with `fix rev all nve/gendpde work {work}`.
+fn rms_energy_error(it: &mut gendpde::Interpreter, state: &gendpde_integrators::Snapshot, work: &str, dt: f64, duration: f64) -> f64 {
+    it.execute_str("work.in", &format!("unfix rev\nfix rev all nve/gendpde work {work}\ntimestep {dt}\n")).unwrap();
+    it.system().unwrap().restore(state);
+    let physics = it.dynamics().unwrap();
+    let sys = it.system().unwrap();
+    let e0 = Observables::measure(sys).energy();
+    let steps = (duration / dt).round() as u64;
+    let sum2: f64 = (0..steps)
+        .map(|_| {
+            physics.step(sys).unwrap();
+            ((Observables::measure(sys).energy() - e0) / e0).powi(2)
+        })
+        .sum();
+    (sum2 / steps as f64).sqrt()
+}
+
 /// The isentropic step is velocity Verlet on the potential sum_i u(s_i, n_i(r)): energy
-/// error O(dt^2), like the split's.
+/// error O(dt^2), like the split's. Measured from 8 equilibrated states 0.5 time units
+/// apart: from each, the RMS of dE/E over 0.5 time units at dt 0.01, 0.005, 0.0025 and
+/// its ratio for each halving; the geometric mean of a ratio over the states (2^order
+/// averaged in the order) must lie within 3-5 (a first-order step gives ~2). One
+/// trajectory is a poor measure of the order: its error is a fluctuating sum over the
+/// particles, with rare large terms (close pairs, pairs crossing rc where the quadratic
+/// weight's w'' jumps) that fall differently at each dt, so from one state the ratio
+/// spans 2.7-8 and moves with any change of the equilibration (the list order of issue
+/// 21 part 4 took the ratio of the largest |dE/E| of one run over 2 time units from 3.80
+/// to 2.85). The mean over states is one over the equilibrium ensemble, where the
+/// error's dt^2 scaling holds; the per-state ratios and the standard error of the mean
+/// are printed. The split's error, mostly its systematic entropy change, gives 4.00-4.05
+/// from every state: it is measured from 2.
 #[test]
 fn isentropic_energy_error_is_second_order() {
-    for work in ["split", "isentropic"] {
-        let switch = format!("unfix ssa\nfix rev all nve/gendpde work {work}\n");
-        let e: Vec<f64> = [0.01, 0.005, 0.0025].iter().map(|&dt| max_abs(&energy_series(&switch, dt, 2.0))).collect();
-        eprintln!(
-            "work {work}, max |dE/E| over 2 time units: dt 0.01 {:.3e}, 0.005 {:.3e}, 0.0025 {:.3e}; ratios {:.2} {:.2}",
-            e[0], e[1], e[2], e[0] / e[1], e[1] / e[2]
-        );
-        for r in [e[0] / e[1], e[1] / e[2]] {
-            assert!((3.0..=5.0).contains(&r), "work {work}: second order expected, ratio {r}");
+    let (mut it, states) = equilibrated_states(8);
+    for (work, count) in [("split", 2), ("isentropic", 8)] {
+        let e: Vec<Vec<f64>> = [0.01, 0.005, 0.0025].iter().map(|&dt| states[..count].iter().map(|s| rms_energy_error(&mut it, s, work, dt, 0.5)).collect()).collect();
+        for a in 0..2 {
+            let ratios: Vec<f64> = e[a].iter().zip(&e[a + 1]).map(|(x, y)| x / y).collect();
+            let logs: Vec<f64> = ratios.iter().map(|r| r.ln()).collect();
+            let m = mean(&logs);
+            let se = (logs.iter().map(|l| (l - m) * (l - m)).sum::<f64>() / (count * (count - 1)) as f64).sqrt();
+            let (ratio, dt) = (m.exp(), [0.01, 0.005][a]);
+            let listed: Vec<String> = ratios.iter().map(|r| format!("{r:.2}")).collect();
+            eprintln!(
+                "work {work}, RMS dE/E over 0.5 time units, dt {dt} -> {}: {:.3e} -> {:.3e} (mean of {count} states); ratio {ratio:.2} \
+                 (geometric mean, standard error x/ {:.2}; per state {})",
+                dt / 2.0,
+                mean(&e[a]),
+                mean(&e[a + 1]),
+                se.exp(),
+                listed.join(" ")
+            );
+            assert!((3.0..=5.0).contains(&ratio), "work {work}: second order expected, ratio {ratio} at dt {dt}");
         }
     }
 }
@@ -323,3 +379,4 @@ fn corrected_volume_forces_conserve_energy() {
     assert!((3.0..=5.0).contains(&(e1 / e2)), "ratio {}", e1 / e2);
     assert!(e1 < 1e-7, "energy error {e1:e}");
 }
+

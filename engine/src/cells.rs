@@ -118,6 +118,20 @@ impl CellGrid {
         c
     }
 
+    /// The octant of position `r` within cell `c`: bit d set where r_d lies in the upper
+    /// half of the cell along d. Taken for owned particles with their cell at a rebuild;
+    /// ghosts carry their owner's (the `octant` field), so it is the same on every rank
+    /// count.
+    #[inline]
+    pub fn octant(&self, c: [i32; 3], r: Vec3) -> usize {
+        let mut q = 0;
+        for d in 0..3 {
+            let mid = self.lo[d] + (c[d] as f64 + 0.5) * self.side[d];
+            q |= ((r[d] >= mid) as usize) << d;
+        }
+        q
+    }
+
     /// Total number of cells.
     pub fn len(&self) -> usize {
         self.count.iter().product()
@@ -199,49 +213,62 @@ mod tests {
 }
 
 /// Particles (owned and ghost) sorted by cell over the owned range plus the ghost
-/// cells (k on every side), and by tag within each cell. Walking cells in a fixed stencil
-/// order and particles in tag order gives every list an order that no decomposition can
-/// change (the lists need no sorting of their own).
+/// cells (k on every side), by octant within each cell ([`CellGrid::octant`] at the
+/// last rebuild), and by tag within each octant. Walking cells in a fixed stencil order,
+/// octants in a fixed order and particles in tag order gives every list an order that
+/// no decomposition can change (the lists need no sorting of their own); the octants let
+/// the pair search skip the parts of a cell pair out of range.
 #[derive(Clone, Debug, Default)]
 pub struct CellBins {
     /// The grid's reach k: the bins hold k ghost cells on every side.
     pub reach: usize,
+    /// Side of an octant (half the cell side) per dimension.
+    pub octant_side: Vec3,
     lo: [i32; 3],
     dims: [usize; 3],
+    /// Start of octant q of cell k in `items` at `start[8 k + q]`.
     start: Vec<u32>,
     items: Vec<u32>,
     fill: Vec<u32>,
+    /// Scratch: the bin (8 cell + octant) of each particle.
+    bin_of: Vec<u32>,
 }
 
 impl CellBins {
-    /// Bins particles by their `cell` for the owned range [lo, hi) and `reach` ghost
-    /// cells on every side, ordered by `tag` within each cell.
-    pub fn build(&mut self, cells: &[[i32; 3]], tags: &[u64], lo: [i32; 3], hi: [i32; 3], reach: usize) {
+    /// Bins particles by their `cell` for the owned range [lo, hi) and the grid's reach
+    /// of ghost cells on every side, by `octant` within a cell (kept from the last
+    /// rebuild, like the cell, so that a restart continues with the same order), ordered
+    /// by `tag` within an octant.
+    pub fn build(&mut self, cells: &[[i32; 3]], octants: &[u32], tags: &[u64], grid: &CellGrid, lo: [i32; 3], hi: [i32; 3]) {
+        let reach = grid.reach;
         let k = reach as i32;
         self.reach = reach;
+        self.octant_side = grid.side.map(|s| 0.5 * s);
         self.lo = [lo[0] - k, lo[1] - k, lo[2] - k];
         self.dims = [0, 1, 2].map(|d| (hi[d] - lo[d] + 2 * k) as usize);
-        let ncell = self.dims.iter().product::<usize>();
+        let nbin = 8 * self.dims.iter().product::<usize>();
         self.start.clear();
-        self.start.resize(ncell + 1, 0);
-        for c in cells {
-            let k = self.index(*c);
-            self.start[k + 1] += 1;
+        self.start.resize(nbin + 1, 0);
+        let mut bin_of = std::mem::take(&mut self.bin_of);
+        bin_of.clear();
+        bin_of.extend(cells.iter().zip(octants).map(|(&c, &q)| 8 * self.index(c) as u32 + q));
+        for &b in &bin_of {
+            self.start[b as usize + 1] += 1;
         }
-        for k in 0..ncell {
-            self.start[k + 1] += self.start[k];
+        for b in 0..nbin {
+            self.start[b + 1] += self.start[b];
         }
         self.fill.clear();
-        self.fill.extend_from_slice(&self.start[..ncell]);
+        self.fill.extend_from_slice(&self.start[..nbin]);
         self.items.clear();
         self.items.resize(cells.len(), 0);
-        for (i, c) in cells.iter().enumerate() {
-            let k = self.index(*c);
-            self.items[self.fill[k] as usize] = i as u32;
-            self.fill[k] += 1;
+        for (i, &b) in bin_of.iter().enumerate() {
+            self.items[self.fill[b as usize] as usize] = i as u32;
+            self.fill[b as usize] += 1;
         }
-        for k in 0..ncell {
-            self.items[self.start[k] as usize..self.start[k + 1] as usize].sort_unstable_by_key(|&i| tags[i as usize]);
+        self.bin_of = bin_of;
+        for b in 0..nbin {
+            self.items[self.start[b] as usize..self.start[b + 1] as usize].sort_unstable_by_key(|&i| tags[i as usize]);
         }
     }
 
@@ -254,10 +281,17 @@ impl CellBins {
         (z * self.dims[1] + y) * self.dims[0] + x
     }
 
-    /// Particles in cell `c` (which must lie in the binned range).
+    /// Particles in cell `c` (which must lie in the binned range), by octant then tag.
     #[inline]
     pub fn cell(&self, c: [i32; 3]) -> &[u32] {
-        let k = self.index(c);
-        &self.items[self.start[k] as usize..self.start[k + 1] as usize]
+        let k = 8 * self.index(c);
+        &self.items[self.start[k] as usize..self.start[k + 8] as usize]
+    }
+
+    /// The eight octants of cell `c`, each in tag order.
+    #[inline]
+    pub fn octants(&self, c: [i32; 3]) -> [&[u32]; 8] {
+        let k = 8 * self.index(c);
+        std::array::from_fn(|q| &self.items[self.start[k + q] as usize..self.start[k + q + 1] as usize])
     }
 }

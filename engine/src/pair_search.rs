@@ -5,9 +5,14 @@
 //! lies in exactly one block C + {0..k}^3 with C = min(A, B) componentwise, as the pair
 //! of offsets (a, b) with min(a_d, b_d) = 0 in every dimension. The pass walks the
 //! blocks of C in [lo - k, hi) colour by colour, in lexicographic order within a colour,
-//! then the cell pairs of a block (14 for k = 1, 63 for k = 2), then the particles by
-//! tag (the bins hold each cell in tag order), and tests each particle pair once. A cell A lies in exactly one block per colour, so the order in which a particle
-//! meets its neighbours depends only on the parity of its cell and the tags: no
+//! then the cell pairs of a block (14 for k = 1, 63 for k = 2), then the particles of the
+//! first cell by octant and tag (the bins hold each cell so), each against the second
+//! cell's particles in the same order; where both cells hold at least `SPLIT_FROM` (16)
+//! particles, only against the second cell's octants in range of its own octant (~40 %
+//! of the candidates of cells of side cutoff + skin are skipped). Each particle pair is
+//! tested once. A cell A lies in exactly one block per colour, so the order in which a
+//! particle meets its neighbours depends only on the parity of its cell, the octants
+//! (kept from the last rebuild, ghosts carrying their owner's) and the tags: no
 //! decomposition can change it. Pairs of owned blocks (C in [lo, hi)) are the sweep's;
 //! every pair with an owned particle enters the neighbour list, in pass order.
 
@@ -32,6 +37,34 @@ fn cell_pairs(reach: usize) -> Vec<([i32; 3], [i32; 3])> {
     out
 }
 
+/// For cells B = A + `o` and each octant qa of A, the octants qb of B that may hold a
+/// particle closer than sqrt(`r2`) to one in qa (bit qb of entry qa): the gap between two
+/// octants along d is (|2 o_d + qb_d - qa_d| - 1) octant sides where positive, shrunk
+/// by 1e-10 relative so that positions on an octant's border (rounded) stay in range.
+/// Within one cell (o = 0) only qb >= qa: the pairs of a cell are visited once.
+fn octant_masks(o: [i32; 3], side: [f64; 3], r2: f64) -> [u8; 8] {
+    let bit = |q: usize, d: usize| ((q >> d) & 1) as i32;
+    std::array::from_fn(|qa| {
+        let mut mask = 0u8;
+        for qb in 0..8 {
+            let gap2: f64 = (0..3)
+                .map(|d| {
+                    let gap = ((2 * o[d] + bit(qb, d) - bit(qa, d)).abs() - 1).max(0) as f64 * side[d] * (1.0 - 1e-10);
+                    gap * gap
+                })
+                .sum();
+            if gap2 < r2 && (o != [0; 3] || qb >= qa) {
+                mask |= 1 << qb;
+            }
+        }
+        mask
+    })
+}
+
+/// Cells holding fewer particles than this are searched whole, not by octant (the
+/// search of an octant pair costs more than the distance tests it saves).
+const SPLIT_FROM: usize = 16;
+
 /// The lists wanted from a pass, each with its radius (cutoff plus skin).
 pub struct ListRequest<'a> {
     pub nlist: Option<(&'a mut NeighborList, f64)>,
@@ -52,6 +85,8 @@ pub fn build_lists(store: &Particles, bins: &CellBins, lo: [i32; 3], hi: [i32; 3
     let offset = |c: [i32; 3], o: [i32; 3]| [c[0] + o[0], c[1] + o[1], c[2] + o[2]];
     let colours = (reach + 1).pow(3);
     let cell_pairs = cell_pairs(reach);
+    let mut candidates: Vec<u32> = Vec::new();
+    let octant_masks: Vec<[u8; 8]> = cell_pairs.iter().map(|&(a, b)| octant_masks([0, 1, 2].map(|d| b[d] - a[d]), bins.octant_side, r2max)).collect();
     // reuse the memory of the previous lists
     let mut half = match nlist.as_mut() {
         Some((nl, _)) => std::mem::take(&mut nl.pairs),
@@ -79,7 +114,7 @@ pub fn build_lists(store: &Particles, bins: &CellBins, lo: [i32; 3], hi: [i32; 3
                     debug_assert_eq!(CellGrid::colour(c, reach), colour);
                     let block_owned = owned(c) && rs2 > 0.0;
                     let block_start = sweep_pairs.len();
-                    for &(a, b) in &cell_pairs {
+                    for (&(a, b), masks) in cell_pairs.iter().zip(&octant_masks) {
                         let (cell_a, cell_b) = (offset(c, a), offset(c, b));
                         let listed = rn2 > 0.0 && (owned(cell_a) || owned(cell_b));
                         if !(block_owned || listed) {
@@ -89,23 +124,49 @@ pub fn build_lists(store: &Particles, bins: &CellBins, lo: [i32; 3], hi: [i32; 3
                         if ca.is_empty() || cb.is_empty() {
                             continue;
                         }
-                        for (k, &i) in ca.iter().enumerate() {
-                            let ri = store.r[i as usize];
-                            let partners = if a == b { &ca[k + 1..] } else { cb };
-                            for &j in partners {
-                                let d = sub(ri, store.r[j as usize]);
-                                let d2 = dot(d, d);
-                                if d2 >= r2max {
-                                    continue;
-                                }
-                                if block_owned && d2 < rs2 {
-                                    let pair = if store.tag[i as usize] < store.tag[j as usize] { [i, j] } else { [j, i] };
-                                    sweep_pairs.push(pair);
-                                }
-                                if listed && d2 < rn2 && (i < nlocal || j < nlocal) {
-                                    half.push([i, j]);
+                        // the particles of `sa` against their partners in `group` (within
+                        // one cell, `group` starts with `sa`: each pair is tested once)
+                        let same = a == b;
+                        let mut test = |sa: &[u32], group: &[u32]| {
+                            for (t, &i) in sa.iter().enumerate() {
+                                let ri = store.r[i as usize];
+                                let partners = if same { &group[t + 1..] } else { group };
+                                for &j in partners {
+                                    let d = sub(ri, store.r[j as usize]);
+                                    let d2 = dot(d, d);
+                                    if d2 >= r2max {
+                                        continue;
+                                    }
+                                    if block_owned && d2 < rs2 {
+                                        let pair = if store.tag[i as usize] < store.tag[j as usize] { [i, j] } else { [j, i] };
+                                        sweep_pairs.push(pair);
+                                    }
+                                    if listed && d2 < rn2 && (i < nlocal || j < nlocal) {
+                                        half.push([i, j]);
+                                    }
                                 }
                             }
+                        };
+                        if ca.len() < SPLIT_FROM || cb.len() < SPLIT_FROM {
+                            // few particles a cell: the cells whole, octant after octant
+                            test(ca, cb);
+                            continue;
+                        }
+                        let (oa, ob) = (bins.octants(cell_a), bins.octants(cell_b));
+                        for (sa, &mask) in oa.iter().zip(masks) {
+                            if sa.is_empty() {
+                                continue;
+                            }
+                            // the candidates of octant qa, gathered once for its particles
+                            // (within one cell, qa's own particles first)
+                            candidates.clear();
+                            let mut mask = mask;
+                            while mask != 0 {
+                                let qb = mask.trailing_zeros() as usize;
+                                mask &= mask - 1;
+                                candidates.extend_from_slice(ob[qb]);
+                            }
+                            test(sa, &candidates);
                         }
                     }
                     let block = &sweep_pairs[block_start..];

@@ -265,6 +265,9 @@ particle_fields! {
     theta: f64, "theta", gate NONE, comm Fields::THETA, stages MIGRATE | GHOST | RESTART | RESUME;
     /// Global cell coordinates at the last rebuild (ghosts: outside 0..n).
     cell: [i32; 3], "cell", gate NONE, comm NONE, stages MIGRATE | GHOST | RESTART;
+    /// Octant of the position within the cell at the last rebuild (`CellGrid::octant`;
+    /// ghosts: their owner's), which orders the cell's particles in the pair search.
+    octant: u32, "octant", gate NONE, comm NONE, stages MIGRATE | GHOST | RESTART;
     /// True where u is still to be derived from theta at the next setup (`set theta`).
     theta_given: bool, "theta_given", gate NONE, comm NONE, stages MIGRATE | RESTART;
     /// Bit mask of the groups the particle belongs to (owned particles).

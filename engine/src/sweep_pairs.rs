@@ -1,9 +1,10 @@
 //! The pairs of the Shardlow sweep, grouped by colour and block.
 //!
 //! Pairs of colour c live in blocks C + {0..k}^3 of cells C with colour c (k the
-//! grid's reach); blocks of one colour are disjoint, so they commute. Within a block, pairs run by pair of cells
-//! in a fixed order, then by the tags of the two particles (the bins hold each cell in
-//! tag order): an order no decomposition can change. Built by [`crate::pair_search`].
+//! grid's reach); blocks of one colour are disjoint, so they commute. Within a block,
+//! pairs run by pair of cells in a fixed order, then by the octants and tags of the two
+//! particles (the bins hold each cell by octant and tag): an order no decomposition can
+//! change. Built by [`crate::pair_search`].
 
 use crate::{dot, sub, Particles};
 
@@ -90,8 +91,9 @@ mod tests {
     use std::collections::{HashMap, HashSet};
 
     /// Boxes for a cut of 2.1: 4x4x6 cells (reach 1), 2x4x2 cells (reach 1, 2 cells
-    /// across), 6x9x6 cells (reach 2).
-    const BOXES: [[f64; 3]; 3] = [[9.0, 9.5, 13.0], [4.5, 9.5, 5.0], [7.0, 9.5, 6.5]];
+    /// across), 6x9x6 cells (reach 2), 2x2x4 cells (reach 1); the 700 particles fill the
+    /// cells of the second and the fourth with ~40 each, which are searched by octant.
+    const BOXES: [[f64; 3]; 4] = [[9.0, 9.5, 13.0], [4.5, 9.5, 5.0], [7.0, 9.5, 6.5], [5.0, 5.0, 9.0]];
 
     /// A random gas in a box of `lengths`, with its ghosts and bins.
     fn gas(lengths: [f64; 3]) -> (Particles, CellBins, CellGrid, Domain) {
@@ -112,7 +114,7 @@ mod tests {
         comm.exchange(&mut s, &domain, &grid, false);
         let mut bins = CellBins::default();
         let (lo, hi) = comm.owned_cells(&grid);
-        bins.build(&s.cell, &s.tag, lo, hi, grid.reach);
+        bins.build(&s.cell, &s.octant, &s.tag, &grid, lo, hi);
         (s, bins, grid, domain)
     }
 

@@ -210,7 +210,7 @@ impl System {
         let restored = std::mem::take(&mut self.restored);
         self.comm.exchange(&mut self.store, &self.domain, grid, restored);
         let (lo, hi) = self.comm.owned_cells(grid);
-        self.bins.build(&self.store.cell, &self.store.tag, lo, hi, grid.reach);
+        self.bins.build(&self.store.cell, &self.store.octant, &self.store.tag, grid, lo, hi);
         let req = ListRequest { nlist: density_radius.map(|r| (&mut self.nlist, r)), sweep: sweep_radius.map(|r| (&mut self.sweep, r)) };
         build_lists(&self.store, &self.bins, lo, hi, req);
         if density_radius.is_some() {

@@ -201,6 +201,7 @@ impl Comm {
             for i in 0..store.nlocal {
                 domain.wrap(&mut store.r[i], &mut store.image[i]);
                 store.cell[i] = grid.locate(store.r[i]);
+                store.octant[i] = grid.octant(store.cell[i], store.r[i]) as u32;
             }
         }
         self.migrate(store, grid, keep_cells);
@@ -249,6 +250,7 @@ impl Comm {
                         if !keep_cells {
                             let i = store.nlocal - 1;
                             store.cell[i] = grid.locate(store.r[i]);
+                            store.octant[i] = grid.octant(store.cell[i], store.r[i]) as u32;
                         }
                     }
                 }

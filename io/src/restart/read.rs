@@ -506,6 +506,7 @@ impl RestartReader {
                 }
                 "type" if v[0] < 1.0 || v[0] > h.ntypes as f64 => return Err(format!("type {} is outside 1..={}", v[0], h.ntypes)),
                 "mass" if v[0] <= 0.0 => return Err(format!("mass {}: expected a positive mass", v[0])),
+                "octant" if v[0] < 0.0 || v[0] >= 8.0 => return Err(format!("octant {} is outside 0..8", v[0])),
                 "x" => {
                     for d in 0..3 {
                         let l = h.hi[d] - h.lo[d];
