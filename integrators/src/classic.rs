@@ -435,6 +435,23 @@ impl ClassicDpd {
     /// colour's values return to their owners but travel on only then, when nothing reads
     /// ghost momenta or energies before (the forces are conservative).
     fn sweep(&self, sys: &mut System, p: &ShardlowDpd) -> Fields {
+        #[cfg(target_arch = "x86_64")]
+        if std::is_x86_feature_detected!("avx2") {
+            // SAFETY: the processor has AVX2 (just checked)
+            return unsafe { self.sweep_avx2(sys, p) };
+        }
+        self.sweep_any(sys, p)
+    }
+
+    /// [`ClassicDpd::sweep`] built for AVX2 (the same IEEE operations in the same order).
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn sweep_avx2(&self, sys: &mut System, p: &ShardlowDpd) -> Fields {
+        self.sweep_any(sys, p)
+    }
+
+    #[inline(always)]
+    fn sweep_any(&self, sys: &mut System, p: &ShardlowDpd) -> Fields {
         let (dt, kb) = (self.settings.dt, self.kb);
         let sqrt_dt = dt.sqrt();
         let (step, normals, reach) = (sys.noise_step(sys.step), Normals::get(), p.cutoff());
