@@ -17,6 +17,60 @@ fn columns(store: &Particles) -> Vec<ColumnSpec> {
     store.record(stage::RESTART, true).iter().map(|c| ColumnSpec { name: c.field.name.into(), width: c.field.width, integer: c.field.integer }).collect()
 }
 
+/// Columns a restart file of an earlier gendpde may lack: a fresh set-up derives them (the
+/// octant of the list order, added in part 5 of issue 21; the per-cell virial of the
+/// Voronoi cells).
+const DERIVED: [&str; 2] = ["octant", "virial"];
+
+/// How a file's rows map onto this table's: the file's columns are this table's without
+/// some [`DERIVED`] ones, which are filled with zeros.
+struct Spread {
+    /// (width, Some(offset in the file's row) or None for a column the file lacks).
+    parts: Vec<(usize, Option<usize>)>,
+    filled: usize,
+    missing: Vec<String>,
+}
+
+impl Spread {
+    fn row(&self, file_row: &[f64]) -> Vec<f64> {
+        let mut row = Vec::with_capacity(file_row.len() + self.filled);
+        for &(width, from) in &self.parts {
+            match from {
+                Some(k) => row.extend_from_slice(&file_row[k..k + width]),
+                None => row.extend(std::iter::repeat_n(0.0, width)),
+            }
+        }
+        row
+    }
+}
+
+/// The [`Spread`] of a file with columns `file` onto `ours`, if its columns are ours less
+/// some derived ones, in order.
+fn spread(ours: &[ColumnSpec], file: &[ColumnSpec]) -> Option<Spread> {
+    let mut theirs = file.iter().scan(0, |at, c| {
+        let start = *at;
+        *at += c.width;
+        Some((c, start))
+    });
+    let mut next = theirs.next();
+    let mut out = Spread { parts: Vec::new(), filled: 0, missing: Vec::new() };
+    for c in ours {
+        match next {
+            Some((f, start)) if f == c => {
+                out.parts.push((c.width, Some(start)));
+                next = theirs.next();
+            }
+            _ if DERIVED.contains(&c.name.as_str()) => {
+                out.parts.push((c.width, None));
+                out.filled += c.width;
+                out.missing.push(c.name.clone());
+            }
+            _ => return None,
+        }
+    }
+    next.is_none().then_some(out)
+}
+
 /// Writes the current state (rank 0 writes; every rank must call).
 pub fn write(sim: &Sim, file: &str) -> Result<(), String> {
     let sys = sim.system.as_ref().ok_or("no box to write")?;
@@ -69,10 +123,11 @@ pub fn read(sim: &mut Sim, file: &str, transport: Box<dyn Transport>) -> Result<
     let procs = ProcGrid::choose(transport.size(), domain.len(), sim.procs)?;
     let mut sys = System::new(domain, Comm::new(transport, procs));
     sys.store.enable(Fields::from_bits(h.enabled));
-    if columns(&sys.store) != h.columns {
+    let ours = columns(&sys.store);
+    let Some(spread) = spread(&ours, &h.columns) else {
         let names: Vec<&str> = h.columns.iter().map(|c| c.name.as_str()).collect();
         return Err(format!("restart file {file}: its particle columns {names:?} are not those of this gendpde's particle table"));
-    }
+    };
     let width = row_width(&h.columns);
     // each rank keeps the particles of the cells it will own (all of them on the grid
     // the file was written on), so the set-up moves none and keeps their forces
@@ -92,7 +147,7 @@ pub fn read(sim: &mut Sim, file: &str, transport: Box<dyn Transport>) -> Result<
             }
             let s = &mut sys.store;
             s.push(0, 0, 0.0, [0.0; 3]);
-            s.unpack(s.nlocal - 1, stage::RESTART, true, row);
+            s.unpack(s.nlocal - 1, stage::RESTART, true, &spread.row(row));
         }
         start += crate::base::gather::BLOCK;
     }
@@ -103,6 +158,15 @@ pub fn read(sim: &mut Sim, file: &str, transport: Box<dyn Transport>) -> Result<
     sys.tallied = !h.stale_tallies;
     sys.restored = true;
     sys.restored_grid = h.cell_counts;
+    if spread.filled > 0 {
+        // a file of an earlier gendpde: its list order and last forces cannot be redone
+        log::warn!(
+            "restart file {file} was written before the particle columns {:?}: the run after it sets up afresh (lists, forces), \
+             so it does not continue the writer's trajectory bit for bit",
+            spread.missing
+        );
+        sys.restored = false;
+    }
     sim.ntypes = h.ntypes;
     sim.masses = h.masses;
     sim.max_tag = h.max_tag;
