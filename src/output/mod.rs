@@ -35,13 +35,13 @@ pub struct Outputs {
 }
 
 impl Outputs {
-    /// All of them in the order a run writes them at one step: thermo, the dumps, the
-    /// fixes ave/time, the fixes ave/chunk, the checkpoint.
     /// Whether a fix ave/time or ave/chunk has ID `id`.
     pub fn has_fix(&self, id: &str) -> bool {
         self.averages.iter().any(|f| f.id == id) || self.chunk_averages.iter().any(|f| f.id == id)
     }
 
+    /// All of them in the order a run writes them at one step: thermo, the dumps, the
+    /// fixes ave/time, the fixes ave/chunk, the checkpoint.
     pub fn all(&mut self) -> impl Iterator<Item = &mut dyn RunOutput> {
         std::iter::once(&mut self.thermo as &mut dyn RunOutput)
             .chain(self.dumps.iter_mut().map(|d| d.as_mut() as &mut dyn RunOutput))
