@@ -458,9 +458,8 @@ impl ClassicDpd {
         let fields = Fields::MOMENTUM | Fields::ENERGY | Fields::U_COND;
         let defer = self.read_by_forces().is_empty();
         let inv_2kb = 1.0 / (2.0 * kb);
-        let inv_m = &mut sys.inv_mass;
-        inv_m.clear();
-        inv_m.extend(sys.store.mass.iter().map(|m| 1.0 / m));
+        sys.take_inverse_masses();
+        let inv_m = &sys.inv_mass;
         for colour in 0..sys.sweep.colours() {
             let pairs = sys.sweep.within(colour, &sys.store, reach);
             let s = &mut sys.store;

@@ -59,9 +59,8 @@ fn sweep_any<E: FixedDensity, H: HeatFlow, N: Noise>(eos: &Species<E>, d: &Dissi
     let (inv_rcd, inv_rch) = (1.0 / d.rc_friction, 1.0 / d.rc_heat);
     let gamma = d.gamma * d.noise.scale();
     let (step, key, normals) = (sys.step, sys.noise_step(sys.step), Normals::get());
-    let inv_m = &mut sys.inv_mass;
-    inv_m.clear();
-    inv_m.extend(sys.store.mass.iter().map(|m| 1.0 / m));
+    sys.take_inverse_masses();
+    let inv_m = &sys.inv_mass;
     // each particle's EOS at its density, which the sweep does not change
     let at: Vec<E::At<'_>> = (0..sys.store.mass.len()).map(|i| at_density(eos, &sys.store, i)).collect();
     let mut outcome = Ok(());

@@ -88,6 +88,12 @@ pub struct System {
 impl System {
     /// The step the noise of step `step` is keyed by: the step count as if no
     /// `reset_timestep` had moved the clock.
+    /// `inv_mass` set to 1/m of every particle (owned and ghost), for a sweep.
+    pub fn take_inverse_masses(&mut self) {
+        self.inv_mass.clear();
+        self.inv_mass.extend(self.store.mass.iter().map(|m| 1.0 / m));
+    }
+
     pub fn noise_step(&self, step: u64) -> u64 {
         step.wrapping_add(self.noise_shift)
     }

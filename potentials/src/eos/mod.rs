@@ -74,11 +74,6 @@ impl std::error::Error for EosError {}
 pub trait Eos: Send + Sync {
     /// Boltzmann's constant in the units of the script.
     fn kb(&self) -> f64;
-    /// 1/k_B (a multiplication where k_B would divide; exact for k_B = 1).
-    #[inline(always)]
-    fn inv_kb(&self) -> f64 {
-        1.0 / self.kb()
-    }
     /// Whether pi depends on n; a pairwise scene skips the density pass when false.
     fn density_dependent(&self) -> bool;
     /// theta(u, n); `guess` seeds iterative models (the last theta of the particle).
@@ -211,7 +206,8 @@ impl<E: Eos> AtDensity for AtN<'_, E> {
     }
     #[inline(always)]
     fn guess_after(&self, theta: f64, inv_tau: f64, du: f64) -> f64 {
-        theta + du * (1.0 - theta * inv_tau) * self.eos.inv_kb()
+        // times 1/k_B: a division the refresh need not wait for (exact for k_B = 1)
+        theta + du * (1.0 - theta * inv_tau) * (1.0 / self.eos.kb())
     }
 }
 
