@@ -18,6 +18,7 @@ pub mod rng;
 pub mod sdpd;
 pub mod sdpd_taitwater;
 pub mod settings;
+pub mod simd;
 pub mod species;
 pub mod sweep;
 pub mod system;

@@ -12,6 +12,7 @@
 //! from g_ij and the new pi/n^2 without evaluating the weight again.
 
 use crate::error::{lowest, StepError};
+use crate::simd::avx2_fn;
 use crate::species::Species;
 use crate::system::System;
 use gendpde_engine::{dot, sub, Particles, Vec3};
@@ -30,25 +31,31 @@ pub fn density<W: Weight>(w: &W, volume: Option<&PartitionVolume>, sys: &mut Sys
     // the pairs inside the cutoff, selected without a branch per pair (a quarter of the
     // list lies in the skin, a branch the processor cannot predict), with r^2 kept in
     // their g slot; the later passes walk this compact list
+    // (written into spare capacity: no zeros written first)
     let (pairs, active, geometry, r) = (&sys.nlist.pairs, &mut sys.active, &mut sys.pair_geometry, &s.r[..]);
-    active.resize(pairs.len(), [0; 2]);
-    geometry.resize(pairs.len(), 0.0);
+    active.clear();
+    geometry.clear();
+    active.reserve(pairs.len());
+    geometry.reserve(pairs.len());
+    let (slots, r2s) = (&mut active.spare_capacity_mut()[..pairs.len()], &mut geometry.spare_capacity_mut()[..pairs.len()]);
     let mut m = 0;
     for &[i, j] in pairs {
         let d = sub(r[i as usize], r[j as usize]);
         let r2 = dot(d, d);
-        (active[m], geometry[m]) = ([i, j], r2);
+        slots[m].write([i, j]);
+        r2s[m].write(r2);
         m += (r2 < rc2) as usize;
     }
-    active.truncate(m);
-    geometry.truncate(m);
-    let density = &mut s.n[..];
-    for (&[i, j], g) in active.iter().zip(geometry.iter_mut()) {
-        let r2 = *g;
-        let r = r2.sqrt();
-        let (wij, dw) = w.eval(r);
-        add(density, n, i as usize, j as usize, wij);
-        *g = if r2 > 0.0 { dw / r } else { 0.0 };
+    // SAFETY: entries 0..m were written (entry m was written before m passed it)
+    unsafe {
+        active.set_len(m);
+        geometry.set_len(m);
+    }
+    let weights = &mut sys.pair_sums;
+    weigh(w, geometry, weights);
+    let density = &mut s.n[..n];
+    for (&[i, j], &wij) in active.iter().zip(weights.iter()) {
+        add(density, i as usize, j as usize, wij);
     }
     let zeta = &mut sys.zeta;
     zeta.clear();
@@ -58,6 +65,23 @@ pub fn density<W: Weight>(w: &W, volume: Option<&PartitionVolume>, sys: &mut Sys
             let d = v.density(*nb);
             (*nb, *z) = (d.n, d.zeta);
         }
+    }
+}
+
+avx2_fn! {
+    /// w(r_ij)/[w] into `weights` and g_ij = w'(r_ij)/([w] r_ij) into `geometry` (which
+    /// holds r_ij^2) for every pair inside the cutoff: a loop that writes no particle, which
+    /// the compiler runs in packed lanes (square roots and divisions 4 at a time, the same
+    /// IEEE operations per lane, so the same bits).
+    fn weigh<W: Weight>(w: &W, geometry: &mut [f64], weights: &mut Vec<f64>) {
+        weights.clear();
+        weights.extend(geometry.iter_mut().map(|g| {
+            let r2 = *g;
+            let r = r2.sqrt();
+            let (w_r, dw) = w.eval(r);
+            *g = if r2 > 0.0 { dw / r } else { 0.0 };
+            w_r
+        }));
     }
 }
 
@@ -104,102 +128,124 @@ pub fn refresh_state<E: Eos>(eos: &Species<E>, sys: &mut System) -> Result<(), S
     first
 }
 
-/// f_i = sum_j F_ij r_ij (eq 51) from the g_ij of the density pass, keeping F_ij per pair
-/// and the per-particle diagonal virial sum_j F_ij (x_ij^2, y_ij^2, z_ij^2) / 2 (eq 52).
-pub fn forces(sys: &mut System) {
-    let s = &mut sys.store;
-    let n = s.nlocal;
-    s.f[..n].fill([0.0; 3]);
-    s.virial[..n].fill([0.0; 3]);
-    let (active, geometry, r, pn2) = (&sys.active[..], &sys.pair_geometry[..], &s.r[..], &s.pn2[..]);
-    let (f, virial) = (&mut s.f[..], &mut s.virial[..]);
-    sys.pair_force.resize(active.len(), 0.0);
-    for ((&[i, j], &g), big_f_out) in active.iter().zip(geometry).zip(sys.pair_force.iter_mut()) {
-        let (i, j) = (i as usize, j as usize);
-        let d = sub(r[i], r[j]);
-        let big_f = -(pn2[i] + pn2[j]) * g;
-        kick(f, n, i, j, big_f, d);
-        let dd = [big_f * d[0] * d[0], big_f * d[1] * d[1], big_f * d[2] * d[2]];
-        for o in [i, j] {
-            if o < n {
-                for c in 0..3 {
-                    virial[o][c] += dd[c];
+avx2_fn! {
+    /// f_i = sum_j F_ij r_ij (eq 51) from the g_ij of the density pass, keeping F_ij per pair
+    /// and the per-particle diagonal virial sum_j F_ij (x_ij^2, y_ij^2, z_ij^2) / 2 (eq 52).
+    pub fn forces(sys: &mut System) {
+        let s = &mut sys.store;
+        let n = s.nlocal;
+        s.f[..n].fill([0.0; 3]);
+        s.virial[..n].fill([0.0; 3]);
+        let len = s.len();
+        let (active, geometry, r, pn2) = (&sys.active[..], &sys.pair_geometry[..], &s.r[..len], &s.pn2[..len]);
+        let (f, virial) = (&mut s.f[..n], &mut s.virial[..n]);
+        sys.pair_force.resize(active.len(), 0.0);
+        for ((&[i, j], &g), big_f_out) in active.iter().zip(geometry).zip(sys.pair_force.iter_mut()) {
+            let (i, j) = in_store(i, j, len);
+            let d = sub(r[i], r[j]);
+            let big_f = -(pn2[i] + pn2[j]) * g;
+            kick(f, i, j, big_f, d);
+            let dd = [big_f * d[0] * d[0], big_f * d[1] * d[1], big_f * d[2] * d[2]];
+            for o in [i, j] {
+                if o < n {
+                    for c in 0..3 {
+                        virial[o][c] += dd[c];
+                    }
                 }
             }
+            *big_f_out = big_f;
         }
-        *big_f_out = big_f;
-    }
-    for v in &mut s.virial[..n] {
-        *v = v.map(|x| 0.5 * x);
+        for v in &mut s.virial[..n] {
+            *v = v.map(|x| 0.5 * x);
+        }
     }
 }
 
-/// u_i -= c sum_j (v_i - v_j) . f_ij, with the F_ij of the last force pass.
-pub fn work(sys: &mut System, c: f64) {
-    let s = &mut sys.store;
-    let n = s.nlocal;
-    let (sums, v) = (&mut sys.pair_sums, velocities(s, &mut sys.velocity));
-    sums.clear();
-    sums.resize(n, 0.0);
-    let r = &s.r[..];
-    for (&[i, j], &big_f) in sys.active.iter().zip(&sys.pair_force) {
-        if big_f != 0.0 {
-            let (i, j) = (i as usize, j as usize);
-            add(sums, n, i, j, big_f * dot(sub(v[i], v[j]), sub(r[i], r[j])));
-        }
-    }
-    for i in 0..n {
-        s.u[i] -= c * sums[i];
-    }
-}
-
-/// After the sweep changed theta, and so pi: F_ij from g_ij and the current pi/n^2
-/// (which ghosts must hold) and f_i anew; with `work = Some(c)` also
-/// u_i -= c sum_j v_ij . f_ij in the same pass.
-pub fn refresh_forces(sys: &mut System, work: Option<f64>) {
-    let s = &mut sys.store;
-    let n = s.nlocal;
-    let sums = &mut sys.pair_sums;
-    sums.clear();
-    sums.resize(n, 0.0);
-    let v = if work.is_some() { velocities(s, &mut sys.velocity) } else { &[] };
-    s.f[..n].fill([0.0; 3]);
-    let (active, geometry, r, pn2, f) = (&sys.active[..], &sys.pair_geometry[..], &s.r[..], &s.pn2[..], &mut s.f[..]);
-    sys.pair_force.resize(active.len(), 0.0);
-    for ((&[i, j], &g), big_f_out) in active.iter().zip(geometry).zip(sys.pair_force.iter_mut()) {
-        let (i, j) = (i as usize, j as usize);
-        let big_f = -(pn2[i] + pn2[j]) * g;
-        *big_f_out = big_f;
-        if big_f != 0.0 {
-            let d = sub(r[i], r[j]);
-            kick(f, n, i, j, big_f, d);
-            if work.is_some() {
-                add(sums, n, i, j, big_f * dot(sub(v[i], v[j]), d));
+avx2_fn! {
+    /// u_i -= c sum_j (v_i - v_j) . f_ij, with the F_ij of the last force pass.
+    pub fn work(sys: &mut System, c: f64) {
+        let s = &mut sys.store;
+        let n = s.nlocal;
+        let len = s.len();
+        let (sums, v) = (&mut sys.pair_sums, &velocities(s, &mut sys.velocity)[..len]);
+        sums.clear();
+        sums.resize(n, 0.0);
+        let r = &s.r[..len];
+        for (&[i, j], &big_f) in sys.active.iter().zip(&sys.pair_force) {
+            if big_f != 0.0 {
+                let (i, j) = in_store(i, j, len);
+                add(sums, i, j, big_f * dot(sub(v[i], v[j]), sub(r[i], r[j])));
             }
         }
-    }
-    if let Some(c) = work {
         for i in 0..n {
             s.u[i] -= c * sums[i];
         }
     }
 }
 
-/// Adds a symmetric pair term to whichever of i, j is owned (index below `n`).
+avx2_fn! {
+    /// After the sweep changed theta, and so pi: F_ij from g_ij and the current pi/n^2
+    /// (which ghosts must hold) and f_i anew; with `work = Some(c)` also
+    /// u_i -= c sum_j v_ij . f_ij in the same pass.
+    pub fn refresh_forces(sys: &mut System, work: Option<f64>) {
+        let s = &mut sys.store;
+        let n = s.nlocal;
+        let sums = &mut sys.pair_sums;
+        sums.clear();
+        sums.resize(n, 0.0);
+        let len = s.len();
+        let v = if work.is_some() { &velocities(s, &mut sys.velocity)[..len] } else { &[] };
+        s.f[..n].fill([0.0; 3]);
+        let (active, geometry, r, pn2, f) = (&sys.active[..], &sys.pair_geometry[..], &s.r[..len], &s.pn2[..len], &mut s.f[..n]);
+        sys.pair_force.resize(active.len(), 0.0);
+        for ((&[i, j], &g), big_f_out) in active.iter().zip(geometry).zip(sys.pair_force.iter_mut()) {
+            let (i, j) = in_store(i, j, len);
+            let big_f = -(pn2[i] + pn2[j]) * g;
+            *big_f_out = big_f;
+            if big_f != 0.0 {
+                let d = sub(r[i], r[j]);
+                kick(f, i, j, big_f, d);
+                if work.is_some() {
+                    add(sums, i, j, big_f * dot(sub(v[i], v[j]), d));
+                }
+            }
+        }
+        if let Some(c) = work {
+            for i in 0..n {
+                s.u[i] -= c * sums[i];
+            }
+        }
+    }
+}
+
+/// The indices of a list pair, checked once against the store's length `len` (a list
+/// entry outside the store is a bug of the list build: a panic, never a silent read);
+/// slices cut to `len` then index without further checks.
 #[inline(always)]
-pub(crate) fn add(v: &mut [f64], n: usize, i: usize, j: usize, x: f64) {
-    if i < n {
+fn in_store(i: u32, j: u32, len: usize) -> (usize, usize) {
+    let (i, j) = (i as usize, j as usize);
+    assert!(i.max(j) < len, "pair outside the store");
+    (i, j)
+}
+
+/// Adds a symmetric pair term to whichever of i, j is owned: `v` holds the owned
+/// particles only (an index below its length).
+#[inline(always)]
+pub(crate) fn add(v: &mut [f64], i: usize, j: usize, x: f64) {
+    if i < v.len() {
         v[i] += x;
     }
-    if j < n {
+    if j < v.len() {
         v[j] += x;
     }
 }
 
-/// f_i += F r_ij, f_j -= F r_ij for the owned ones: the same bits as f_j += F r_ji.
+/// f_i += F r_ij, f_j -= F r_ij for the owned ones (`f` holds the owned particles
+/// only): the same bits as f_j += F r_ji.
 #[inline(always)]
-pub(crate) fn kick(f: &mut [Vec3], n: usize, i: usize, j: usize, big_f: f64, d: Vec3) {
+pub(crate) fn kick(f: &mut [Vec3], i: usize, j: usize, big_f: f64, d: Vec3) {
     let df = [big_f * d[0], big_f * d[1], big_f * d[2]];
+    let n = f.len();
     if i < n {
         for c in 0..3 {
             f[i][c] += df[c];

@@ -206,7 +206,7 @@ impl<E: FixedEntropy, W: Weight> Sdpd<E, W> {
                         t[b] -= w[a] * (mi[3 * a + b] / (di * di) + mj[3 * a + b] / (dj * dj));
                     }
                 }
-                many_body::kick(&mut sc.dp, nl, i, j, 1.0, t);
+                many_body::kick(&mut sc.dp[..nl], i, j, 1.0, t);
             }
         }
         self.half_kick(sys, sc);
@@ -254,7 +254,7 @@ impl<E: FixedEntropy, W: Weight> Sdpd<E, W> {
                         sc.a[o][c] += w[c] * dt_inv;
                     }
                 }
-                many_body::kick(&mut sc.b, nl, i, j, 1.0, w);
+                many_body::kick(&mut sc.b[..nl], i, j, 1.0, w);
             }
         }
         for i in 0..nl {

@@ -92,8 +92,8 @@ pub fn start<H: HeatFlow>(d: Option<&Dissipation>, kb: f64, sys: &mut System, dt
             let f_d = -gamma * ve;
             let dp = (kb * (s.theta[i] + s.theta[j]) * gamma).sqrt() * xi * sqrt_dt;
             work += ve * (f_d * dt + dp);
-            kick(friction, n, i, j, f_d, e);
-            kick(noise, n, i, j, dp, e);
+            kick(&mut friction[..n], i, j, f_d, e);
+            kick(&mut noise[..n], i, j, dp, e);
             let wh = (1.0 - r / d.rc_heat).max(0.0);
             let kappa = d.kappa * wh * wh;
             if H::ACTIVE && kappa > 0.0 {
@@ -151,7 +151,7 @@ pub fn friction(d: Option<&Dissipation>, sys: &mut System) {
             let r = r2.sqrt();
             let inv_r = 1.0 / r;
             let e = dr.map(|x| x * inv_r);
-            kick(friction, n, i, j, -friction_kernel(d, r) * dot(v, e), e);
+            kick(&mut friction[..n], i, j, -friction_kernel(d, r) * dot(v, e), e);
         }
     }
 }
