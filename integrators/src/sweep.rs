@@ -21,6 +21,7 @@ use crate::pair_update::{pair_update, PairDrive, PairState};
 use crate::rng::{normal_pair, stream, Normals};
 use crate::settings::{Dissipation, Reservoir};
 use crate::species::Species;
+use crate::simd::avx2_fn;
 use crate::system::System;
 use crate::many_body::density_of;
 use gendpde_engine::{exact_sums, Fields, Particles, Vec3};
@@ -29,80 +30,62 @@ use gendpde_potentials::{AtDensity, Eos, EosError, FixedDensity, ISOLATED_DENSIT
 /// Fields the sweep writes, exchanged between colours.
 pub const SWEPT: Fields = Fields::MOMENTUM.union(Fields::ENERGY).union(Fields::THETA).union(Fields::INV_TAU);
 
-/// One full sweep over all pairs of all colours. A pair update that fails is undone:
-/// left out under `reject`, else reported after the sweep (the failure of lowest tag:
-/// the pairs after it see the same states on any rank count).
-///
-/// On x86_64 processors with AVX2 the sweep runs as code built for AVX2 (3-operand
-/// instructions, fewer register copies); the same IEEE operations in the same order
-/// (Rust never fuses or reorders floating-point operations by itself), so the same bits.
-pub fn sweep<E: FixedDensity, H: HeatFlow, N: Noise>(eos: &Species<E>, d: &Dissipation, sys: &mut System, dt: f64) -> Result<(), StepError> {
-    #[cfg(target_arch = "x86_64")]
-    if std::is_x86_feature_detected!("avx2") {
-        // SAFETY: the processor has AVX2 (just checked)
-        return unsafe { sweep_avx2::<E, H, N>(eos, d, sys, dt) };
-    }
-    sweep_any::<E, H, N>(eos, d, sys, dt)
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-fn sweep_avx2<E: FixedDensity, H: HeatFlow, N: Noise>(eos: &Species<E>, d: &Dissipation, sys: &mut System, dt: f64) -> Result<(), StepError> {
-    sweep_any::<E, H, N>(eos, d, sys, dt)
-}
-
-/// [`sweep`] for the instruction set of its caller.
-#[inline(always)]
-fn sweep_any<E: FixedDensity, H: HeatFlow, N: Noise>(eos: &Species<E>, d: &Dissipation, sys: &mut System, dt: f64) -> Result<(), StepError> {
-    let kb = eos.kb();
-    let rc = d.cutoff();
-    let (inv_rcd, inv_rch) = (1.0 / d.rc_friction, 1.0 / d.rc_heat);
-    let gamma = d.gamma * d.noise.scale();
-    let (step, key, normals) = (sys.step, sys.noise_step(sys.step), Normals::get());
-    sys.take_inverse_masses();
-    let inv_m = &sys.inv_mass;
-    // each particle's EOS at its density, which the sweep does not change
-    let at: Vec<E::At<'_>> = (0..sys.store.mass.len()).map(|i| at_density(eos, &sys.store, i)).collect();
-    let mut outcome = Ok(());
-    let mut failures = Vec::new();
-    let keys = Keys { seed: d.seed, key, kb };
-    for colour in 0..sys.sweep.colours() {
-        let (pairs, displacement) = sys.sweep.within_displaced(colour, &sys.store, rc);
-        let mut v = Swept::new::<H, N>(&mut sys.store, &at, inv_m);
-        // the pairs' noises a block of LANES ahead, their Philox blocks side by side: the
-        // keys (step, tags) do not change during the sweep
-        for (block, displaced) in pairs.chunks(LANES).zip(displacement.chunks(LANES)) {
-            let last = block.len() - 1;
-            let ends: [(Idx, Idx); LANES] = std::array::from_fn(|l| v.pair(block[l.min(last)]));
-            let tags = ends.map(|(i, j)| (v.tag(i), v.tag(j)));
-            let noises = normals.pairs(d.seed, key, tags, stream::PAIR);
-            for ((&(i, j), &(xi, xibar)), &[dx, dy, dz, r2]) in ends.iter().zip(&noises).zip(displaced) {
-                let r = r2.sqrt();
-                let wd = (1.0 - r * inv_rcd).max(0.0);
-                let wh = (1.0 - r * inv_rch).max(0.0);
-                let inv_r = 1.0 / r;
-                let pair = Pair {
-                    i,
-                    j,
-                    e: [dx * inv_r, dy * inv_r, dz * inv_r],
-                    inv_m: (v.inv_m(i), v.inv_m(j)),
-                    gamma: gamma * wd * wd,
-                    kappa: d.kappa * wh * wh,
-                };
-                if let Err(failed) = pair_step::<_, H, N>(&mut v, &keys, pair, xi, xibar, dt, 0, d.substeps, &mut sys.substeps) {
-                    sys.rejected += d.reject as u64;
-                    if !d.reject {
-                        failures.push(failed);
+avx2_fn! {
+    /// One full sweep over all pairs of all colours. A pair update that fails is undone:
+    /// left out under `reject`, else reported after the sweep (the failure of lowest tag:
+    /// the pairs after it see the same states on any rank count). Built for AVX2 where
+    /// the processor has it ([`avx2_fn`]: 3-operand instructions, fewer register copies).
+    pub fn sweep<E: FixedDensity, H: HeatFlow, N: Noise>(eos: &Species<E>, d: &Dissipation, sys: &mut System, dt: f64) -> Result<(), StepError> {
+        let kb = eos.kb();
+        let rc = d.cutoff();
+        let (inv_rcd, inv_rch) = (1.0 / d.rc_friction, 1.0 / d.rc_heat);
+        let gamma = d.gamma * d.noise.scale();
+        let (step, key, normals) = (sys.step, sys.noise_step(sys.step), Normals::get());
+        sys.take_inverse_masses();
+        let inv_m = &sys.inv_mass;
+        // each particle's EOS at its density, which the sweep does not change
+        let at: Vec<E::At<'_>> = (0..sys.store.mass.len()).map(|i| at_density(eos, &sys.store, i)).collect();
+        let mut outcome = Ok(());
+        let mut failures = Vec::new();
+        let keys = Keys { seed: d.seed, key, kb };
+        for colour in 0..sys.sweep.colours() {
+            let (pairs, displacement) = sys.sweep.within_displaced(colour, &sys.store, rc);
+            let mut v = Swept::new::<H, N>(&mut sys.store, &at, inv_m);
+            // the pairs' noises a block of LANES ahead, their Philox blocks side by side: the
+            // keys (step, tags) do not change during the sweep
+            for (block, displaced) in pairs.chunks(LANES).zip(displacement.chunks(LANES)) {
+                let last = block.len() - 1;
+                let ends: [(Idx, Idx); LANES] = std::array::from_fn(|l| v.pair(block[l.min(last)]));
+                let tags = ends.map(|(i, j)| (v.tag(i), v.tag(j)));
+                let noises = normals.pairs(d.seed, key, tags, stream::PAIR);
+                for ((&(i, j), &(xi, xibar)), &[dx, dy, dz, r2]) in ends.iter().zip(&noises).zip(displaced) {
+                    let r = r2.sqrt();
+                    let wd = (1.0 - r * inv_rcd).max(0.0);
+                    let wh = (1.0 - r * inv_rch).max(0.0);
+                    let inv_r = 1.0 / r;
+                    let pair = Pair {
+                        i,
+                        j,
+                        e: [dx * inv_r, dy * inv_r, dz * inv_r],
+                        inv_m: (v.inv_m(i), v.inv_m(j)),
+                        gamma: gamma * wd * wd,
+                        kappa: d.kappa * wh * wh,
+                    };
+                    if let Err(failed) = pair_step::<_, H, N>(&mut v, &keys, pair, xi, xibar, dt, 0, d.substeps, &mut sys.substeps) {
+                        sys.rejected += d.reject as u64;
+                        if !d.reject {
+                            failures.push(failed);
+                        }
                     }
                 }
             }
+            for failed in failures.drain(..) {
+                outcome = lowest(outcome, Err(failed.error(eos, &sys.store, step)));
+            }
+            sys.comm.after_colour(&mut sys.store, &sys.sweep, colour, SWEPT);
         }
-        for failed in failures.drain(..) {
-            outcome = lowest(outcome, Err(failed.error(eos, &sys.store, step)));
-        }
-        sys.comm.after_colour(&mut sys.store, &sys.sweep, colour, SWEPT);
+        outcome
     }
-    outcome
 }
 
 /// The EOS of particle `i` at its density (raised to the isolated floor).
