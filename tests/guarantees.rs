@@ -91,6 +91,50 @@ fn pairwise_fluid(atom_style: &str, rho: f64, n: usize, rest: &str) -> String {
     )
 }
 
+/// The hot loops built for AVX2 (the GenDPDE passes and sweep, the classic sweep) give the
+/// bits of their baseline builds, which `GENDPDE_NO_AVX2` selects: a binary gives the same
+/// trajectory on processors with and without AVX2.
+#[test]
+fn avx2_builds_give_the_bits_of_the_baseline_builds() {
+    let dir = tempdir("avx2");
+    let original = "pair_style gendpde 3.0 4928459 weight quadratic\npair_coeff * * 4.5 1.0\n\
+                    fix rev all nve/gendpde\nfix ssa all shardlow heat original\n";
+    let scenes = [
+        ("gendpde-vdw", gendpde_fluid("eos/vdw 60.0 2.4682 1.4142 excess", original)),
+        ("gendpde-lj-table", gendpde_fluid("eos/lj 60.0 table 0.3 8.0 121 0.0 1.2 129", original)),
+        (
+            "dpd-fdt-energy",
+            pairwise_fluid(
+                "dpd",
+                3.0,
+                8,
+                "set group all dpd/theta 1.0\npair_style dpd/fdt/energy 1.0 4928\npair_coeff * * 25.0 3.0 1.0 1.0\n\
+                 fix 1 all shardlow\nfix 2 all nve\nfix 3 all eos/cv 10.0\n",
+            ),
+        ),
+    ];
+    for (name, scene) in scenes {
+        let script = format!(
+            "{scene}thermo 1\nthermo_modify format float %.17g\nrun 10\n\
+             write_dump all custom final.dump id x y z px py pz u modify format float %.17g\n"
+        );
+        std::fs::write(dir.join("in.scene"), script).unwrap();
+        let run = |baseline: bool| {
+            let mut cmd = std::process::Command::new(env!("CARGO_BIN_EXE_gendpde"));
+            cmd.args(["run", "in.scene", "-log", "none"]).current_dir(&dir).env_remove("GENDPDE_NO_AVX2");
+            if baseline {
+                cmd.env("GENDPDE_NO_AVX2", "1");
+            }
+            let out = cmd.output().unwrap();
+            assert!(out.status.success(), "{name}: {}", String::from_utf8_lossy(&out.stderr));
+            (thermo_rows(&out.stdout), std::fs::read_to_string(dir.join("final.dump")).unwrap())
+        };
+        let (avx2, baseline) = (run(false), run(true));
+        assert_eq!(avx2.0.len(), 11, "{name}: a thermo row every step");
+        assert!(avx2 == baseline, "{name}: the AVX2 builds differ from the baseline builds");
+    }
+}
+
 #[test]
 fn every_style_is_bit_identical_on_1_2_3_4_ranks_and_an_uneven_grid() {
     let original = "pair_style gendpde 3.0 4928459 weight quadratic\npair_coeff * * 4.5 1.0\n\

@@ -436,8 +436,8 @@ impl ClassicDpd {
     /// ghost momenta or energies before (the forces are conservative).
     fn sweep(&self, sys: &mut System, p: &ShardlowDpd) -> Fields {
         #[cfg(target_arch = "x86_64")]
-        if std::is_x86_feature_detected!("avx2") {
-            // SAFETY: the processor has AVX2 (just checked)
+        if crate::simd::avx2() {
+            // SAFETY: the processor has AVX2 (checked by `avx2`)
             return unsafe { self.sweep_avx2(sys, p) };
         }
         self.sweep_any(sys, p)

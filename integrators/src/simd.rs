@@ -1,7 +1,21 @@
 //! Hot loops built for AVX2 where the processor has it.
 
+/// Whether the hot loops run their AVX2 builds: the processor has AVX2 and the
+/// environment does not set `GENDPDE_NO_AVX2` (which runs the baseline builds, to check
+/// that both give the same bits, as tests/guarantees.rs does). Decided once per process.
+pub fn avx2() -> bool {
+    static AVX2: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
+    *AVX2.get_or_init(|| {
+        #[cfg(target_arch = "x86_64")]
+        let has = std::is_x86_feature_detected!("avx2");
+        #[cfg(not(target_arch = "x86_64"))]
+        let has = false;
+        has && std::env::var_os("GENDPDE_NO_AVX2").is_none()
+    })
+}
+
 /// Defines a function whose body runs as code built for AVX2 (3-operand instructions,
-/// packed lanes where a loop allows them) when the processor has AVX2, else as built for
+/// packed lanes where a loop allows them) where [`avx2`] says so, else as built for
 /// the baseline. Both run the same IEEE operations in the same order (Rust never fuses or
 /// reorders floating-point operations by itself), so they give the same bits. The body is
 /// one `#[inline(always)]` function compiled into both; code it calls is compiled into
@@ -21,8 +35,8 @@ macro_rules! avx2_fn {
                 fn avx2 $(<$($g: $bound),*>)? ($($arg: $ty),*) $(-> $ret)? {
                     body $(::<$($g),*>)? ($($arg),*)
                 }
-                if std::is_x86_feature_detected!("avx2") {
-                    // SAFETY: the processor has AVX2 (just checked)
+                if $crate::simd::avx2() {
+                    // SAFETY: the processor has AVX2 (checked by `avx2`)
                     return unsafe { avx2 $(::<$($g),*>)? ($($arg),*) };
                 }
             }
