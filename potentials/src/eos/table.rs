@@ -548,7 +548,7 @@ impl<E: Eos> Tabulated<E> {
         }
         let y = (n - self.grid.n.0) * self.inv_dn;
         let j = (y as usize).min(self.nn - 2);
-        Some((j, (y - j as f64).clamp(0.0, 1.0)))
+        Some((j, unit(y - j as f64)))
     }
 
     /// Column i and local t of theta in [theta_min, theta_max].
@@ -564,7 +564,7 @@ impl<E: Eos> Tabulated<E> {
         while theta > self.thetas[i + 1] && i + 1 < m {
             i += 1;
         }
-        (i, ((theta - self.thetas[i]) * self.inv_h[i]).clamp(0.0, 1.0))
+        (i, unit((theta - self.thetas[i]) * self.inv_h[i]))
     }
 
     /// Cell and local coordinates of (theta, n), None outside the table.
@@ -604,7 +604,7 @@ impl<E: Eos> Tabulated<E> {
     #[inline(always)]
     fn theta_at(&self, i: usize, t: f64) -> f64 {
         let (a, b) = (self.thetas[i], self.thetas[i + 1]);
-        (a + t * (b - a)).max(a).min(b)
+        within(a + t * (b - a), a, b)
     }
 
     /// Cell, local coordinates and the cubic u(t) at this density of the state of energy
@@ -678,10 +678,24 @@ impl<E: Eos> Tabulated<E> {
             } else {
                 (u - p0) / (p1 - p0)
             };
-            newton(&c, u, t0.clamp(0.0, 1.0), self.newton_tol(i))
+            newton(&c, u, unit(t0), self.newton_tol(i))
         };
         Some((Loc { i, j, t, s }, c))
     }
+}
+
+/// t limited to [0, 1], for a t that is not NaN: two compare-selects (`f64::clamp` also
+/// carries NaN through, at several instructions more in the sweep's refreshes).
+#[inline(always)]
+fn unit(t: f64) -> f64 {
+    within(t, 0.0, 1.0)
+}
+
+/// x limited to [a, b] (a < b), for an x that is not NaN.
+#[inline(always)]
+fn within(x: f64, a: f64, b: f64) -> f64 {
+    let x = if x > a { x } else { a };
+    if x < b { x } else { b }
 }
 
 /// Root in [0, 1] of the increasing cubic c(t) = u with c(0) < u < c(1): Newton,

@@ -1,7 +1,7 @@
 //! The table at one density for the Shardlow sweep's refreshes: [`TableAt`] keeps the
 //! cubics u(t) of the cells around a particle's theta (n is fixed during a sweep).
 
-use super::{cubic, newton, slope, value, Tabulated};
+use super::{cubic, newton, slope, unit, value, within, Tabulated};
 use crate::eos::{AtDensity, AtN, Eos, FixedDensity};
 
 impl<E: Eos> FixedDensity for Tabulated<E> {
@@ -70,7 +70,7 @@ impl<E: Eos> TableAt<'_, E> {
         if !(a < guess && guess < b && c[0] < u && u < self.p1[k]) {
             return None;
         }
-        let t0 = ((guess - a) * self.inv_h[k]).clamp(0.0, 1.0);
+        let t0 = unit((guess - a) * self.inv_h[k]);
         // newton's first iteration, which usually ends it (the guess is close), inline
         let (r, d1) = (value(c, t0) - u, slope(c, t0));
         let dt = r / d1;
@@ -81,7 +81,7 @@ impl<E: Eos> TableAt<'_, E> {
         } else {
             newton(c, u, t0, self.tol[k])
         };
-        Some(((a + t * (b - a)).max(a).min(b), slope(c, t) * self.inv_h[k]))
+        Some((within(a + t * (b - a), a, b), slope(c, t) * self.inv_h[k]))
     }
 }
 
