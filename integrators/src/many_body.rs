@@ -19,70 +19,71 @@ use gendpde_engine::{dot, sub, Particles, Vec3};
 use gendpde_potentials::volume::PartitionVolume;
 use gendpde_potentials::{Eos, Weight, ISOLATED_DENSITY};
 
-/// n_i = sum_j w(r_ij)/[w] for owned particles (eq 2), keeping g_ij = w'(r_ij)/([w] r_ij)
-/// per pair for the force pass, or with `volume` the corrected
-/// n_i = 1/Vol(n^b_i) of the argon paper (eqs 2-3) from that sum n^b_i, keeping
-/// zeta_i = dn_i/dn^b_i (eq 24) in `sys.zeta` for [`refresh_state`].
-pub fn density<W: Weight>(w: &W, volume: Option<&PartitionVolume>, sys: &mut System) {
-    let rc2 = w.cutoff() * w.cutoff();
-    let s = &mut sys.store;
-    let n = s.nlocal;
-    s.n[..n].fill(0.0);
-    // the pairs inside the cutoff, selected without a branch per pair (a quarter of the
-    // list lies in the skin, a branch the processor cannot predict), with r^2 kept in
-    // their g slot; the later passes walk this compact list
-    // (written into spare capacity: no zeros written first)
-    let (pairs, active, geometry, r) = (&sys.nlist.pairs, &mut sys.active, &mut sys.pair_geometry, &s.r[..]);
-    active.clear();
-    geometry.clear();
-    active.reserve(pairs.len());
-    geometry.reserve(pairs.len());
-    let (slots, r2s) = (&mut active.spare_capacity_mut()[..pairs.len()], &mut geometry.spare_capacity_mut()[..pairs.len()]);
-    let mut m = 0;
-    for &[i, j] in pairs {
-        let d = sub(r[i as usize], r[j as usize]);
-        let r2 = dot(d, d);
-        slots[m].write([i, j]);
-        r2s[m].write(r2);
-        m += (r2 < rc2) as usize;
-    }
-    // SAFETY: entries 0..m were written (entry m was written before m passed it)
-    unsafe {
-        active.set_len(m);
-        geometry.set_len(m);
-    }
-    let weights = &mut sys.pair_sums;
-    weigh(w, geometry, weights);
-    let density = &mut s.n[..n];
-    for (&[i, j], &wij) in active.iter().zip(weights.iter()) {
-        add(density, i as usize, j as usize, wij);
-    }
-    let zeta = &mut sys.zeta;
-    zeta.clear();
-    if let Some(v) = volume {
-        zeta.resize(n, 0.0);
-        for (nb, z) in s.n[..n].iter_mut().zip(zeta.iter_mut()) {
-            let d = v.density(*nb);
-            (*nb, *z) = (d.n, d.zeta);
+avx2_fn! {
+    /// n_i = sum_j w(r_ij)/[w] for owned particles (eq 2), keeping g_ij = w'(r_ij)/([w] r_ij)
+    /// per pair for the force pass, or with `volume` the corrected
+    /// n_i = 1/Vol(n^b_i) of the argon paper (eqs 2-3) from that sum n^b_i, keeping
+    /// zeta_i = dn_i/dn^b_i (eq 24) in `sys.zeta` for [`refresh_state`].
+    pub fn density<W: Weight>(w: &W, volume: Option<&PartitionVolume>, sys: &mut System) {
+        let rc2 = w.cutoff() * w.cutoff();
+        let s = &mut sys.store;
+        let n = s.nlocal;
+        s.n[..n].fill(0.0);
+        // the pairs inside the cutoff, selected without a branch per pair (a quarter of the
+        // list lies in the skin, a branch the processor cannot predict), with r^2 kept in
+        // their g slot; the later passes walk this compact list
+        // (written into spare capacity: no zeros written first)
+        let (pairs, active, geometry, r) = (&sys.nlist.pairs, &mut sys.active, &mut sys.pair_geometry, &s.r[..]);
+        active.clear();
+        geometry.clear();
+        active.reserve(pairs.len());
+        geometry.reserve(pairs.len());
+        let (slots, r2s) = (&mut active.spare_capacity_mut()[..pairs.len()], &mut geometry.spare_capacity_mut()[..pairs.len()]);
+        let mut m = 0;
+        for &[i, j] in pairs {
+            let d = sub(r[i as usize], r[j as usize]);
+            let r2 = dot(d, d);
+            slots[m].write([i, j]);
+            r2s[m].write(r2);
+            m += (r2 < rc2) as usize;
+        }
+        // SAFETY: entries 0..m were written (entry m was written before m passed it)
+        unsafe {
+            active.set_len(m);
+            geometry.set_len(m);
+        }
+        let weights = &mut sys.pair_sums;
+        weigh(w, geometry, weights);
+        let density = &mut s.n[..n];
+        for (&[i, j], &wij) in active.iter().zip(weights.iter()) {
+            add(density, i as usize, j as usize, wij);
+        }
+        let zeta = &mut sys.zeta;
+        zeta.clear();
+        if let Some(v) = volume {
+            zeta.resize(n, 0.0);
+            for (nb, z) in s.n[..n].iter_mut().zip(zeta.iter_mut()) {
+                let d = v.density(*nb);
+                (*nb, *z) = (d.n, d.zeta);
+            }
         }
     }
 }
 
-avx2_fn! {
-    /// w(r_ij)/[w] into `weights` and g_ij = w'(r_ij)/([w] r_ij) into `geometry` (which
-    /// holds r_ij^2) for every pair inside the cutoff: a loop that writes no particle, which
-    /// the compiler runs in packed lanes (square roots and divisions 4 at a time, the same
-    /// IEEE operations per lane, so the same bits).
-    fn weigh<W: Weight>(w: &W, geometry: &mut [f64], weights: &mut Vec<f64>) {
-        weights.clear();
-        weights.extend(geometry.iter_mut().map(|g| {
-            let r2 = *g;
-            let r = r2.sqrt();
-            let (w_r, dw) = w.eval(r);
-            *g = if r2 > 0.0 { dw / r } else { 0.0 };
-            w_r
-        }));
-    }
+/// w(r_ij)/[w] into `weights` and g_ij = w'(r_ij)/([w] r_ij) into `geometry` (which
+/// holds r_ij^2) for every pair inside the cutoff: a loop that writes no particle, which
+/// the compiler runs in packed lanes (square roots and divisions 4 at a time, the same
+/// IEEE operations per lane, so the same bits).
+#[inline(always)]
+fn weigh<W: Weight>(w: &W, geometry: &mut [f64], weights: &mut Vec<f64>) {
+    weights.clear();
+    weights.extend(geometry.iter_mut().map(|g| {
+        let r2 = *g;
+        let r = r2.sqrt();
+        let (w_r, dw) = w.eval(r);
+        *g = if r2 > 0.0 { dw / r } else { 0.0 };
+        w_r
+    }));
 }
 
 /// Local density of particle i as the EOS reads it (0 in pairwise scenes).
