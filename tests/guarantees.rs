@@ -104,13 +104,7 @@ fn avx2_builds_give_the_bits_of_the_baseline_builds() {
         ("gendpde-lj-table", gendpde_fluid("eos/lj 60.0 table 0.3 8.0 121 0.0 1.2 129", original)),
         (
             "dpd-fdt-energy",
-            pairwise_fluid(
-                "dpd",
-                3.0,
-                8,
-                "set group all dpd/theta 1.0\npair_style dpd/fdt/energy 1.0 4928\npair_coeff * * 25.0 3.0 1.0 1.0\n\
-                 fix 1 all shardlow\nfix 2 all nve\nfix 3 all eos/cv 10.0\n",
-            ),
+            dpd_fdt_energy_fluid(),
         ),
     ];
     for (name, scene) in scenes {
@@ -133,6 +127,17 @@ fn avx2_builds_give_the_bits_of_the_baseline_builds() {
         assert_eq!(avx2.0.len(), 11, "{name}: a thermo row every step");
         assert!(avx2 == baseline, "{name}: the AVX2 builds differ from the baseline builds");
     }
+}
+
+/// LAMMPS's DPDE: dpd/fdt/energy with fix shardlow on [`pairwise_fluid`] at rho 3.
+fn dpd_fdt_energy_fluid() -> String {
+    pairwise_fluid(
+        "dpd",
+        3.0,
+        8,
+        "set group all dpd/theta 1.0\npair_style dpd/fdt/energy 1.0 4928\npair_coeff * * 25.0 3.0 1.0 1.0\n\
+         fix 1 all shardlow\nfix 2 all nve\nfix 3 all eos/cv 10.0\n",
+    )
 }
 
 #[test]
@@ -197,13 +202,7 @@ fn every_style_is_bit_identical_on_1_2_3_4_ranks_and_an_uneven_grid() {
         ),
         (
             "dpd-fdt-energy",
-            pairwise_fluid(
-                "dpd",
-                3.0,
-                8,
-                "set group all dpd/theta 1.0\npair_style dpd/fdt/energy 1.0 4928\npair_coeff * * 25.0 3.0 1.0 1.0\n\
-                 fix 1 all shardlow\nfix 2 all nve\nfix 3 all eos/cv 10.0\n",
-            ) + dpd_thermo,
+            dpd_fdt_energy_fluid() + dpd_thermo,
             30,
         ),
         (
