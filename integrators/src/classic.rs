@@ -41,6 +41,7 @@ use crate::pair_update::{pair_update, PairDrive, PairState};
 use crate::physics::{Physics, SetupError};
 use crate::rng::{stream, Normals};
 use crate::settings::Settings;
+use crate::simd::avx2_fn;
 use crate::sweep::SWEPT;
 use crate::system::System;
 use crate::type_table::TypeTable;
@@ -434,20 +435,9 @@ impl ClassicDpd {
     /// Returns the fields whose ghosts are left to the end-of-step forward: the last
     /// colour's values return to their owners but travel on only then, when nothing reads
     /// ghost momenta or energies before (the forces are conservative).
+    /// Built for AVX2 where the processor has it (through [`built_sweep`]).
     fn sweep(&self, sys: &mut System, p: &ShardlowDpd) -> Fields {
-        #[cfg(target_arch = "x86_64")]
-        if crate::simd::avx2() {
-            // SAFETY: the processor has AVX2 (checked by `avx2`)
-            return unsafe { self.sweep_avx2(sys, p) };
-        }
-        self.sweep_any(sys, p)
-    }
-
-    /// [`ClassicDpd::sweep`] built for AVX2 (the same IEEE operations in the same order).
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
-    fn sweep_avx2(&self, sys: &mut System, p: &ShardlowDpd) -> Fields {
-        self.sweep_any(sys, p)
+        built_sweep(self, sys, p)
     }
 
     #[inline(always)]
@@ -872,5 +862,13 @@ fn density(sys: &mut System, w: impl Fn(&Particles, usize, usize, f64) -> (f64, 
         if j < n {
             s.rho[j] += to_j;
         }
+    }
+}
+
+avx2_fn! {
+    /// [`ClassicDpd::sweep`] as a function of its own, built for AVX2 where the processor
+    /// has it ([`crate::simd`]).
+    fn built_sweep(dpd: &ClassicDpd, sys: &mut System, p: &ShardlowDpd) -> Fields {
+        dpd.sweep_any(sys, p)
     }
 }
