@@ -242,13 +242,14 @@ pub fn run(sim: &mut Sim, outputs: &mut Outputs, out: &mut Output, vars: &Variab
     if secs > 0.0 {
         out.line(&format!("Comm time (rank 0) = {comm:.6} s ({:.1} % of the loop)", 100.0 * comm / secs));
     }
-    let (messages, bytes) = sys.comm.traffic();
+    let (messages, bytes, rounds) = sys.comm.traffic();
     if sys.comm.size() > 1 && nsteps > 0 {
         let per_step = |now: u64, before: u64| (now - before) as f64 / nsteps as f64;
         out.line(&format!(
-            "Comm messages per step (rank 0, point to point) = {:.1}, {:.1} kB per step",
+            "Comm messages per step (rank 0, point to point) = {:.1}, {:.1} kB per step, in {:.1} rounds",
             per_step(messages, traffic_before.0),
-            per_step(bytes, traffic_before.1) / 1e3
+            per_step(bytes, traffic_before.1) / 1e3,
+            per_step(rounds, traffic_before.2)
         ));
     }
     out.line(&format!("Neighbor list builds = {}", sys.builds));

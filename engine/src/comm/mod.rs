@@ -24,6 +24,10 @@ use crate::{CellGrid, Domain, Fields, Particles, SweepPairs, Vec3};
 #[derive(Clone, Debug)]
 struct Swap {
     dim: usize,
+    /// Whether the ghosts it creates lie above the receiver's sub-domain along `dim`
+    /// (it sends the lowest cell layers down). The sweep reads and writes only the
+    /// ghosts made by such swaps alone: its blocks C + {0..k}^3 start at owned cells C.
+    upper: bool,
     /// Position shift the sender applies (0 or +-L across the periodic boundary).
     shift: f64,
     dest: usize,
@@ -45,6 +49,9 @@ pub struct Comm {
     send: Vec<f64>,
     recv: Vec<f64>,
     written: Vec<bool>,
+    /// Ghosts below the sub-domain along some dimension (made by a swap that is not
+    /// `upper`, or sent on from such a ghost): no sweep colour reads them.
+    lower: Vec<bool>,
     /// Particles whose new values go to their ghosts in [`Comm::after_colour`].
     fresh: Vec<bool>,
     /// Per colour, the particles of its sweep pairs (list radius), gathered at the first
@@ -62,11 +69,13 @@ pub struct Comm {
     traffic: Traffic,
 }
 
-/// Point-to-point messages this rank sent to other ranks, and their f64 values.
+/// Point-to-point messages this rank sent to other ranks, their f64 values, and the
+/// rounds they travelled in (one or two exchanges at once: a rank waits once a round).
 #[derive(Default)]
 struct Traffic {
     messages: u64,
     values: u64,
+    rounds: u64,
 }
 
 impl Traffic {
@@ -75,8 +84,35 @@ impl Traffic {
         if dest != t.rank() {
             self.messages += 1;
             self.values += send.len() as u64;
+            self.rounds += 1;
         }
         t.sendrecv(send, dest, src, recv);
+    }
+
+    /// [`Transport::sendrecv2`], counted.
+    fn sendrecv2(&mut self, t: &dyn Transport, send: &[f64], split: usize, dest: [usize; 2], src: [usize; 2], recv: &mut Vec<f64>) -> usize {
+        for (d, part) in dest.into_iter().zip([&send[..split], &send[split..]]) {
+            if d != t.rank() {
+                self.messages += 1;
+                self.values += part.len() as u64;
+            }
+        }
+        self.rounds += dest.iter().any(|&d| d != t.rank()) as u64;
+        t.sendrecv2(send, split, dest, src, recv)
+    }
+
+    /// One round of one or two exchanges (`routes`: (dest, src) each): `send[..split]`
+    /// goes the first route, the rest the second; returns where the second part of
+    /// `recv` begins.
+    fn round(&mut self, t: &dyn Transport, send: &[f64], split: usize, routes: &[(usize, usize)], recv: &mut Vec<f64>) -> usize {
+        match *routes {
+            [(dest, src)] => {
+                self.sendrecv(t, send, dest, src, recv);
+                recv.len()
+            }
+            [(d0, s0), (d1, s1)] => self.sendrecv2(t, send, split, [d0, d1], [s0, s1], recv),
+            _ => unreachable!("a round has one or two exchanges"),
+        }
     }
 }
 
@@ -98,6 +134,7 @@ impl Comm {
             send: Vec::new(),
             recv: Vec::new(),
             written: Vec::new(),
+            lower: Vec::new(),
             fresh: Vec::new(),
             members: Vec::new(),
             members_stale: true,
@@ -114,9 +151,10 @@ impl Comm {
         self.time.get()
     }
 
-    /// Point-to-point messages sent to other ranks so far, and their bytes.
-    pub fn traffic(&self) -> (u64, u64) {
-        (self.traffic.messages, 8 * self.traffic.values)
+    /// Point-to-point messages sent to other ranks so far, their bytes, and the rounds
+    /// they travelled in.
+    pub fn traffic(&self) -> (u64, u64, u64) {
+        (self.traffic.messages, 8 * self.traffic.values, self.traffic.rounds)
     }
 
     fn timed<R>(&self, f: impl FnOnce() -> R) -> R {
@@ -289,70 +327,124 @@ impl Comm {
                     store.unpack_ghost(rec);
                 }
                 let recv_count = store.len() - recv_start;
-                self.swaps.push(Swap { dim: d, shift, dest, src, send, recv_start, recv_count });
+                self.swaps.push(Swap { dim: d, upper: dir == -1, shift, dest, src, send, recv_start, recv_count });
             }
         }
+        let lo = self.lo;
+        self.lower.clear();
+        self.lower.extend(store.cell.iter().map(|c| (0..3).any(|d| c[d] < lo[d])));
     }
 
     /// Copies `fields` from the owners to all their ghosts.
     pub fn forward(&mut self, store: &mut Particles, fields: Fields) {
+        self.forward_swaps(store, fields, true);
+    }
+
+    /// [`Comm::forward`] through every swap, or (not `lower`) through the `upper` swaps
+    /// only: to the ghosts a sweep colour reads.
+    fn forward_swaps(&mut self, store: &mut Particles, fields: Fields, lower: bool) {
         let start = std::time::Instant::now();
         let me = self.t.rank();
-        for s in &self.swaps {
+        let mut n = 0;
+        while n < self.swaps.len() {
+            let s = &self.swaps[n];
+            if !(lower || s.upper) {
+                n += 1;
+                continue;
+            }
             if s.dest == me && s.src == me {
                 let moves = s.send.iter().enumerate().map(|(k, &i)| (i as usize, s.recv_start + k));
                 store.copy_fields(moves, fields, Some((s.dim, s.shift)));
+                n += 1;
                 continue;
             }
+            let swaps = self.together(n, lower);
             self.send.clear();
-            store.pack_fields(&s.send, fields, Some((s.dim, s.shift)), &mut self.send);
-            self.traffic.sendrecv(self.t.as_ref(), &self.send, s.dest, s.src, &mut self.recv);
-            self.idx.clear();
-            self.idx.extend(s.recv_start as u32..(s.recv_start + s.recv_count) as u32);
-            store.unpack_fields(&self.idx, fields, &self.recv);
+            let mut split = 0;
+            for m in swaps.clone() {
+                let s = &self.swaps[m];
+                store.pack_fields(&s.send, fields, Some((s.dim, s.shift)), &mut self.send);
+                split = if m == n { self.send.len() } else { split };
+            }
+            let routes = self.routes(swaps.clone());
+            let at = self.traffic.round(self.t.as_ref(), &self.send, split, &routes[..swaps.len()], &mut self.recv);
+            for (m, part) in swaps.clone().zip([0..at, at..self.recv.len()]) {
+                let s = &self.swaps[m];
+                self.idx.clear();
+                self.idx.extend(s.recv_start as u32..(s.recv_start + s.recv_count) as u32);
+                store.unpack_fields(&self.idx, fields, &self.recv[part]);
+            }
+            n = swaps.end;
         }
         self.time.set(self.time.get() + start.elapsed());
+    }
+
+    /// The swaps that travel in one round from remote swap `n` on: with `lower`, the two
+    /// of its dimension (neither sends a ghost the other receives: the layers they send
+    /// lie inside the sub-domain along it), else swap `n` alone.
+    fn together(&self, n: usize, lower: bool) -> std::ops::Range<usize> {
+        let pair = lower && self.swaps[n].upper && self.swaps.get(n + 1).is_some_and(|s| s.dim == self.swaps[n].dim);
+        n..n + 1 + pair as usize
+    }
+
+    /// The (dest, src) of the forward exchanges of `swaps` (one or two), in order.
+    fn routes(&self, swaps: std::ops::Range<usize>) -> [(usize, usize); 2] {
+        let route = |m: usize| self.swaps.get(m).map_or((0, 0), |s| (s.dest, s.src));
+        [route(swaps.start), route(swaps.start + 1)]
     }
 
     /// After colour `colour` of a sweep wrote `fields` of the particles of its pairs: the
     /// ghosts written return their values to their owners, then every particle the colour
     /// may have touched (owned and in its pairs, or reached by a returning ghost) forwards
-    /// its values to its ghosts, but not to the ghosts that returned them (they hold
-    /// them). Ghosts of particles outside the colour's pairs keep theirs, which are
-    /// current, so they do not travel (particles of its pairs whose partners all lay
-    /// beyond the cutoff forward values unchanged: marking from the colour's list costs a
-    /// pass per list build, not per step). On one rank every swap is a copy, and all
-    /// ghosts are copied (marking costs more than it saves).
+    /// its values to its ghosts above the sub-domain (the only ones a colour reads or
+    /// writes), but not to the ghosts that returned them (they hold them). Ghosts of
+    /// particles outside the colour's pairs keep theirs, which are current, so they do not
+    /// travel (particles of its pairs whose partners all lay beyond the cutoff forward
+    /// values unchanged: marking from the colour's list costs a pass per list build, not
+    /// per step). The ghosts below the sub-domain (`lower`) are brought up to date after
+    /// the last colour only, all of them: after a sweep every ghost holds its owner's
+    /// values, and no message travels through the swaps that make them between colours.
+    /// When the first swap (along x, the last of the reverse and the first of the
+    /// forward) goes to another rank, its two exchanges travel as one ([`Comm::merged`]).
+    /// On one rank every swap is a copy, and all ghosts above (after the last colour: all
+    /// ghosts) are copied (marking costs more than it saves).
     pub fn after_colour(&mut self, store: &mut Particles, sweep: &SweepPairs, colour: usize, fields: Fields) {
         let start = std::time::Instant::now();
+        let last = colour + 1 == sweep.colours();
         let me = self.t.rank();
         let remote = self.swaps.iter().any(|s| s.dest != me || s.src != me);
+        if !remote {
+            self.fresh.clear();
+            self.reverse(store, &sweep.ghost_writes[colour], fields, 0);
+            self.time.set(self.time.get() + start.elapsed());
+            self.forward_swaps(store, fields, last);
+            return;
+        }
+        if self.members_stale {
+            self.gather_members(store.len(), sweep);
+        }
         self.fresh.clear();
-        if remote {
-            if self.members_stale {
-                self.gather_members(store.len(), sweep);
-            }
-            self.fresh.resize(store.len(), false);
-            for &k in &self.members[colour] {
-                self.fresh[k as usize] = true;
-            }
+        self.fresh.resize(store.len(), false);
+        for &k in &self.members[colour] {
+            self.fresh[k as usize] = true;
         }
-        self.reverse(store, &sweep.ghost_writes[colour], fields);
+        let merge = self.swaps.first().is_some_and(|s| s.upper && (s.dest != me || s.src != me));
+        self.reverse(store, &sweep.ghost_writes[colour], fields, merge as usize);
+        if merge {
+            self.merged(store, fields, last);
+        }
+        self.forward_fresh(store, fields, last, merge as usize);
         self.time.set(self.time.get() + start.elapsed());
-        if remote {
-            self.forward_fresh(store, fields);
-        } else {
-            self.forward(store, fields);
-        }
     }
 
     /// [`Comm::after_colour`] without its forward: the ghosts written return their values
-    /// to their owners, whose ghosts keep the old ones until a [`Comm::forward`] of
-    /// `fields` (the last colour of a sweep, when nothing reads them before).
+    /// to their owners, whose ghosts keep the old ones (those below the sub-domain: the
+    /// ones from before the sweep) until a [`Comm::forward`] of `fields` (the last colour
+    /// of a sweep, when nothing reads them before).
     pub fn reverse_colour(&mut self, store: &mut Particles, sweep: &SweepPairs, colour: usize, fields: Fields) {
         let start = std::time::Instant::now();
         self.fresh.clear();
-        self.reverse(store, &sweep.ghost_writes[colour], fields);
+        self.reverse(store, &sweep.ghost_writes[colour], fields, 0);
         self.time.set(self.time.get() + start.elapsed());
     }
 
@@ -377,18 +469,26 @@ impl Comm {
     /// Copies `fields` of the listed ghosts back to their owners (values, not deltas; a
     /// message leads with one bit per ghost of the swap saying whether its record
     /// follows, kept in `returned`), marking the owners reached in `fresh` (when it is in
-    /// use). Within one colour of the sweep each particle has exactly one writer, so only
-    /// the ghosts written travel back, hop by hop through the swaps in reverse order.
-    fn reverse(&mut self, store: &mut Particles, ghosts: &[u32], fields: Fields) {
+    /// use), through the swaps from the last down to swap `first`. Within one colour of
+    /// the sweep each particle has exactly one writer, so only the ghosts written travel
+    /// back, hop by hop through the swaps in reverse order; the ghosts written lie above
+    /// the sub-domain, so nothing travels through the swaps that are not `upper`, and no
+    /// message is sent there.
+    fn reverse(&mut self, store: &mut Particles, ghosts: &[u32], fields: Fields, first: usize) {
         let fields = fields.without(Fields::POSITION);
         self.written.clear();
         self.written.resize(store.len(), false);
         for &g in ghosts {
+            debug_assert!(!self.lower[g as usize], "a sweep colour wrote a ghost below the sub-domain");
             self.written[g as usize] = true;
         }
         self.returned.resize_with(self.swaps.len(), Vec::new);
         let me = self.t.rank();
-        for (n, s) in self.swaps.iter().enumerate().rev() {
+        for n in (first..self.swaps.len()).rev() {
+            let s = &self.swaps[n];
+            if !s.upper {
+                continue;
+            }
             if s.dest == me && s.src == me {
                 let written = &self.written;
                 let moves = (0..s.recv_count).filter(|&k| written[s.recv_start + k]).map(|k| (s.recv_start + k, s.send[k] as usize));
@@ -406,75 +506,144 @@ impl Comm {
                 }
                 continue;
             }
-            self.slots.clear();
-            self.slots.extend((0..s.recv_count as u32).filter(|&k| self.written[s.recv_start + k as usize]));
-            self.idx.clear();
-            self.idx.extend(self.slots.iter().map(|&k| s.recv_start as u32 + k));
-            lead_with_mask(&mut self.send, s.recv_count, &self.slots);
-            store.pack_fields(&self.idx, fields, None, &mut self.send);
-            self.traffic.sendrecv(self.t.as_ref(), &self.send, s.src, s.dest, &mut self.recv);
-            let records = masked_slots(&self.recv, s.send.len(), &mut self.slots);
-            self.returned[n].clear();
-            self.returned[n].extend_from_slice(&self.recv[..self.recv.len() - records.len()]);
-            self.idx.clear();
-            self.idx.extend(self.slots.iter().map(|&k| s.send[k as usize]));
-            store.unpack_fields(&self.idx, fields, records);
-            for &i in &self.idx {
-                let i = i as usize;
-                self.written[i] |= i >= store.nlocal;
-                if let Some(f) = self.fresh.get_mut(i) {
-                    *f = true;
-                }
+            let (dest, src) = (s.dest, s.src);
+            self.send.clear();
+            self.pack_reverse(store, n, fields);
+            self.traffic.sendrecv(self.t.as_ref(), &self.send, src, dest, &mut self.recv);
+            self.unpack_reverse(store, n, fields, 0..self.recv.len());
+        }
+    }
+
+    /// Swap 0's reverse and forward exchanges after a colour as one round: its forward
+    /// sends the owned particles marked in `fresh` before its reverse, and the owners its
+    /// reverse reaches returned their values through it, so they are not among them
+    /// (each particle has one writer a colour).
+    fn merged(&mut self, store: &mut Particles, fields: Fields, lower: bool) {
+        let reverse_fields = fields.without(Fields::POSITION);
+        let (dest, src) = (self.swaps[0].dest, self.swaps[0].src);
+        self.send.clear();
+        self.pack_reverse(store, 0, reverse_fields);
+        let split = self.send.len();
+        // no ghost of swap 0 returned anything yet this colour
+        self.returned[0].clear();
+        self.pack_forward(store, 0, fields, lower);
+        let at = self.traffic.round(self.t.as_ref(), &self.send, split, &[(src, dest), (dest, src)], &mut self.recv);
+        self.unpack_reverse(store, 0, reverse_fields, 0..at);
+        self.unpack_forward(store, 0, fields, at..self.recv.len());
+    }
+
+    /// Appends swap `n`'s reverse message to `send`: one bit per ghost of the swap, set
+    /// for the ghosts written, then their records.
+    fn pack_reverse(&mut self, store: &Particles, n: usize, fields: Fields) {
+        let s = &self.swaps[n];
+        self.slots.clear();
+        self.slots.extend((0..s.recv_count as u32).filter(|&k| self.written[s.recv_start + k as usize]));
+        self.idx.clear();
+        self.idx.extend(self.slots.iter().map(|&k| s.recv_start as u32 + k));
+        lead_with_mask(&mut self.send, s.recv_count, &self.slots);
+        store.pack_fields(&self.idx, fields, None, &mut self.send);
+    }
+
+    /// Reads swap `n`'s reverse message, `recv[at]`, into the owners (or the ghosts of
+    /// earlier swaps) its ghosts were sent from, and marks them; keeps its mask in
+    /// `returned`.
+    fn unpack_reverse(&mut self, store: &mut Particles, n: usize, fields: Fields, at: std::ops::Range<usize>) {
+        let s = &self.swaps[n];
+        let msg = &self.recv[at];
+        let records = masked_slots(msg, s.send.len(), &mut self.slots);
+        self.returned[n].clear();
+        self.returned[n].extend_from_slice(&msg[..msg.len() - records.len()]);
+        self.idx.clear();
+        self.idx.extend(self.slots.iter().map(|&k| s.send[k as usize]));
+        store.unpack_fields(&self.idx, fields, records);
+        for &i in &self.idx {
+            let i = i as usize;
+            self.written[i] |= i >= store.nlocal;
+            if let Some(f) = self.fresh.get_mut(i) {
+                *f = true;
             }
         }
     }
 
-    /// Copies `fields` from the particles marked in `fresh` to their ghosts, which are
-    /// marked in turn (they travel on in later swaps), except to the ghosts that returned
-    /// their values through the same swap in [`Comm::reverse`]. A message leads with one
-    /// bit per ghost of the swap saying whether its record follows.
-    fn forward_fresh(&mut self, store: &mut Particles, fields: Fields) {
-        let start = std::time::Instant::now();
+    /// Copies `fields` from the particles marked in `fresh` to their ghosts above the
+    /// sub-domain, which are marked in turn (they travel on in later swaps), except to the
+    /// ghosts that returned their values through the same swap in [`Comm::reverse`]; with
+    /// `lower`, also every ghost below it (from every particle); through the swaps from
+    /// swap `first` on.
+    fn forward_fresh(&mut self, store: &mut Particles, fields: Fields, lower: bool, first: usize) {
         let me = self.t.rank();
-        for (n, s) in self.swaps.iter().enumerate() {
-            let fresh = &mut self.fresh;
+        let mut n = first;
+        while n < self.swaps.len() {
+            let s = &self.swaps[n];
+            if !(lower || s.upper) {
+                n += 1;
+                continue;
+            }
             if s.dest == me && s.src == me {
                 // every ghost copied (unchanged values are the same bits), the marks passed on
                 for (k, &i) in s.send.iter().enumerate() {
-                    fresh[s.recv_start + k] = fresh[i as usize];
+                    self.fresh[s.recv_start + k] = self.fresh[i as usize];
                 }
                 let moves = s.send.iter().enumerate().map(|(k, &i)| (i as usize, s.recv_start + k));
                 store.copy_fields(moves, fields, Some((s.dim, s.shift)));
+                n += 1;
                 continue;
             }
-            let returned = &self.returned[n];
-            let back = |k: usize| returned.get(k / 64).is_some_and(|w| w.to_bits() >> (k % 64) & 1 == 1);
-            self.slots.clear();
-            self.slots.extend((0..s.send.len() as u32).filter(|&k| fresh[s.send[k as usize] as usize] && !back(k as usize)));
-            self.idx.clear();
-            self.idx.extend(self.slots.iter().map(|&k| s.send[k as usize]));
-            lead_with_mask(&mut self.send, s.send.len(), &self.slots);
-            store.pack_fields(&self.idx, fields, Some((s.dim, s.shift)), &mut self.send);
-            self.traffic.sendrecv(self.t.as_ref(), &self.send, s.dest, s.src, &mut self.recv);
-            let records = masked_slots(&self.recv, s.recv_count, &mut self.slots);
-            self.idx.clear();
-            self.idx.extend(self.slots.iter().map(|&k| s.recv_start as u32 + k));
-            store.unpack_fields(&self.idx, fields, records);
-            for &g in &self.idx {
-                fresh[g as usize] = true;
+            let swaps = self.together(n, lower);
+            self.send.clear();
+            let mut split = 0;
+            for m in swaps.clone() {
+                self.pack_forward(store, m, fields, lower);
+                split = if m == n { self.send.len() } else { split };
             }
+            let routes = self.routes(swaps.clone());
+            let at = self.traffic.round(self.t.as_ref(), &self.send, split, &routes[..swaps.len()], &mut self.recv);
+            for (m, part) in swaps.clone().zip([0..at, at..self.recv.len()]) {
+                self.unpack_forward(store, m, fields, part);
+            }
+            n = swaps.end;
         }
-        self.time.set(self.time.get() + start.elapsed());
+    }
+
+    /// Appends swap `n`'s forward message to `send`: one bit per particle the swap
+    /// sends, set for those that travel ([`Comm::forward_fresh`]), then their records.
+    fn pack_forward(&mut self, store: &Particles, n: usize, fields: Fields, lower: bool) {
+        let s = &self.swaps[n];
+        let (fresh, returned, below) = (&self.fresh, &self.returned[n], &self.lower);
+        let back = |k: usize| returned.get(k / 64).is_some_and(|w| w.to_bits() >> (k % 64) & 1 == 1);
+        self.slots.clear();
+        if s.upper {
+            let travels = |i: usize, k: usize| (fresh[i] && !back(k)) || (lower && below[i]);
+            self.slots.extend((0..s.send.len() as u32).filter(|&k| travels(s.send[k as usize] as usize, k as usize)));
+        } else {
+            self.slots.extend(0..s.send.len() as u32);
+        }
+        self.idx.clear();
+        self.idx.extend(self.slots.iter().map(|&k| s.send[k as usize]));
+        lead_with_mask(&mut self.send, s.send.len(), &self.slots);
+        store.pack_fields(&self.idx, fields, Some((s.dim, s.shift)), &mut self.send);
+    }
+
+    /// Reads swap `n`'s forward message, `recv[at]`, into its ghosts, and marks them.
+    fn unpack_forward(&mut self, store: &mut Particles, n: usize, fields: Fields, at: std::ops::Range<usize>) {
+        let s = &self.swaps[n];
+        let records = masked_slots(&self.recv[at], s.recv_count, &mut self.slots);
+        self.idx.clear();
+        self.idx.extend(self.slots.iter().map(|&k| s.recv_start as u32 + k));
+        store.unpack_fields(&self.idx, fields, records);
+        for &g in &self.idx {
+            self.fresh[g as usize] = true;
+        }
     }
 }
 
-/// Starts message `buf` with one bit per record slot 0..n, set for the slots `travel`
+/// Appends to message `buf` one bit per record slot 0..n, set for the slots `travel`
 /// (ascending) whose records follow.
 fn lead_with_mask(buf: &mut Vec<f64>, n: usize, travel: &[u32]) {
-    buf.clear();
-    buf.resize(n.div_ceil(64), 0.0);
+    let start = buf.len();
+    buf.resize(start + n.div_ceil(64), 0.0);
     for &k in travel {
-        let w = &mut buf[k as usize / 64];
+        let w = &mut buf[start + k as usize / 64];
         *w = f64::from_bits(w.to_bits() | 1 << (k % 64));
     }
 }

@@ -47,6 +47,29 @@ impl Transport for MpiTransport {
         });
     }
 
+    /// Both sends are posted, then each incoming message is probed and received in turn.
+    fn sendrecv2(&self, data: &[f64], split: usize, dest: [usize; 2], src: [usize; 2], recv: &mut Vec<f64>) -> usize {
+        let (first, second) = data.split_at(split);
+        let mut ends = [0; 2];
+        mpi::request::scope(|scope| {
+            let sent = [(first, dest[0]), (second, dest[1])].map(|(d, r)| self.world.process_at_rank(r as i32).immediate_send(scope, d));
+            let mut len = 0;
+            for (end, r) in ends.iter_mut().zip(src) {
+                let (message, status) = self.world.process_at_rank(r as i32).matched_probe();
+                let count = status.count(f64::equivalent_datatype()) as usize;
+                recv.truncate(len + count);
+                recv.resize(len + count, 0.0);
+                message.matched_receive_into(&mut recv[len..]);
+                len += count;
+                *end = len;
+            }
+            for s in sent {
+                s.wait();
+            }
+        });
+        ends[0]
+    }
+
     fn max(&self, values: &mut [f64]) {
         let local = values.to_vec();
         self.world.all_reduce_into(&local[..], values, SystemOperation::max());

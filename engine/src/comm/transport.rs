@@ -8,6 +8,11 @@ pub trait Transport {
     fn size(&self) -> usize;
     /// Sends `data` to rank `dest` while receiving the buffer rank `src` sends to us.
     fn sendrecv(&self, data: &[f64], dest: usize, src: usize, recv: &mut Vec<f64>);
+    /// Two exchanges at once: sends `data[..split]` to `dest[0]` and `data[split..]` to
+    /// `dest[1]` while receiving into `recv` the buffer rank `src[0]` sends us (first
+    /// of the two when `src[0] == src[1]`: messages between two ranks keep their order)
+    /// followed by the one from `src[1]`; returns where the second begins.
+    fn sendrecv2(&self, data: &[f64], split: usize, dest: [usize; 2], src: [usize; 2], recv: &mut Vec<f64>) -> usize;
     /// Element-wise maximum over ranks, in place.
     fn max(&self, values: &mut [f64]);
     /// The `local` slices of all ranks, concatenated in rank order.
@@ -31,6 +36,11 @@ impl Transport for Local {
     fn sendrecv(&self, data: &[f64], _dest: usize, _src: usize, recv: &mut Vec<f64>) {
         recv.clear();
         recv.extend_from_slice(data);
+    }
+    fn sendrecv2(&self, data: &[f64], split: usize, _dest: [usize; 2], _src: [usize; 2], recv: &mut Vec<f64>) -> usize {
+        recv.clear();
+        recv.extend_from_slice(data);
+        split
     }
     fn max(&self, _values: &mut [f64]) {}
     fn all_gather(&self, local: &[u64]) -> Vec<u64> {
