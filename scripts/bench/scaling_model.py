@@ -3,8 +3,9 @@
 
 Inputs measured on this machine (docs/PERFORMANCE.md, "Communication and a scaling model"):
 the single-core speed of each scene, and per rank and step on a 3D decomposition the
-point-to-point messages and the bytes per ghost particle (the run summary's "Comm messages
-per step" line at 8 ranks, divided by the ghost count of the cell geometry). Assumed: an
+exchange rounds (one or two point-to-point messages travelling at once: one latency each)
+and the bytes per ghost particle (the run summary's "Comm messages per step" line at 8
+ranks, the bytes divided by the ghost count of the cell geometry). Assumed: an
 interconnect of latency ALPHA and bandwidth BETA, COLLECTIVES allreduce-like operations per
 step costing log2(P) latencies each, and the pair passes evaluating pairs with a ghost on
 both ranks (a fraction PASS_SHARE of the step's work done again for half the ghosts).
@@ -17,11 +18,11 @@ ALPHA = 1.5e-6       # s per message (InfiniBand HDR, MPI latency)
 BETA = 12.5e9        # bytes/s per link (100 Gb/s)
 COLLECTIVES = 3      # per step (neighbour-list check, thermo sums, signal/blow-up check)
 
-# scene: density, cutoff + skin, single-core atom-steps/s (quiet machine), messages per
-# step per rank on a 3D grid, bytes per ghost per step, share of the step in pair passes
+# scene: density, cutoff + skin, single-core atom-steps/s (quiet machine), exchange rounds
+# per step per rank on a 3D grid, bytes per ghost per step, share of the step in pair passes
 SCENES = {
-    "GenDPDE vdW (rho 0.5, rc 4, skin 0.4)": dict(rho=0.5, cut=4.4, rate=2.1e5, messages=127.5, per_ghost=418.0, pass_share=0.3),
-    "classic DPDE (rho 3, rc 1, skin 0.3)": dict(rho=3.0, cut=1.3, rate=1.9e6, messages=103.2, per_ghost=230.0, pass_share=0.3),
+    "GenDPDE vdW (rho 0.5, rc 4, skin 0.4)": dict(rho=0.5, cut=4.4, rate=2.1e5, rounds=58.2, per_ghost=307.3, pass_share=0.3),
+    "classic DPDE (rho 3, rc 1, skin 0.3)": dict(rho=3.0, cut=1.3, rate=1.9e6, rounds=45.8, per_ghost=160.4, pass_share=0.3),
 }
 
 
@@ -46,7 +47,7 @@ def step_time(scene, n, p):
     compute = (local + s["pass_share"] * 0.5 * ghosts) / s["rate"]
     if p == 1:
         return compute, 0.0, 0.0
-    comm = s["messages"] * ALPHA + s["per_ghost"] * ghosts / BETA + COLLECTIVES * math.log2(p) * ALPHA
+    comm = s["rounds"] * ALPHA + s["per_ghost"] * ghosts / BETA + COLLECTIVES * math.log2(p) * ALPHA
     return compute + comm, comm / (compute + comm), ghosts
 
 
