@@ -295,7 +295,13 @@ impl ClassicDpd {
     }
 
     /// Pair forces at the current positions and velocities; the noise of step `step`.
+    /// Built for AVX2 where the processor has it (through [`built_forces`]).
     fn forces(&self, sys: &mut System, step: u64) {
+        built_forces(self, sys, step)
+    }
+
+    #[inline(always)]
+    fn forces_any(&self, sys: &mut System, step: u64) {
         // fix nph reads the virial every step
         let energies = sys.tally || self.barostat.is_some();
         sys.tallied = energies;
@@ -870,5 +876,12 @@ avx2_fn! {
     /// has it ([`crate::simd`]).
     fn built_sweep(dpd: &ClassicDpd, sys: &mut System, p: &ShardlowDpd) -> Fields {
         dpd.sweep_any(sys, p)
+    }
+}
+
+avx2_fn! {
+    /// [`ClassicDpd::forces`] likewise.
+    fn built_forces(dpd: &ClassicDpd, sys: &mut System, step: u64) {
+        dpd.forces_any(sys, step)
     }
 }
