@@ -78,6 +78,14 @@ struct Traffic {
     rounds: u64,
 }
 
+/// What a forward exchange sends: every ghost's record, or those of the particles a
+/// sweep colour may have changed ([`Comm::after_colour`]).
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Travel {
+    Every,
+    Fresh,
+}
+
 impl Traffic {
     /// Sends `send` to `dest` and receives `src`'s buffer into `recv`, counted.
     fn sendrecv(&mut self, t: &dyn Transport, send: &[f64], dest: usize, src: usize, recv: &mut Vec<f64>) {
@@ -101,17 +109,16 @@ impl Traffic {
         t.sendrecv2(send, split, dest, src, recv)
     }
 
-    /// One round of one or two exchanges (`routes`: (dest, src) each): `send[..split]`
-    /// goes the first route, the rest the second; returns where the second part of
-    /// `recv` begins.
-    fn round(&mut self, t: &dyn Transport, send: &[f64], split: usize, routes: &[(usize, usize)], recv: &mut Vec<f64>) -> usize {
-        match *routes {
-            [(dest, src)] => {
-                self.sendrecv(t, send, dest, src, recv);
+    /// One round of one or two exchanges, each a (dest, src) route: `send[..split]` goes
+    /// the `first` route, the rest the `second`; returns where the second part of `recv`
+    /// begins.
+    fn round(&mut self, t: &dyn Transport, send: &[f64], split: usize, first: (usize, usize), second: Option<(usize, usize)>, recv: &mut Vec<f64>) -> usize {
+        match second {
+            None => {
+                self.sendrecv(t, send, first.0, first.1, recv);
                 recv.len()
             }
-            [(d0, s0), (d1, s1)] => self.sendrecv2(t, send, split, [d0, d1], [s0, s1], recv),
-            _ => unreachable!("a round has one or two exchanges"),
+            Some((d1, s1)) => self.sendrecv2(t, send, split, [first.0, d1], [first.1, s1], recv),
         }
     }
 }
@@ -337,45 +344,8 @@ impl Comm {
 
     /// Copies `fields` from the owners to all their ghosts.
     pub fn forward(&mut self, store: &mut Particles, fields: Fields) {
-        self.forward_swaps(store, fields, true);
-    }
-
-    /// [`Comm::forward`] through every swap, or (not `lower`) through the `upper` swaps
-    /// only: to the ghosts a sweep colour reads.
-    fn forward_swaps(&mut self, store: &mut Particles, fields: Fields, lower: bool) {
         let start = std::time::Instant::now();
-        let me = self.t.rank();
-        let mut n = 0;
-        while n < self.swaps.len() {
-            let s = &self.swaps[n];
-            if !(lower || s.upper) {
-                n += 1;
-                continue;
-            }
-            if s.dest == me && s.src == me {
-                let moves = s.send.iter().enumerate().map(|(k, &i)| (i as usize, s.recv_start + k));
-                store.copy_fields(moves, fields, Some((s.dim, s.shift)));
-                n += 1;
-                continue;
-            }
-            let swaps = self.together(n, lower);
-            self.send.clear();
-            let mut split = 0;
-            for m in swaps.clone() {
-                let s = &self.swaps[m];
-                store.pack_fields(&s.send, fields, Some((s.dim, s.shift)), &mut self.send);
-                split = if m == n { self.send.len() } else { split };
-            }
-            let routes = self.routes(swaps.clone());
-            let at = self.traffic.round(self.t.as_ref(), &self.send, split, &routes[..swaps.len()], &mut self.recv);
-            for (m, part) in swaps.clone().zip([0..at, at..self.recv.len()]) {
-                let s = &self.swaps[m];
-                self.idx.clear();
-                self.idx.extend(s.recv_start as u32..(s.recv_start + s.recv_count) as u32);
-                store.unpack_fields(&self.idx, fields, &self.recv[part]);
-            }
-            n = swaps.end;
-        }
+        self.forward_rounds(store, fields, true, 0, Travel::Every);
         self.time.set(self.time.get() + start.elapsed());
     }
 
@@ -387,10 +357,9 @@ impl Comm {
         n..n + 1 + pair as usize
     }
 
-    /// The (dest, src) of the forward exchanges of `swaps` (one or two), in order.
-    fn routes(&self, swaps: std::ops::Range<usize>) -> [(usize, usize); 2] {
-        let route = |m: usize| self.swaps.get(m).map_or((0, 0), |s| (s.dest, s.src));
-        [route(swaps.start), route(swaps.start + 1)]
+    /// The (dest, src) of swap `n`'s forward exchange.
+    fn route(&self, n: usize) -> (usize, usize) {
+        (self.swaps[n].dest, self.swaps[n].src)
     }
 
     /// After colour `colour` of a sweep wrote `fields` of the particles of its pairs: the
@@ -416,8 +385,8 @@ impl Comm {
         if !remote {
             self.fresh.clear();
             self.reverse(store, &sweep.ghost_writes[colour], fields, 0);
+            self.forward_rounds(store, fields, last, 0, Travel::Every);
             self.time.set(self.time.get() + start.elapsed());
-            self.forward_swaps(store, fields, last);
             return;
         }
         if self.members_stale {
@@ -433,7 +402,7 @@ impl Comm {
         if merge {
             self.merged(store, fields, last);
         }
-        self.forward_fresh(store, fields, last, merge as usize);
+        self.forward_rounds(store, fields, last, merge as usize, Travel::Fresh);
         self.time.set(self.time.get() + start.elapsed());
     }
 
@@ -526,10 +495,10 @@ impl Comm {
         let split = self.send.len();
         // no ghost of swap 0 returned anything yet this colour
         self.returned[0].clear();
-        self.pack_forward(store, 0, fields, lower);
-        let at = self.traffic.round(self.t.as_ref(), &self.send, split, &[(src, dest), (dest, src)], &mut self.recv);
+        self.pack_forward(store, 0, fields, lower, Travel::Fresh);
+        let at = self.traffic.round(self.t.as_ref(), &self.send, split, (src, dest), Some((dest, src)), &mut self.recv);
         self.unpack_reverse(store, 0, reverse_fields, 0..at);
-        self.unpack_forward(store, 0, fields, at..self.recv.len());
+        self.unpack_forward(store, 0, fields, at..self.recv.len(), Travel::Fresh);
     }
 
     /// Appends swap `n`'s reverse message to `send`: one bit per ghost of the swap, set
@@ -565,12 +534,13 @@ impl Comm {
         }
     }
 
-    /// Copies `fields` from the particles marked in `fresh` to their ghosts above the
-    /// sub-domain, which are marked in turn (they travel on in later swaps), except to the
-    /// ghosts that returned their values through the same swap in [`Comm::reverse`]; with
-    /// `lower`, also every ghost below it (from every particle); through the swaps from
-    /// swap `first` on.
-    fn forward_fresh(&mut self, store: &mut Particles, fields: Fields, lower: bool, first: usize) {
+    /// Copies `fields` from owners to their ghosts through the swaps from swap `first` on:
+    /// every swap, or (not `lower`) the `upper` ones only (to the ghosts a sweep colour
+    /// reads). With [`Travel::Fresh`] only the particles marked in `fresh` travel through
+    /// `upper` swaps, and the ghosts reached are marked in turn (they travel on in later
+    /// swaps), except to the ghosts that returned their values through the same swap in
+    /// [`Comm::reverse`]. A dimension's two swaps travel in one round when both do.
+    fn forward_rounds(&mut self, store: &mut Particles, fields: Fields, lower: bool, first: usize, travel: Travel) {
         let me = self.t.rank();
         let mut n = first;
         while n < self.swaps.len() {
@@ -581,8 +551,10 @@ impl Comm {
             }
             if s.dest == me && s.src == me {
                 // every ghost copied (unchanged values are the same bits), the marks passed on
-                for (k, &i) in s.send.iter().enumerate() {
-                    self.fresh[s.recv_start + k] = self.fresh[i as usize];
+                if travel == Travel::Fresh {
+                    for (k, &i) in s.send.iter().enumerate() {
+                        self.fresh[s.recv_start + k] = self.fresh[i as usize];
+                    }
                 }
                 let moves = s.send.iter().enumerate().map(|(k, &i)| (i as usize, s.recv_start + k));
                 store.copy_fields(moves, fields, Some((s.dim, s.shift)));
@@ -593,22 +565,27 @@ impl Comm {
             self.send.clear();
             let mut split = 0;
             for m in swaps.clone() {
-                self.pack_forward(store, m, fields, lower);
+                self.pack_forward(store, m, fields, lower, travel);
                 split = if m == n { self.send.len() } else { split };
             }
-            let routes = self.routes(swaps.clone());
-            let at = self.traffic.round(self.t.as_ref(), &self.send, split, &routes[..swaps.len()], &mut self.recv);
+            let second = (swaps.len() == 2).then(|| self.route(n + 1));
+            let at = self.traffic.round(self.t.as_ref(), &self.send, split, self.route(n), second, &mut self.recv);
             for (m, part) in swaps.clone().zip([0..at, at..self.recv.len()]) {
-                self.unpack_forward(store, m, fields, part);
+                self.unpack_forward(store, m, fields, part, travel);
             }
             n = swaps.end;
         }
     }
 
-    /// Appends swap `n`'s forward message to `send`: one bit per particle the swap
-    /// sends, set for those that travel ([`Comm::forward_fresh`]), then their records.
-    fn pack_forward(&mut self, store: &Particles, n: usize, fields: Fields, lower: bool) {
+    /// Appends swap `n`'s forward message to `send`. [`Travel::Every`]: the records of
+    /// every particle the swap sends. [`Travel::Fresh`]: one bit per particle the swap
+    /// sends, set for those that travel ([`Comm::forward_rounds`]), then their records.
+    fn pack_forward(&mut self, store: &Particles, n: usize, fields: Fields, lower: bool, travel: Travel) {
         let s = &self.swaps[n];
+        if travel == Travel::Every {
+            store.pack_fields(&s.send, fields, Some((s.dim, s.shift)), &mut self.send);
+            return;
+        }
         let (fresh, returned, below) = (&self.fresh, &self.returned[n], &self.lower);
         let back = |k: usize| returned.get(k / 64).is_some_and(|w| w.to_bits() >> (k % 64) & 1 == 1);
         self.slots.clear();
@@ -624,11 +601,17 @@ impl Comm {
         store.pack_fields(&self.idx, fields, Some((s.dim, s.shift)), &mut self.send);
     }
 
-    /// Reads swap `n`'s forward message, `recv[at]`, into its ghosts, and marks them.
-    fn unpack_forward(&mut self, store: &mut Particles, n: usize, fields: Fields, at: std::ops::Range<usize>) {
+    /// Reads swap `n`'s forward message, `recv[at]`, into its ghosts ([`Travel::Fresh`]:
+    /// those that travelled, which are marked).
+    fn unpack_forward(&mut self, store: &mut Particles, n: usize, fields: Fields, at: std::ops::Range<usize>, travel: Travel) {
         let s = &self.swaps[n];
-        let records = masked_slots(&self.recv[at], s.recv_count, &mut self.slots);
         self.idx.clear();
+        if travel == Travel::Every {
+            self.idx.extend(s.recv_start as u32..(s.recv_start + s.recv_count) as u32);
+            store.unpack_fields(&self.idx, fields, &self.recv[at]);
+            return;
+        }
+        let records = masked_slots(&self.recv[at], s.recv_count, &mut self.slots);
         self.idx.extend(self.slots.iter().map(|&k| s.recv_start as u32 + k));
         store.unpack_fields(&self.idx, fields, records);
         for &g in &self.idx {
