@@ -39,7 +39,7 @@ use crate::heat::{Original, Temps};
 use crate::noise::Harmonic;
 use crate::pair_update::{pair_update, PairDrive, PairState};
 use crate::physics::{Physics, SetupError};
-use crate::rng::{stream, Normals};
+use crate::rng::{stream, Normals, LANES};
 use crate::settings::Settings;
 use crate::simd::avx2_fn;
 use crate::sweep::SWEPT;
@@ -457,42 +457,54 @@ impl ClassicDpd {
         sys.take_inverse_masses();
         let inv_m = &sys.inv_mass;
         for colour in 0..sys.sweep.colours() {
-            let pairs = sys.sweep.within(colour, &sys.store, reach);
+            let (pairs, displacement) = sys.sweep.within_displaced(colour, &sys.store, reach);
+            // every per-particle column cut to one length: a pair checked against it once
+            // reads and writes them without further bounds checks
             let s = &mut sys.store;
-            for &[i, j] in pairs {
-                let (i, j) = (i as usize, j as usize);
-                let c = *p.coeff.get(s.kind[i], s.kind[j]);
-                let dr = sub(s.r[i], s.r[j]);
-                let r2 = dot(dr, dr);
-                if r2 >= c.rc * c.rc {
-                    continue;
-                }
-                let r = r2.sqrt();
-                let inv_r = 1.0 / r;
-                let w = 1.0 - r * c.inv_rc;
-                let (inv_i, inv_j) = match p.temperature {
-                    Some(t) => (1.0 / t, 1.0 / t),
-                    None => (s.inv_tau[i], s.inv_tau[j]),
-                };
-                let (xi, xibar) = normals.pair(self.seed, step, s.tag[i], s.tag[j], stream::PAIR);
-                // friction from sigma and theta_ij; heat on 1/theta (the Original law reads
-                // `inv_tau`, here set to 1/theta as LAMMPS's dpd/fdt/energy does)
-                let drive = PairDrive {
-                    e: [dr[0] * inv_r, dr[1] * inv_r, dr[2] * inv_r],
-                    gamma: c.sigma * c.sigma * w * w * inv_2kb,
-                    kappa: if p.temperature.is_none() { c.kappa * w * w } else { 0.0 },
-                    ti: Temps { theta: 0.0, inv_tau: inv_i },
-                    tj: Temps { theta: 0.0, inv_tau: inv_j },
-                    xi,
-                    xibar,
-                };
-                let (mut p_i, mut p_j, mut u_i, mut u_j) = (s.p[i], s.p[j], s.u[i], s.u[j]);
-                let state = PairState { p_i: &mut p_i, p_j: &mut p_j, u_i: &mut u_i, u_j: &mut u_j, inv_m_i: inv_m[i], inv_m_j: inv_m[j] };
-                let moved = pair_update::<Original, Harmonic>(state, &drive, kb, dt, sqrt_dt);
-                (s.p[i], s.p[j], s.u[i], s.u[j]) = (p_i, p_j, u_i, u_j);
-                if !s.u_cond.is_empty() {
-                    s.u_cond[i] += moved.heat;
-                    s.u_cond[j] -= moved.heat;
+            let len = s.p.len();
+            let (kind, tag, inv_m) = (&s.kind[..len], &s.tag[..len], &inv_m[..len]);
+            let (mom, u) = (&mut s.p[..len], &mut s.u[..len]);
+            let inv_tau = if p.temperature.is_none() { &s.inv_tau[..len] } else { &[] };
+            let mut u_cond = (!s.u_cond.is_empty()).then(|| &mut s.u_cond[..len]);
+            // the pairs' noises LANES at a time, their Philox blocks side by side (a pair
+            // beyond its types' cutoff draws its numbers unused: they are counter-based)
+            for (block, displaced) in pairs.chunks(LANES).zip(displacement.chunks(LANES)) {
+                let last = block.len() - 1;
+                let tags: [(u64, u64); LANES] = std::array::from_fn(|l| block[l.min(last)].map(|k| tag[k as usize]).into());
+                let noises = normals.pairs(self.seed, step, tags, stream::PAIR);
+                for ((&[i, j], &(xi, xibar)), &[dx, dy, dz, r2]) in block.iter().zip(&noises).zip(displaced) {
+                    let (i, j) = (i as usize, j as usize);
+                    assert!(i < len && j < len, "sweep pair outside the store");
+                    let c = *p.coeff.get(kind[i], kind[j]);
+                    if r2 >= c.rc * c.rc {
+                        continue;
+                    }
+                    let r = r2.sqrt();
+                    let inv_r = 1.0 / r;
+                    let w = 1.0 - r * c.inv_rc;
+                    let (inv_i, inv_j) = match p.temperature {
+                        Some(t) => (1.0 / t, 1.0 / t),
+                        None => (inv_tau[i], inv_tau[j]),
+                    };
+                    // friction from sigma and theta_ij; heat on 1/theta (the Original law reads
+                    // `inv_tau`, here set to 1/theta as LAMMPS's dpd/fdt/energy does)
+                    let drive = PairDrive {
+                        e: [dx * inv_r, dy * inv_r, dz * inv_r],
+                        gamma: c.sigma * c.sigma * w * w * inv_2kb,
+                        kappa: if p.temperature.is_none() { c.kappa * w * w } else { 0.0 },
+                        ti: Temps { theta: 0.0, inv_tau: inv_i },
+                        tj: Temps { theta: 0.0, inv_tau: inv_j },
+                        xi,
+                        xibar,
+                    };
+                    let (mut p_i, mut p_j, mut u_i, mut u_j) = (mom[i], mom[j], u[i], u[j]);
+                    let state = PairState { p_i: &mut p_i, p_j: &mut p_j, u_i: &mut u_i, u_j: &mut u_j, inv_m_i: inv_m[i], inv_m_j: inv_m[j] };
+                    let moved = pair_update::<Original, Harmonic>(state, &drive, kb, dt, sqrt_dt);
+                    (mom[i], mom[j], u[i], u[j]) = (p_i, p_j, u_i, u_j);
+                    if let Some(u_cond) = u_cond.as_deref_mut() {
+                        u_cond[i] += moved.heat;
+                        u_cond[j] -= moved.heat;
+                    }
                 }
             }
             // theta (and 1/theta) stay as they are until the sweep is over

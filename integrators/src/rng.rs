@@ -137,6 +137,9 @@ pub fn normal_pair(seed: u64, step: u64, a: u64, b: u64, stream: u32) -> (f64, f
 #[derive(Clone, Copy)]
 pub struct Normals(&'static Ziggurat);
 
+/// Pairs whose noises a Shardlow sweep draws together ([`Normals::pairs`]).
+pub const LANES: usize = 4;
+
 impl Normals {
     pub fn get() -> Self {
         Self(ziggurat())

@@ -18,7 +18,7 @@ use crate::error::{lowest, StepError};
 use crate::heat::{HeatFlow, Temps};
 use crate::noise::Noise;
 use crate::pair_update::{pair_update, PairDrive, PairState};
-use crate::rng::{normal_pair, stream, Normals};
+use crate::rng::{normal_pair, stream, Normals, LANES};
 use crate::settings::{Dissipation, Reservoir};
 use crate::species::Species;
 use crate::simd::avx2_fn;
@@ -129,9 +129,6 @@ pub fn reservoir<E: FixedDensity, H: HeatFlow, N: Noise>(eos: &Species<E>, res: 
     sys.comm.forward(&mut sys.store, SWEPT);
     outcome
 }
-
-/// Pairs whose noises are drawn together ([`Normals::pairs`]).
-const LANES: usize = 4;
 
 /// What stays fixed while one pair is updated, over any split of its step.
 #[derive(Clone, Copy)]
