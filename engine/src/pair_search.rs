@@ -13,8 +13,9 @@
 //! tested once. A cell A lies in exactly one block per colour, so the order in which a
 //! particle meets its neighbours depends only on the parity of its cell, the octants
 //! (kept from the last rebuild, ghosts carrying their owner's) and the tags: no
-//! decomposition can change it. Pairs of owned blocks (C in [lo, hi)) are the sweep's;
-//! every pair with an owned particle enters the neighbour list, in pass order.
+//! decomposition can change it. Pairs of owned blocks (C in [lo, hi)) are the sweep's
+//! (with, per colour, the particles they touch and the ghosts among them); every pair
+//! with an owned particle enters the neighbour list, in pass order.
 
 use crate::cells::CellBins;
 use crate::{dot, sub, CellGrid, NeighborList, Particles, SweepPairs};
@@ -93,13 +94,20 @@ pub fn build_lists(store: &Particles, bins: &CellBins, lo: [i32; 3], hi: [i32; 3
         None => Vec::new(),
     };
     half.clear();
-    let (mut sweep_pairs, mut ghost_writes) = match sweep.as_mut() {
-        Some((sp, _)) => (std::mem::take(&mut sp.pairs), std::mem::take(&mut sp.ghost_writes)),
+    let (mut sweep_pairs, mut ghost_writes, mut members) = match sweep.as_mut() {
+        Some((sp, _)) => (std::mem::take(&mut sp.pairs), std::mem::take(&mut sp.ghost_writes), std::mem::take(&mut sp.members)),
         None => Default::default(),
     };
     sweep_pairs.clear();
     ghost_writes.resize_with(colours, Vec::new);
     ghost_writes.iter_mut().for_each(Vec::clear);
+    members.resize_with(colours, Vec::new);
+    if rs2 > 0.0 {
+        for m in &mut members {
+            m.clear();
+            m.resize(store.len(), false);
+        }
+    }
     let mut colour_start = vec![0usize; colours + 1];
     for colour in 0..colours {
         colour_start[colour] = sweep_pairs.len();
@@ -169,13 +177,17 @@ pub fn build_lists(store: &Particles, bins: &CellBins, lo: [i32; 3], hi: [i32; 3
                             test(sa, &candidates);
                         }
                     }
-                    let block = &sweep_pairs[block_start..];
-                    ghost_writes[colour].extend(block.iter().flatten().copied().filter(|&k| k >= nlocal));
+                    // the block's pairs are still in cache: mark their particles
+                    for &k in sweep_pairs[block_start..].iter().flatten() {
+                        members[colour][k as usize] = true;
+                    }
                 }
             }
         }
-        ghost_writes[colour].sort_unstable();
-        ghost_writes[colour].dedup();
+        if rs2 > 0.0 {
+            let ghosts = members[colour].iter().enumerate().skip(store.nlocal).filter(|&(_, &m)| m);
+            ghost_writes[colour].extend(ghosts.map(|(k, _)| k as u32));
+        }
     }
     colour_start[colours] = sweep_pairs.len();
     if let Some((sp, radius)) = sweep {
@@ -183,6 +195,7 @@ pub fn build_lists(store: &Particles, bins: &CellBins, lo: [i32; 3], hi: [i32; 3
         sp.pairs = sweep_pairs;
         sp.colour_start = colour_start;
         sp.ghost_writes = ghost_writes;
+        sp.members = members;
     }
     if let Some((nl, radius)) = nlist {
         nl.pairs = half;

@@ -18,6 +18,9 @@ pub struct SweepPairs {
     pub colour_start: Vec<usize>,
     /// Ghosts written by the pairs of colour c (sorted, unique); one entry per colour.
     pub ghost_writes: Vec<Vec<u32>>,
+    /// Whether each particle (owned or ghost) is in a pair of colour c; one entry per
+    /// colour.
+    pub members: Vec<Vec<bool>>,
     /// Scratch of [`SweepPairs::within`]: the selected pairs are its first `selected`
     /// (the rest is left from earlier colours, so the scratch is filled only as it grows).
     active: Vec<[u32; 2]>,
@@ -174,8 +177,13 @@ mod tests {
                     assert!(prev.is_none() || prev == Some(k), "two copies of one particle in colour {c}");
                 }
             }
-            let ghosts: Vec<u32> = writer.values().copied().filter(|&k| k as usize >= s.nlocal).collect();
-            assert_eq!(ghosts.len(), sp.ghost_writes[c].len());
+            let mut ghosts: Vec<u32> = writer.values().copied().filter(|&k| k as usize >= s.nlocal).collect();
+            ghosts.sort_unstable();
+            assert_eq!(ghosts, sp.ghost_writes[c]);
+            let members: Vec<u32> = (0..s.len() as u32).filter(|&k| sp.members[c][k as usize]).collect();
+            let mut written: Vec<u32> = writer.values().copied().collect();
+            written.sort_unstable();
+            assert_eq!(members, written);
         }
     }
 

@@ -29,18 +29,23 @@ pub trait Physics {
         sys.rebuild(Some(self.list_radius()), None, at_step);
     }
 
-    /// Lists for the positions of the next step, by LAMMPS's rule: at most every `every`
-    /// steps, not within `delay` steps of the last build, and (with `check`) only once
-    /// some particle moved more than skin/2; else the positions are forwarded.
-    fn relist(&self, sys: &mut System) {
+    /// Agrees on the outcome of the move (`moved`, as [`System::settle`]) and lists for the
+    /// positions of the next step, by LAMMPS's rule: at most every `every` steps, not
+    /// within `delay` steps of the last build, and (with `check`) only once some particle
+    /// moved more than skin/2, found in the same reduction; else the positions are
+    /// forwarded.
+    fn relist(&self, sys: &mut System, moved: Result<(), StepError>) -> Result<(), StepError> {
         let (settings, next) = (self.settings(), sys.step + 1);
         let p = &settings.rebuild;
         let due = next - sys.last_build >= p.delay.max(1) && next % p.every.max(1) == 0;
-        if due && (!p.check || 2.0 * sys.comm.max(sys.displacement_since_build()) > settings.skin) {
+        let local = if due && p.check { 2.0 * sys.displacement_since_build() } else { 0.0 };
+        let farthest = sys.settle_with(moved, local)?;
+        if due && (!p.check || farthest > settings.skin) {
             self.rebuild(sys, next);
         } else {
             sys.comm.forward(&mut sys.store, Fields::POSITION);
         }
+        Ok(())
     }
 }
 
@@ -135,12 +140,12 @@ impl<E: FixedEntropy + FixedDensity, W: Weight> GenDpde<E, W> {
         }
         verlet::kick(sys, 0.5 * dt);
         let drifted = verlet::drift(sys, dt);
-        sys.settle(lowest(before, drifted))?;
+        let mut moved = lowest(before, drifted);
         if isentropic {
-            let held = isentropic::hold(&self.eos, sys);
-            sys.settle(held)?;
+            sys.settle(moved)?;
+            moved = isentropic::hold(&self.eos, sys);
         }
-        self.relist(sys);
+        self.relist(sys, moved)?;
         let state = self.conservative(sys, isentropic);
         verlet::kick(sys, 0.5 * dt);
         sys.comm.forward(&mut sys.store, Fields::MOMENTUM);
@@ -161,8 +166,7 @@ impl<E: FixedEntropy + FixedDensity, W: Weight> GenDpde<E, W> {
         let dissipation = self.settings.dissipation.as_ref();
         vv_euler::start::<H>(dissipation, self.eos.kb(), sys, dt);
         let drifted = vv_euler::first_half(sys, dt);
-        sys.settle(drifted)?;
-        self.relist(sys);
+        self.relist(sys, drifted)?;
         let state = self.conservative(sys, false);
         if dissipation.is_some_and(|d| d.gamma > 0.0) {
             // the prediction of p(t+dt) for the friction: first_half added dt/2 F^D(t)

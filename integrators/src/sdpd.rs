@@ -379,8 +379,7 @@ impl<E: FixedEntropy, W: Weight> Physics for Sdpd<E, W> {
         let drifted = verlet::drift(sys, dt);
         sys.settle(drifted)?;
         let held = isentropic::hold(&self.eos, sys);
-        sys.settle(held)?;
-        self.relist(sys);
+        self.relist(sys, held)?;
         self.density(sys);
         let state = self.conservative(sys, true);
         verlet::kick(sys, 0.5 * dt);

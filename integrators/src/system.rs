@@ -198,13 +198,19 @@ impl System {
     /// same error, that of the failing particle of lowest tag. The same reduction agrees
     /// on `interrupted` (the largest signal number any rank received).
     pub fn settle(&self, outcome: Result<(), StepError>) -> Result<(), StepError> {
+        self.settle_with(outcome, 0.0).map(|_| ())
+    }
+
+    /// [`System::settle`] that also returns the largest `value` over all ranks, found in
+    /// the same reduction.
+    pub fn settle_with(&self, outcome: Result<(), StepError>, value: f64) -> Result<f64, StepError> {
         // tags are exact in f64 below 2^53
         let key = |e: &StepError| -(e.tag as f64);
-        let mut agreed = [outcome.as_ref().err().map_or(f64::NEG_INFINITY, key), self.interrupt.load(Ordering::Relaxed) as f64];
+        let mut agreed = [outcome.as_ref().err().map_or(f64::NEG_INFINITY, key), self.interrupt.load(Ordering::Relaxed) as f64, value];
         self.comm.max_each(&mut agreed);
         if agreed[0] == f64::NEG_INFINITY {
             self.interrupted.set(agreed[1] as usize);
-            return Ok(());
+            return Ok(agreed[2]);
         }
         Err(StepError::agree(self.comm.transport(), outcome.err().filter(|e| key(e) == agreed[0])))
     }

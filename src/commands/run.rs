@@ -282,11 +282,13 @@ fn performance(units: Units, dt: f64, steps_per_s: f64, atoms: f64) -> String {
 }
 
 /// Bytes held per rank (min, mean, max over the ranks): particles with their ghosts,
-/// neighbour and sweep lists (collective).
+/// neighbour and sweep lists, the sweep's members (a byte per particle and colour)
+/// (collective).
 fn memory_per_rank(sys: &gendpde_integrators::System) -> [f64; 3] {
     let local = sys.store.nlocal as f64 * memory::STORE_BYTES_PER_PARTICLE
         + sys.nlist.pairs.len() as f64 * memory::NEIGHBOUR_ENTRY_BYTES
-        + sys.sweep.pairs.len() as f64 * memory::SWEEP_PAIR_BYTES;
+        + sys.sweep.pairs.len() as f64 * memory::SWEEP_PAIR_BYTES
+        + sys.sweep.members.iter().map(Vec::len).sum::<usize>() as f64;
     let all = sys.comm.transport().all_gather(&[local as u64]);
     let min = all.iter().copied().min().unwrap_or(0) as f64;
     let max = all.iter().copied().max().unwrap_or(0) as f64;

@@ -54,10 +54,6 @@ pub struct Comm {
     lower: Vec<bool>,
     /// Particles whose new values go to their ghosts in [`Comm::after_colour`].
     fresh: Vec<bool>,
-    /// Per colour, the particles of its sweep pairs (list radius), gathered at the first
-    /// colour after each exchange (`members_stale`): they hold every particle it touches.
-    members: Vec<Vec<u32>>,
-    members_stale: bool,
     /// Per swap, the bit mask of the slots whose ghosts returned their values in the
     /// last reverse exchange (those ghosts hold the values their owners would forward).
     returned: Vec<Vec<f64>>,
@@ -143,8 +139,6 @@ impl Comm {
             written: Vec::new(),
             lower: Vec::new(),
             fresh: Vec::new(),
-            members: Vec::new(),
-            members_stale: true,
             returned: Vec::new(),
             slots: Vec::new(),
             idx: Vec::new(),
@@ -240,7 +234,6 @@ impl Comm {
     pub fn exchange(&mut self, store: &mut Particles, domain: &Domain, grid: &CellGrid, keep_cells: bool) {
         let start = std::time::Instant::now();
         store.truncate_ghosts();
-        self.members_stale = true;
         (self.lo, self.hi) = self.owned_cells(grid);
         if !keep_cells {
             for i in 0..store.nlocal {
@@ -369,8 +362,7 @@ impl Comm {
     /// writes), but not to the ghosts that returned them (they hold them). Ghosts of
     /// particles outside the colour's pairs keep theirs, which are current, so they do not
     /// travel (particles of its pairs whose partners all lay beyond the cutoff forward
-    /// values unchanged: marking from the colour's list costs a pass per list build, not
-    /// per step). The ghosts below the sub-domain (`lower`) are brought up to date after
+    /// values unchanged: the list build marks them, [`SweepPairs::members`]). The ghosts below the sub-domain (`lower`) are brought up to date after
     /// the last colour only, all of them: after a sweep every ghost holds its owner's
     /// values, and no message travels through the swaps that make them between colours.
     /// When the first swap (along x, the last of the reverse and the first of the
@@ -389,14 +381,8 @@ impl Comm {
             self.time.set(self.time.get() + start.elapsed());
             return;
         }
-        if self.members_stale {
-            self.gather_members(store.len(), sweep);
-        }
         self.fresh.clear();
-        self.fresh.resize(store.len(), false);
-        for &k in &self.members[colour] {
-            self.fresh[k as usize] = true;
-        }
+        self.fresh.extend_from_slice(&sweep.members[colour]);
         let merge = self.swaps.first().is_some_and(|s| s.upper && (s.dest != me || s.src != me));
         self.reverse(store, &sweep.ghost_writes[colour], fields, merge as usize);
         if merge {
@@ -415,24 +401,6 @@ impl Comm {
         self.fresh.clear();
         self.reverse(store, &sweep.ghost_writes[colour], fields, 0);
         self.time.set(self.time.get() + start.elapsed());
-    }
-
-    /// `members`: the particles of each colour's pairs, each once.
-    fn gather_members(&mut self, len: usize, sweep: &SweepPairs) {
-        let seen = &mut self.slots;
-        seen.clear();
-        seen.resize(len, u32::MAX);
-        self.members.resize_with(sweep.colours(), Vec::new);
-        for (c, members) in self.members.iter_mut().enumerate() {
-            members.clear();
-            for &k in sweep.colour(c).iter().flatten() {
-                if seen[k as usize] != c as u32 {
-                    seen[k as usize] = c as u32;
-                    members.push(k);
-                }
-            }
-        }
-        self.members_stale = false;
     }
 
     /// Copies `fields` of the listed ghosts back to their owners (values, not deltas; a

@@ -527,15 +527,15 @@ impl ClassicDpd {
     /// Positions, cells, ghosts, densities and forces after the particles moved; a
     /// non-finite position (`drifted`) stops the step on every rank.
     fn after_drift(&self, sys: &mut System, drifted: Result<(), StepError>) -> Result<(), StepError> {
-        sys.settle(drifted)?;
         if self.barostat.is_some() {
+            sys.settle(drifted)?;
             // the box changed: the grid is laid again for it (from the box alone, so the
             // same on every rank count) and the lists rebuilt every step
             let laid = sys.lay_grid(self.radius()).map_err(|e| StepError::global(sys.step, &format!("fix nph changed the box: {e}")));
             sys.settle(laid)?;
             self.rebuild(sys, sys.step + 1);
         } else {
-            self.relist(sys);
+            self.relist(sys, drifted)?;
         }
         let read = self.read_by_forces();
         if !read.is_empty() {
