@@ -362,9 +362,10 @@ impl Comm {
     /// writes), but not to the ghosts that returned them (they hold them). Ghosts of
     /// particles outside the colour's pairs keep theirs, which are current, so they do not
     /// travel (particles of its pairs whose partners all lay beyond the cutoff forward
-    /// values unchanged: the list build marks them, [`SweepPairs::members`]). The ghosts below the sub-domain (`lower`) are brought up to date after
-    /// the last colour only, all of them: after a sweep every ghost holds its owner's
-    /// values, and no message travels through the swaps that make them between colours.
+    /// values unchanged: the list build marks them, [`SweepPairs::members`]). The ghosts
+    /// below the sub-domain (`lower`) are brought up to date after the last colour only,
+    /// all of them: after a sweep every ghost holds its owner's values, and no message
+    /// travels through the swaps that make them between colours.
     /// When the first swap (along x, the last of the reverse and the first of the
     /// forward) goes to another rank, its two exchanges travel as one ([`Comm::merged`]).
     /// On one rank every swap is a copy, and all ghosts above (after the last colour: all
