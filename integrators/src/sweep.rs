@@ -25,7 +25,7 @@ use crate::simd::avx2_fn;
 use crate::system::System;
 use crate::many_body::density_of;
 use gendpde_engine::{exact_sums, Fields, Particles, Vec3};
-use gendpde_potentials::{AtDensity, Eos, EosError, FixedDensity, ISOLATED_DENSITY};
+use gendpde_potentials::{AtDensity, Before, Eos, EosError, FixedDensity, ISOLATED_DENSITY};
 
 /// Fields the sweep writes, exchanged between colours.
 pub const SWEPT: Fields = Fields::MOMENTUM.union(Fields::ENERGY).union(Fields::THETA).union(Fields::INV_TAU);
@@ -260,6 +260,11 @@ impl End {
     fn temps(&self) -> Temps {
         Temps { theta: self.theta, inv_tau: self.inv_tau }
     }
+
+    #[inline(always)]
+    fn before(&self) -> Before {
+        Before { theta: self.theta, inv_tau: self.inv_tau, u: self.u }
+    }
 }
 
 /// A refresh that gave no valid temperature: particle `k`, its new u and the theta found.
@@ -302,14 +307,7 @@ fn pair_step<A: AtDensity, H: HeatFlow, N: Noise>(
     let (mut p_i, mut p_j, mut u_i, mut u_j) = (a.p, b.p, a.u, b.u);
     let state = PairState { p_i: &mut p_i, p_j: &mut p_j, u_i: &mut u_i, u_j: &mut u_j, inv_m_i: p.inv_m.0, inv_m_j: p.inv_m.1 };
     pair_update::<H, N>(state, &drive, k.kb, dt, dt.sqrt());
-    // with 1/tau at hand, iterative models start from theta + du/C_V
-    let (at_i, at_j) = (v.at(i), v.at(j));
-    let guess = if H::NEEDS_INV_TAU || N::NEEDS_INV_TAU {
-        [at_i.guess_after(a.theta, a.inv_tau, u_i - a.u), at_j.guess_after(b.theta, b.inv_tau, u_j - b.u)]
-    } else {
-        [a.theta, b.theta]
-    };
-    let refreshed = refresh_pair::<A, H, N>([at_i, at_j], [i.0, j.0], [p_i, p_j], [u_i, u_j], guess);
+    let refreshed = refresh_pair::<A, H, N>([v.at(i), v.at(j)], [i.0, j.0], [p_i, p_j], [u_i, u_j], [a.before(), b.before()]);
     match refreshed {
         Ok((a, b)) => {
             v.store::<H, N>(i, a);
@@ -359,11 +357,12 @@ fn refresh<A: AtDensity, H: HeatFlow, N: Noise>(at: &A, k: usize, p: Vec3, u: f6
     end(k, p, u, found)
 }
 
-/// [`refresh`] of the two particles of a pair, their solves side by side
-/// ([`AtDensity::theta_pair`]); a failure of the first reported first.
+/// [`refresh`] of the two particles of a pair after a pair update moved their energies
+/// from the states `before` ([`AtDensity::after_pair`]); a failure of the first reported
+/// first.
 #[inline(always)]
-fn refresh_pair<A: AtDensity, H: HeatFlow, N: Noise>(at: [&A; 2], k: [usize; 2], p: [Vec3; 2], u: [f64; 2], guess: [f64; 2]) -> Result<(End, End), Failed> {
-    let found = if H::NEEDS_INV_TAU || N::NEEDS_INV_TAU { at[0].theta_inv_tau_pair(at[1], u, guess) } else { at[0].theta_pair(at[1], u, guess).map(|t| (t, 0.0)) };
+fn refresh_pair<A: AtDensity, H: HeatFlow, N: Noise>(at: [&A; 2], k: [usize; 2], p: [Vec3; 2], u: [f64; 2], before: [Before; 2]) -> Result<(End, End), Failed> {
+    let found = at[0].after_pair(at[1], before, u, H::NEEDS_INV_TAU || N::NEEDS_INV_TAU);
     Ok((end(k[0], p[0], u[0], found[0])?, end(k[1], p[1], u[1], found[1])?))
 }
 

@@ -12,7 +12,7 @@ pub mod volume;
 pub mod weight;
 
 pub use eos::{
-    AffineAt, AtDensity, AtN, Eos, EosError, EosState, FixedDensity, ErrorAt, LennardJones, LinearTheta, TableError, TableErrors, TableGrid,
+    AffineAt, AtDensity, AtN, Before, Eos, EosError, EosState, FixedDensity, ErrorAt, LennardJones, LinearTheta, TableError, TableErrors, TableGrid,
     Tabulated, Tait, ISOLATED_DENSITY,
 };
 pub use cell_energy::{CellEnergy, CellState, CellStateError, IdealCell, VdwCell};

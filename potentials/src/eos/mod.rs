@@ -159,6 +159,32 @@ pub trait AtDensity: Copy {
     fn guess_after(&self, theta: f64, _inv_tau: f64, _du: f64) -> f64 {
         theta
     }
+    /// The sweep's refresh of a pair, `self` and `b`, after a pair update moved their
+    /// energies from `before[k].u` to `u[k]`: theta, and 1/tau where `inv_tau` (else 0).
+    /// The default solves from the first-order guess ([`AtDensity::guess_after`]) where
+    /// 1/tau is kept, else from the theta before.
+    #[inline(always)]
+    fn after_pair(&self, b: &Self, before: [Before; 2], u: [f64; 2], inv_tau: bool) -> [(f64, f64); 2] {
+        if inv_tau {
+            let guess = [
+                self.guess_after(before[0].theta, before[0].inv_tau, u[0] - before[0].u),
+                b.guess_after(before[1].theta, before[1].inv_tau, u[1] - before[1].u),
+            ];
+            self.theta_inv_tau_pair(b, u, guess)
+        } else {
+            self.theta_pair(b, u, [before[0].theta, before[1].theta]).map(|theta| (theta, 0.0))
+        }
+    }
+}
+
+/// A particle's state before a pair update moved its energy, where the sweep's refresh
+/// ([`AtDensity::after_pair`]) starts.
+#[derive(Clone, Copy, Debug)]
+pub struct Before {
+    pub theta: f64,
+    /// 1/tau, read only where the sweep keeps it.
+    pub inv_tau: f64,
+    pub u: f64,
 }
 
 /// Models that can precompute their density-only parts ([`AtDensity`]).

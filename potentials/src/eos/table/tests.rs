@@ -1,6 +1,6 @@
 //! Tests of `table`.
 
-use super::super::{AtDensity, AtN, FixedDensity, LennardJones, LinearTheta};
+use super::super::{AtDensity, AtN, Before, FixedDensity, LennardJones, LinearTheta};
 use super::*;
 
 fn rel(a: f64, b: f64) -> f64 {
@@ -323,5 +323,45 @@ fn cell_at_hand_gives_the_full_solve() {
         }
     }
     eprintln!("{in_cell} of {count} refreshes solved in the cell at hand");
+    assert!(in_cell > count / 4 && in_cell < count, "{in_cell} of {count}");
+}
+
+/// The sweep's refresh from the state before ([`AtDensity::after_pair`], its Newton step
+/// from the cubic's Taylor coefficients at the old theta) finds the full solve's theta
+/// and 1/tau to round-off (both stop within 1e-15 theta of the root: at most 2e-15
+/// apart), with and without 1/tau kept, inside the cell, across cells and out of the table.
+#[test]
+fn refresh_from_the_state_before_matches_the_full_solve() {
+    let t = lj_table(61, 65);
+    let (mut worst_theta, mut worst_inv_tau, mut in_cell, mut count) = (0.0f64, 0.0f64, 0, 0);
+    for (theta, n) in states(&t, 400) {
+        let at = t.at_state(n, theta);
+        let full = AtN { eos: &t, n };
+        let inv_tau = t.inv_tau(theta, t.cv(theta, n));
+        let before = Before { theta, inv_tau, u: t.u(theta, n) };
+        for k in 0..=12 {
+            let du = 0.1 * t.cv(theta, n) * theta * (if k % 2 == 0 { 1.0 } else { -1.0 }) * 10f64.powi(-(k / 2));
+            let u = before.u + du;
+            let (want, _) = full.theta_inv_tau(u, theta);
+            for keep in [true, false] {
+                let [(got, got_inv_tau), other] = at.after_pair(&at, [before, before], [u, u], keep);
+                assert_eq!(other.0.to_bits(), got.to_bits());
+                if want.is_nan() {
+                    assert!(got.is_nan(), "({theta}, {n}) u {u}: {got} outside the table");
+                    continue;
+                }
+                worst_theta = worst_theta.max(rel(got, want));
+                if keep {
+                    worst_inv_tau = worst_inv_tau.max(rel(got_inv_tau, t.inv_tau(want, t.cv(want, n))));
+                } else {
+                    assert_eq!(got_inv_tau, 0.0);
+                }
+                in_cell += usize::from(at.in_cell_after(before, u, keep).is_some());
+                count += 1;
+            }
+        }
+    }
+    eprintln!("{in_cell} of {count} refreshes in the cell at hand; worst theta {worst_theta:.1e}, 1/tau {worst_inv_tau:.1e}");
+    assert!(worst_theta <= 2e-15 && worst_inv_tau <= 1e-14, "theta {worst_theta:e}, 1/tau {worst_inv_tau:e}");
     assert!(in_cell > count / 4 && in_cell < count, "{in_cell} of {count}");
 }
