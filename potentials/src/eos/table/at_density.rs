@@ -114,15 +114,16 @@ impl<E: Eos> TableAt<'_, E> {
         Some(self.at_root(k, (a, b, c), first_newton(c, u, tb + x, (r, d1, d2), self.tol[k])))
     }
 
-    /// [`AtDensity::after_pair`] of one particle: in the cells at hand, else the full
-    /// lookup from the first-order guess where 1/tau is kept, else from theta before.
+    /// [`AtDensity::after_pair`] of one particle: from the state before in its cell, else
+    /// (u beyond that cell: in a neighbouring cell at hand, or the full lookup) from the
+    /// first-order guess where 1/tau is kept, else from theta before.
     #[inline(always)]
     fn after(&self, before: Before, u: f64, inv_tau: bool) -> (f64, f64) {
         match (self.in_cell_after(before, u, inv_tau), inv_tau) {
             (Some((theta, cv)), true) => (theta, self.full.eos.inv_tau(theta, cv)),
             (Some((theta, _)), false) => (theta, 0.0),
-            (None, true) => self.full.theta_inv_tau(u, self.guess_after(before.theta, before.inv_tau, u - before.u)),
-            (None, false) => (self.full.theta(u, before.theta), 0.0),
+            (None, true) => self.theta_inv_tau(u, self.guess_after(before.theta, before.inv_tau, u - before.u)),
+            (None, false) => (self.theta(u, before.theta), 0.0),
         }
     }
 }
@@ -134,7 +135,8 @@ impl<E: Eos> TableAt<'_, E> {
 fn first_newton(c: &[f64; 4], u: f64, t0: f64, (r, d1, d2): (f64, f64, f64), tol: f64) -> f64 {
     let dt = r / d1;
     let next = t0 - dt;
-    if r != 0.0 && (0.0..=1.0).contains(&next) && (d2 * dt * dt).abs() <= 2.0 * tol * d1 {
+    // (r = 0 gives next = t0 and passes, as in `newton`)
+    if (0.0..=1.0).contains(&next) && (d2 * dt * dt).abs() <= 2.0 * tol * d1 {
         next
     } else {
         newton(c, u, unit(t0), tol)
