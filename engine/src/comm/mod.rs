@@ -244,12 +244,9 @@ impl Comm {
         }
         self.migrate(store, grid, keep_cells);
         // owned particles in cell order (then by tag): neighbours sit close in memory
-        let mut order: Vec<u32> = (0..store.nlocal as u32).collect();
-        let key = |i: u32| {
-            let c = store.cell[i as usize];
-            (c[2], c[1], c[0], store.tag[i as usize])
-        };
-        order.sort_unstable_by_key(|&i| key(i));
+        let mut keyed: Vec<(u128, u32)> = (0..store.nlocal).map(|i| (order_key(store.cell[i], store.tag[i]), i as u32)).collect();
+        keyed.sort_unstable_by_key(|&(key, _)| key);
+        let order: Vec<u32> = keyed.iter().map(|&(_, i)| i).collect();
         store.reorder_owned(&order);
         self.borders(store, domain, grid);
         self.time.set(self.time.get() + start.elapsed());
@@ -615,6 +612,19 @@ fn masked_slots<'a>(msg: &'a [f64], n: usize, slots: &mut Vec<u32>) -> &'a [f64]
     records
 }
 
+/// The owned particles' order: by cell (z, then y, then x), then by tag, packed into one
+/// integer so that the sort compares plain numbers (each coordinate biased into 21 bits:
+/// cell indices lie well within +-2^20).
+#[inline]
+fn order_key(c: [i32; 3], tag: u64) -> u128 {
+    const BIAS: i64 = 1 << 20;
+    let bits = |x: i32| {
+        debug_assert!((-BIAS..BIAS).contains(&(x as i64)), "cell index {x} beyond the order key");
+        (x as i64 + BIAS) as u128
+    };
+    (((bits(c[2]) << 42) | (bits(c[1]) << 21) | bits(c[0])) << 64) | tag as u128
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -632,5 +642,25 @@ mod tests {
             assert_eq!(slots, travel);
             assert_eq!(records, travel.iter().map(|&k| k as f64 + 0.5).collect::<Vec<_>>());
         }
+    }
+
+    /// The packed order key sorts as the tuple (z, y, x, tag) it stands for.
+    #[test]
+    fn order_key_sorts_as_cell_then_tag() {
+        let mut x = 0x9E37_79B9_7F4A_7C15u64;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        };
+        let mut items: Vec<([i32; 3], u64)> = (0..5000)
+            .map(|_| {
+                let c = [0, 1, 2].map(|_| [-3, -1, 0, 1, 2, 5, 1000, (1 << 20) - 1, -(1 << 20)][(next() % 9) as usize]);
+                (c, [0, 1, 7, u64::MAX, next()][(next() % 5) as usize])
+            })
+            .collect();
+        items.sort_unstable_by_key(|&(c, tag)| order_key(c, tag));
+        assert!(items.windows(2).all(|w| (w[0].0[2], w[0].0[1], w[0].0[0], w[0].1) <= (w[1].0[2], w[1].0[1], w[1].0[0], w[1].1)));
     }
 }
