@@ -211,6 +211,8 @@ pub struct Tabulated<E: Eos> {
     inv_w: f64,
     dn: f64,
     inv_dn: f64,
+    /// 1/k_B of the inner model (the sweep's step 1/C_V = (1 - theta/tau)/k_B).
+    inv_kb: f64,
     /// u patches, cell (i, j) at j (nt - 1) + i.
     pu: Vec<Patch>,
     /// pi/n^2 patches.
@@ -444,6 +446,7 @@ impl<E: Eos> Tabulated<E> {
             })
             .collect();
         Ok(Self {
+            inv_kb: 1.0 / inner.kb(),
             inner,
             grid,
             nt,

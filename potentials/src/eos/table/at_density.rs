@@ -20,7 +20,6 @@ impl<E: Eos> FixedDensity for Tabulated<E> {
             p1: [f64::NAN; 3],
             inv_h: [f64::NAN; 3],
             tol: [f64::NAN; 3],
-            inv_kb: 1.0 / self.kb(),
         };
         if let Some(l) = self.locate(theta, n) {
             let m = self.nt - 1;
@@ -51,7 +50,6 @@ pub struct TableAt<'a, E: Eos> {
     inv_h: [f64; 3],
     /// [`Tabulated::newton_tol`] of each cell.
     tol: [f64; 3],
-    inv_kb: f64,
 }
 
 impl<E: Eos> Clone for TableAt<'_, E> {
@@ -104,7 +102,7 @@ impl<E: Eos> TableAt<'_, E> {
         // c(tb + x) = c(tb) + e1 x + e2 x^2 + c3 x^3, x = s du
         let (e1, e2) = (slope(c, tb), 3.0 * c[3] * tb + c[2]);
         // 1/c'(tb) = h/C_V, 1/C_V = (1 - theta/tau)/k_B (eqs 19, 23)
-        let s = if inv_tau { (1.0 - before.theta * before.inv_tau) * self.inv_kb * self.inv_h[k] } else { 1.0 / e1 };
+        let s = if inv_tau { (1.0 - before.theta * before.inv_tau) * self.full.eos.inv_kb * self.inv_h[k] } else { 1.0 / e1 };
         let p0 = value(c, tb) - before.u;
         let (p1, p2, p3) = (e1 * s - 1.0, e2 * s * s, c[3] * s * s * s);
         let du = u - before.u;
