@@ -33,6 +33,24 @@ pub trait Column: Copy + Default {
     fn unpack(rec: &[f64]) -> Self;
     /// Value `k` (below `WIDTH`).
     fn get(self, k: usize) -> f64;
+
+    /// Appends the records of `col[i]` for each i of `idx` to `buf` (a forward or
+    /// reverse message), written in place: no capacity check per value, no zeroing.
+    #[inline]
+    fn gather(col: &[Self], idx: &[u32], buf: &mut Vec<f64>) {
+        let n = idx.len() * Self::WIDTH;
+        buf.reserve(n);
+        let spare = &mut buf.spare_capacity_mut()[..n];
+        for (&i, rec) in idx.iter().zip(spare.chunks_exact_mut(Self::WIDTH)) {
+            let v = col[i as usize];
+            for (k, x) in rec.iter_mut().enumerate() {
+                x.write(v.get(k));
+            }
+        }
+        // SAFETY: the loop wrote all n values after the old length (idx.len() records of
+        // WIDTH values each), within the capacity reserved above.
+        unsafe { buf.set_len(buf.len() + n) };
+    }
 }
 
 impl Column for f64 {
@@ -217,9 +235,7 @@ macro_rules! particle_fields {
             /// (in table order), each field's values in the order of `idx`.
             fn pack_comm(&self, idx: &[u32], fields: Fields, buf: &mut Vec<f64>) {
                 $( if !$comm.is_empty() && fields.contains($comm) && !self.$name.is_empty() {
-                    for &i in idx {
-                        self.$name[i as usize].pack(buf);
-                    }
+                    <$ty as Column>::gather(&self.$name, idx, buf);
                 } )*
             }
 
@@ -332,7 +348,9 @@ const fn shares(field: u32, stages: u32) -> bool {
 
 fn permute<T: Copy>(v: &mut Vec<T>, order: &[u32]) {
     if v.len() == order.len() {
-        let old = std::mem::take(v);
+        // the new column keeps the old one's capacity (room for the ghosts that follow),
+        // so the next borders do not grow it again
+        let old = std::mem::replace(v, Vec::with_capacity(v.capacity()));
         v.extend(order.iter().map(|&k| old[k as usize]));
     }
 }
@@ -450,12 +468,15 @@ impl Particles {
         buf[start + layout.cell + dim] += cell_shift as f64;
     }
 
-    /// Appends a ghost from a `pack_ghost` record (its owned-only fields default).
-    pub fn unpack_ghost(&mut self, rec: &[f64]) {
-        let i = self.len();
-        self.resize(i + 1);
-        self.unpack(i, GHOST, true, rec);
-        self.r_build[i] = self.r[i];
+    /// Appends a ghost from each `pack_ghost` record of `records`, `width` values each
+    /// (their owned-only fields default).
+    pub fn unpack_ghosts(&mut self, records: &[f64], width: usize) {
+        let start = self.len();
+        self.resize(start + records.len() / width);
+        for (i, rec) in (start..).zip(records.chunks_exact(width)) {
+            self.unpack(i, GHOST, true, rec);
+            self.r_build[i] = self.r[i];
+        }
     }
 
     /// Puts the owned particles in the order `order` (a permutation of 0..nlocal; no

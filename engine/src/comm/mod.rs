@@ -320,9 +320,7 @@ impl Comm {
                 let (dest, src) = self.grid.neighbours(d, dir);
                 self.traffic.sendrecv(self.t.as_ref(), &self.send, dest, src, &mut self.recv);
                 let recv_start = store.len();
-                for rec in self.recv.chunks_exact(layout.width) {
-                    store.unpack_ghost(rec);
-                }
+                store.unpack_ghosts(&self.recv, layout.width);
                 let recv_count = store.len() - recv_start;
                 self.swaps.push(Swap { dim: d, upper: dir == -1, shift, dest, src, send, recv_start, recv_count });
             }
