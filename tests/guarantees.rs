@@ -475,6 +475,33 @@ fn a_blow_up_is_one_message_the_same_on_1_2_3_4_ranks() {
     });
 }
 
+/// The checkpoint a blow-up writes is the last good state itself: every field of the
+/// owned particles as they were after the last completed step, forces and virials
+/// included (a continuation keeps those), as a restart written at that step by a run
+/// that stops there. (Until issue 21 part 11 the saved state held the migrating fields
+/// only, and the checkpoint's forces were zero.)
+#[test]
+fn a_blow_up_checkpoints_the_state_of_the_last_good_step() {
+    let dir = tempdir("blowup-state");
+    let script = std::fs::read_to_string(common::example("vdw-equilibrium")).unwrap().replace("timestep     0.01", "timestep 0.45");
+    std::fs::write(dir.join("in.test"), script.clone() + "write_restart good.restart.h5\n").unwrap();
+    let vars = ["-log", "none", "-var", "n", "11", "-var", "rc", "3.0", "-var", "steps"];
+    let failed = mpirun(1, &dir, &[&["run", "in.test"][..], &vars, &["40"]].concat());
+    assert!(String::from_utf8_lossy(&failed.stderr).contains("the last good state (step 4) is in failed.restart.h5"));
+    let good = mpirun(1, &dir, &[&["run", "in.test"][..], &vars, &["4"]].concat());
+    assert!(good.status.success(), "{}", String::from_utf8_lossy(&good.stderr));
+    let dump = |restart: &str| {
+        let input = format!("read_restart {restart}\nwrite_dump all custom {restart}.dump id x y z vx vy vz fx fy fz u theta modify format float %.17g\n");
+        std::fs::write(dir.join("in.dump"), input).unwrap();
+        let out = mpirun(1, &dir, &["run", "in.dump", "-log", "none"]);
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        std::fs::read_to_string(dir.join(format!("{restart}.dump"))).unwrap()
+    };
+    let (saved, written) = (dump("failed.restart.h5"), dump("good.restart.h5"));
+    assert!(saved.lines().count() > 1000 && saved.contains("ITEM: ATOMS id x y z vx vy vz fx fy fz"), "{saved:.300}");
+    assert_eq!(saved, written, "the failed step's checkpoint against a restart written after step 4");
+}
+
 /// Finding 4: a dilute box laid a cell grid of 1024^3 cells whose bins needed 4.3 GB;
 /// the grid now has no more cells than particles, and the run fits in 1 GB.
 #[test]

@@ -199,6 +199,15 @@ macro_rules! particle_fields {
                 $( if !self.$name.is_empty() { self.$name.swap_remove(i); } )*
             }
 
+            /// Becomes a copy of the owned particles of `from` (every allocated field, no
+            /// ghosts), reusing its memory: a column at a time, so a snapshot taken every
+            /// step costs a few copies of contiguous memory.
+            pub fn copy_owned_from(&mut self, from: &Particles) {
+                let n = from.nlocal;
+                $( self.$name.clear(); self.$name.extend_from_slice(&from.$name[..n.min(from.$name.len())]); )*
+                (self.nlocal, self.enabled) = (n, from.enabled);
+            }
+
             /// Puts every field in the order `order` (a permutation of 0..len).
             fn permute(&mut self, order: &[u32]) {
                 $( permute(&mut self.$name, order); )*

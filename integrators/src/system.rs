@@ -255,7 +255,7 @@ impl System {
 /// The owned particles of one step, kept so a failed step can be undone and written out.
 #[derive(Clone, Debug, Default)]
 pub struct Snapshot {
-    records: Vec<f64>,
+    store: Particles,
     step: u64,
     time: f64,
     last_build: u64,
@@ -268,10 +268,7 @@ pub struct Snapshot {
 impl System {
     /// Saves the owned particles and the clock into `snap` (reusing its memory).
     pub fn save(&self, snap: &mut Snapshot) {
-        snap.records.clear();
-        for i in 0..self.store.nlocal {
-            self.store.pack_owned(i, &mut snap.records);
-        }
+        snap.store.copy_owned_from(&self.store);
         (snap.step, snap.time, snap.last_build, snap.tallied) = (self.step, self.time, self.last_build, self.tallied);
         snap.domain = Some(self.domain.clone());
         snap.barostat.clone_from(&self.barostat);
@@ -280,15 +277,7 @@ impl System {
     /// Puts back the owned particles and the clock of `snap`; ghosts and lists are
     /// dropped (the next setup rebuilds them from the saved cells).
     pub fn restore(&mut self, snap: &Snapshot) {
-        let s = &mut self.store;
-        s.truncate_ghosts();
-        while s.nlocal > 0 {
-            s.remove_owned(s.nlocal - 1);
-        }
-        let width = s.owned_record();
-        for rec in snap.records.chunks_exact(width) {
-            s.unpack_owned(rec);
-        }
+        self.store.copy_owned_from(&snap.store);
         (self.step, self.time, self.last_build, self.tallied) = (snap.step, snap.time, snap.last_build, snap.tallied);
         if let Some(d) = &snap.domain {
             self.domain = d.clone();
