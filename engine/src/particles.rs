@@ -11,7 +11,7 @@ use crate::{Fields, Vec3};
 
 /// The stages a per-particle field takes part in (bit set).
 pub mod stage {
-    /// Travels with an owned particle to its new rank, and is kept in step snapshots.
+    /// Travels with an owned particle to its new rank.
     pub const MIGRATE: u32 = 1;
     /// Copied into the ghost record when the ghost layer is built.
     pub const GHOST: u32 = 2;
@@ -434,7 +434,7 @@ impl Particles {
         self.record(stages, dense).iter().map(|c| c.field.width).sum()
     }
 
-    /// Appends owned particle `i` for migration or a snapshot (every MIGRATE field).
+    /// Appends owned particle `i` for migration (every MIGRATE field).
     pub fn pack_owned(&self, i: usize, buf: &mut Vec<f64>) {
         self.pack(i, MIGRATE, false, buf);
     }
