@@ -15,7 +15,7 @@ pub use exact_sum::{exact_column_sums, exact_sums};
 #[cfg(feature = "mpi")]
 pub use mpi::MpiTransport;
 pub use procs::ProcGrid;
-pub use transport::{Local, Transport};
+pub use transport::{Local, Received, Transport};
 
 use crate::{CellGrid, Domain, Fields, Particles, SweepPairs, Vec3};
 
@@ -47,7 +47,7 @@ pub struct Comm {
     hi: [i32; 3],
     swaps: Vec<Swap>,
     send: Vec<f64>,
-    recv: Vec<f64>,
+    recv: Received,
     written: Vec<bool>,
     /// Ghosts below the sub-domain along some dimension (made by a swap that is not
     /// `upper`, or sent on from such a ghost): no sweep colour reads them.
@@ -84,7 +84,7 @@ enum Travel {
 
 impl Traffic {
     /// Sends `send` to `dest` and receives `src`'s buffer into `recv`, counted.
-    fn sendrecv(&mut self, t: &dyn Transport, send: &[f64], dest: usize, src: usize, recv: &mut Vec<f64>) {
+    fn sendrecv(&mut self, t: &dyn Transport, send: &[f64], dest: usize, src: usize, recv: &mut Received) {
         if dest != t.rank() {
             self.messages += 1;
             self.values += send.len() as u64;
@@ -94,7 +94,7 @@ impl Traffic {
     }
 
     /// [`Transport::sendrecv2`], counted.
-    fn sendrecv2(&mut self, t: &dyn Transport, send: &[f64], split: usize, dest: [usize; 2], src: [usize; 2], recv: &mut Vec<f64>) -> usize {
+    fn sendrecv2(&mut self, t: &dyn Transport, send: &[f64], split: usize, dest: [usize; 2], src: [usize; 2], recv: &mut Received) -> usize {
         for (d, part) in dest.into_iter().zip([&send[..split], &send[split..]]) {
             if d != t.rank() {
                 self.messages += 1;
@@ -108,7 +108,7 @@ impl Traffic {
     /// One round of one or two exchanges, each a (dest, src) route: `send[..split]` goes
     /// the `first` route, the rest the `second`; returns where the second part of `recv`
     /// begins.
-    fn round(&mut self, t: &dyn Transport, send: &[f64], split: usize, first: (usize, usize), second: Option<(usize, usize)>, recv: &mut Vec<f64>) -> usize {
+    fn round(&mut self, t: &dyn Transport, send: &[f64], split: usize, first: (usize, usize), second: Option<(usize, usize)>, recv: &mut Received) -> usize {
         match second {
             None => {
                 self.sendrecv(t, send, first.0, first.1, recv);
@@ -135,7 +135,7 @@ impl Comm {
             hi: [0; 3],
             swaps: Vec::new(),
             send: Vec::new(),
-            recv: Vec::new(),
+            recv: Received::default(),
             written: Vec::new(),
             lower: Vec::new(),
             fresh: Vec::new(),
@@ -551,17 +551,21 @@ impl Comm {
             return;
         }
         let (fresh, returned, below) = (&self.fresh, &self.returned[n], &self.lower);
-        let back = |k: usize| returned.get(k / 64).is_some_and(|w| w.to_bits() >> (k % 64) & 1 == 1);
-        self.slots.clear();
-        if s.upper {
-            let travels = |i: usize, k: usize| (fresh[i] && !back(k)) || (lower && below[i]);
-            self.slots.extend((0..s.send.len() as u32).filter(|&k| travels(s.send[k as usize] as usize, k as usize)));
-        } else {
-            self.slots.extend(0..s.send.len() as u32);
-        }
+        // the mask of [`lead_with_mask`] a word (64 slots) at a time, with the particles
+        // that travel
         self.idx.clear();
-        self.idx.extend(self.slots.iter().map(|&k| s.send[k as usize]));
-        lead_with_mask(&mut self.send, s.send.len(), &self.slots);
+        for (w, slots) in s.send.chunks(64).enumerate() {
+            let back = returned.get(w).map_or(0, |x| x.to_bits());
+            let mut bits = 0u64;
+            for (b, &i) in slots.iter().enumerate() {
+                let travels = !s.upper || (fresh[i as usize] && back >> b & 1 == 0) || (lower && below[i as usize]);
+                if travels {
+                    bits |= 1 << b;
+                    self.idx.push(i);
+                }
+            }
+            self.send.push(f64::from_bits(bits));
+        }
         store.pack_fields(&self.idx, fields, Some((s.dim, s.shift)), &mut self.send);
     }
 

@@ -1,6 +1,6 @@
 //! The MPI transport (rsmpi over the system's MPI library; cargo feature `mpi`).
 
-use super::Transport;
+use super::{Received, Transport};
 use mpi::collective::SystemOperation;
 use mpi::environment::Universe;
 use mpi::topology::SimpleCommunicator;
@@ -32,23 +32,20 @@ impl Transport for MpiTransport {
 
     /// One message each way: the send is posted, the incoming message is probed for its
     /// length and received, then the send completes (no separate length message).
-    fn sendrecv(&self, data: &[f64], dest: usize, src: usize, recv: &mut Vec<f64>) {
+    fn sendrecv(&self, data: &[f64], dest: usize, src: usize, recv: &mut Received) {
         let dest = self.world.process_at_rank(dest as i32);
         let src = self.world.process_at_rank(src as i32);
         mpi::request::scope(|scope| {
             let sent = dest.immediate_send(scope, data);
             let (message, status) = src.matched_probe();
-            // the message overwrites every value: only new capacity is zeroed
             let count = status.count(f64::equivalent_datatype()) as usize;
-            recv.truncate(count);
-            recv.resize(count, 0.0);
-            message.matched_receive_into(&mut recv[..]);
+            message.matched_receive_into(recv.room(0, count));
             sent.wait();
         });
     }
 
     /// Both sends are posted, then each incoming message is probed and received in turn.
-    fn sendrecv2(&self, data: &[f64], split: usize, dest: [usize; 2], src: [usize; 2], recv: &mut Vec<f64>) -> usize {
+    fn sendrecv2(&self, data: &[f64], split: usize, dest: [usize; 2], src: [usize; 2], recv: &mut Received) -> usize {
         let (first, second) = data.split_at(split);
         let mut ends = [0; 2];
         mpi::request::scope(|scope| {
@@ -57,9 +54,7 @@ impl Transport for MpiTransport {
             for (end, r) in ends.iter_mut().zip(src) {
                 let (message, status) = self.world.process_at_rank(r as i32).matched_probe();
                 let count = status.count(f64::equivalent_datatype()) as usize;
-                recv.truncate(len + count);
-                recv.resize(len + count, 0.0);
-                message.matched_receive_into(&mut recv[len..]);
+                message.matched_receive_into(recv.room(len, count));
                 len += count;
                 *end = len;
             }
