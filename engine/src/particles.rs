@@ -261,6 +261,17 @@ macro_rules! particle_fields {
                 debug_assert_eq!(k, msg.len());
             }
 
+            /// Copies the exchanged fields `fields` of the particles `from` into the
+            /// particles `to..` in order (all of `from` lying below `to`).
+            fn gather_comm(&mut self, from: &[u32], to: usize, fields: Fields) {
+                $( if !$comm.is_empty() && fields.contains($comm) && !self.$name.is_empty() {
+                    let (src, dst) = self.$name.split_at_mut(to);
+                    for (d, &i) in dst[..from.len()].iter_mut().zip(from) {
+                        *d = src[i as usize];
+                    }
+                } )*
+            }
+
             /// Copies the exchanged fields `fields` from `from` to `to` for each pair.
             fn copy_comm(&mut self, moves: impl Iterator<Item = (usize, usize)> + Clone, fields: Fields) {
                 $( if !$comm.is_empty() && fields.contains($comm) && !self.$name.is_empty() {
@@ -559,12 +570,19 @@ impl Particles {
     }
 
     /// Copies `fields` from particle `from` to particle `to` for each (from, to) of
-    /// `moves` (a swap of a rank with itself), with the position shift of `pack_fields`.
-    pub fn copy_fields(&mut self, moves: impl Iterator<Item = (usize, usize)> + Clone, fields: Fields, shift: Option<(usize, f64)>) {
-        self.copy_comm(moves.clone(), fields);
-        if let (Some((d, s)), true) = (shift, fields.contains(Fields::POSITION)) {
-            for (_, to) in moves {
-                self.r[to][d] += s;
+    /// `moves` (a reverse swap of a rank with itself).
+    pub fn copy_fields(&mut self, moves: impl Iterator<Item = (usize, usize)> + Clone, fields: Fields) {
+        self.copy_comm(moves, fields);
+    }
+
+    /// Copies `fields` of the particles `from` into the ghosts `to..` in order (a forward
+    /// swap of a rank with itself: its sources lie below its ghosts), with the position
+    /// shift of `pack_fields`.
+    pub fn copy_to_ghosts(&mut self, from: &[u32], to: usize, fields: Fields, (d, shift): (usize, f64)) {
+        self.gather_comm(from, to, fields);
+        if fields.contains(Fields::POSITION) {
+            for r in &mut self.r[to..to + from.len()] {
+                r[d] += shift;
             }
         }
     }

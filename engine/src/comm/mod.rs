@@ -425,7 +425,7 @@ impl Comm {
             if s.dest == me && s.src == me {
                 let written = &self.written;
                 let moves = (0..s.recv_count).filter(|&k| written[s.recv_start + k]).map(|k| (s.recv_start + k, s.send[k] as usize));
-                store.copy_fields(moves, fields, None);
+                store.copy_fields(moves, fields);
                 // the owners reached may be ghosts that travel on in later swaps (the
                 // sources, ghosts of this swap, lie above every destination)
                 for k in 0..s.recv_count {
@@ -520,8 +520,7 @@ impl Comm {
                         self.fresh[s.recv_start + k] = self.fresh[i as usize];
                     }
                 }
-                let moves = s.send.iter().enumerate().map(|(k, &i)| (i as usize, s.recv_start + k));
-                store.copy_fields(moves, fields, Some((s.dim, s.shift)));
+                store.copy_to_ghosts(&s.send, s.recv_start, fields, (s.dim, s.shift));
                 n += 1;
                 continue;
             }
