@@ -272,8 +272,9 @@ macro_rules! particle_fields {
                 } )*
             }
 
-            /// Copies the exchanged fields `fields` from `from` to `to` for each pair.
-            fn copy_comm(&mut self, moves: impl Iterator<Item = (usize, usize)> + Clone, fields: Fields) {
+            /// Copies the exchanged fields `fields` from particle `from` to particle `to`
+            /// for each (from, to) of `moves` (a reverse swap of a rank with itself).
+            pub fn copy_fields(&mut self, moves: impl Iterator<Item = (usize, usize)> + Clone, fields: Fields) {
                 $( if !$comm.is_empty() && fields.contains($comm) && !self.$name.is_empty() {
                     for (from, to) in moves.clone() {
                         self.$name[to] = self.$name[from];
@@ -567,12 +568,6 @@ impl Particles {
     /// Reads a `pack_fields` message into the particles `idx`.
     pub fn unpack_fields(&mut self, idx: &[u32], fields: Fields, msg: &[f64]) {
         self.unpack_comm(idx, fields, msg);
-    }
-
-    /// Copies `fields` from particle `from` to particle `to` for each (from, to) of
-    /// `moves` (a reverse swap of a rank with itself).
-    pub fn copy_fields(&mut self, moves: impl Iterator<Item = (usize, usize)> + Clone, fields: Fields) {
-        self.copy_comm(moves, fields);
     }
 
     /// Copies `fields` of the particles `from` into the ghosts `to..` in order (a forward
