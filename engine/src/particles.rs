@@ -248,15 +248,16 @@ macro_rules! particle_fields {
                 } )*
             }
 
-            /// Reads a `pack_comm` message into the particles `idx`.
-            fn unpack_comm(&mut self, idx: &[u32], fields: Fields, msg: &[f64]) {
+            /// Reads a [`Particles::pack_fields`] message into the particles `to` (a list of
+            /// indices, or a range: a swap's ghosts are contiguous).
+            pub fn unpack_fields(&mut self, to: impl ExactSizeIterator<Item = usize> + Clone, fields: Fields, msg: &[f64]) {
                 let mut k = 0;
                 $( if !$comm.is_empty() && fields.contains($comm) && !self.$name.is_empty() {
                     let column = &mut self.$name;
-                    for (&i, rec) in idx.iter().zip(msg[k..].chunks_exact(<$ty as Column>::WIDTH)) {
-                        column[i as usize] = <$ty as Column>::unpack(rec);
+                    for (i, rec) in to.clone().zip(msg[k..].chunks_exact(<$ty as Column>::WIDTH)) {
+                        column[i] = <$ty as Column>::unpack(rec);
                     }
-                    k += idx.len() * <$ty as Column>::WIDTH;
+                    k += to.len() * <$ty as Column>::WIDTH;
                 } )*
                 debug_assert_eq!(k, msg.len());
             }
@@ -563,11 +564,6 @@ impl Particles {
                 r[d] += s;
             }
         }
-    }
-
-    /// Reads a `pack_fields` message into the particles `idx`.
-    pub fn unpack_fields(&mut self, idx: &[u32], fields: Fields, msg: &[f64]) {
-        self.unpack_comm(idx, fields, msg);
     }
 
     /// Copies `fields` of the particles `from` into the ghosts `to..` in order (a forward

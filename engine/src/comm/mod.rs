@@ -488,7 +488,7 @@ impl Comm {
         self.returned[n].extend_from_slice(&msg[..msg.len() - records.len()]);
         self.idx.clear();
         self.idx.extend(self.slots.iter().map(|&k| s.send[k as usize]));
-        store.unpack_fields(&self.idx, fields, records);
+        store.unpack_fields(self.idx.iter().map(|&i| i as usize), fields, records);
         for &i in &self.idx {
             let i = i as usize;
             self.written[i] |= i >= store.nlocal;
@@ -572,17 +572,15 @@ impl Comm {
     /// those that travelled, which are marked).
     fn unpack_forward(&mut self, store: &mut Particles, n: usize, fields: Fields, at: std::ops::Range<usize>, travel: Travel) {
         let s = &self.swaps[n];
-        self.idx.clear();
         if travel == Travel::Every {
-            self.idx.extend(s.recv_start as u32..(s.recv_start + s.recv_count) as u32);
-            store.unpack_fields(&self.idx, fields, &self.recv[at]);
+            store.unpack_fields(s.recv_start..s.recv_start + s.recv_count, fields, &self.recv[at]);
             return;
         }
         let records = masked_slots(&self.recv[at], s.recv_count, &mut self.slots);
-        self.idx.extend(self.slots.iter().map(|&k| s.recv_start as u32 + k));
-        store.unpack_fields(&self.idx, fields, records);
-        for &g in &self.idx {
-            self.fresh[g as usize] = true;
+        let ghosts = self.slots.iter().map(|&k| s.recv_start + k as usize);
+        store.unpack_fields(ghosts.clone(), fields, records);
+        for g in ghosts {
+            self.fresh[g] = true;
         }
     }
 }
