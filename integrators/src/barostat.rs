@@ -14,8 +14,8 @@
 //!   before and after the drift (`remap`);
 //! - the chain on omega_dot, half a step at each end of the step (`nhc_press_integrate`);
 //! - the fix's energy (`compute_scalar`, thermo `ecouple`): sum_d [W_d omega_dot_d^2 / 2 +
-//!   P_hydro (V - V0) / pdim] + L k_B T0 eta_1 + Q_1 eta_dot_1^2 / 2 + sum_{k>1} [k_B T0 eta_k
-//!   + Q_k eta_dot_k^2 / 2] (+ the strain energy sigma:h h^T / 2 for x/y/z), L the number of
+//!   P_hydro (V - V0) / pdim] + L k_B T0 eta_1 + Q_1 eta_dot_1^2 / 2 + sum_{k>1} [k_B T0 eta_k +
+//!   Q_k eta_dot_k^2 / 2] (+ the strain energy sigma:h h^T / 2 for x/y/z), L the number of
 //!   barostatted dimensions (LAMMPS counts L = pdim here but drives eta_dot_1 with
 //!   k_B T0 alone for iso; followed as is).
 //!

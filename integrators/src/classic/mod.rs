@@ -13,8 +13,8 @@
 //! mdpd: F = [A w_c + B (rho_i + rho_j) w_d - gamma w_c^2 (e.v) + sigma w_c xi / sqrt(dt)] e
 //! with rho_i = sum_j m_j W_Lucy(r_ij; h); pair energy a0 rc w^2 / 2 (dpd);
 //! dpd/ext (and the thermostats dpd/tstat, dpd/ext/tstat without a0): with P = I - e e,
-//! F = [a0 w - gamma_par w^(2 s_par) (e.v) + sigma_par w^s_par xi / sqrt(dt)] e
-//! - gamma_perp w^(2 s_perp) P v + sigma_perp w^s_perp P xi_vec / sqrt(dt),
+//! F = [a0 w - gamma_par w^(2 s_par) (e.v) + sigma_par w^s_par xi / sqrt(dt)] e -
+//! gamma_perp w^(2 s_perp) P v + sigma_perp w^s_perp P xi_vec / sqrt(dt),
 //! sigma = sqrt(2 k_B T gamma) each, T ramped linearly over the run for the thermostats.
 //! multi/lucy (pair_multi_lucy.cpp; Moore et al., J. Chem. Phys. 144, 104501 (2016)):
 //! rho_i = sum_{j != i} 84/(5 pi rc^3) (1 + 3r/2rc)(1 - r/rc)^4, F = (A(rho_i) + A(rho_j))/2
@@ -26,8 +26,8 @@
 //! Velocity-Verlet DPDE (pair dpd/fdt/energy, no shardlow): the dpd force with gamma_ij
 //! = sigma^2 / (2 k_B theta_ij); duMech_i and duMech_j += [gamma w^2 (e.v)^2 - sigma^2
 //! mu_ij w^2 / 2 - sigma w (e.v) xi / sqrt(dt)] / 2 with mu_ij = 1/m_i + 1/m_j (the work
-//! of friction and noise, with the Ito term); duCond_i (-duCond_j) += kappa w^2 (1/theta_i
-//! - 1/theta_j) + sqrt(2 k_B kappa) w xibar / sqrt(dt); fix dpd/energy: u += dt/2 du
+//! of friction and noise, with the Ito term); duCond_i (-duCond_j) += kappa w^2 (1/theta_i -
+//! 1/theta_j) + sqrt(2 k_B kappa) w xibar / sqrt(dt); fix dpd/energy: u += dt/2 du
 //! before the first and before the second half kick (fix_dpd_energy.cpp), eos/cv after
 //! the drift and at the end of the step.
 //! Every coefficient and cutoff is per type pair ([`TypeTable`], LAMMPS's `a0[itype][jtype]`);

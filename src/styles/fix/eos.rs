@@ -193,8 +193,8 @@ fn parse_model(style: &str, a: &mut Args, kb: f64) -> Result<EosModel, ScriptErr
 
 /// `eos/vdw/reduced N0 [dim D] [cap F]`: a fluid particle of N0 van der Waals molecules
 /// in the reduced units of Serrano-Espanol eqs 160-162 (k_B T~, n~ = 3 b n; energies in
-/// 8a/27b, so k_B = 1): u = N0 (D/2) theta - (9/8) N0^2 n, P = n~ theta/(1 - n~/3)
-/// - (9/8) n~^2 = (3/8) P~ with n~ = N0 n (eqs 157-159). The linear family with
+/// 8a/27b, so k_B = 1): u = N0 (D/2) theta - (9/8) N0^2 n, P = n~ theta/(1 - n~/3) -
+/// (9/8) n~^2 = (3/8) P~ with n~ = N0 n (eqs 157-159). The linear family with
 /// C_V = N0 D/2, q = r = N0, b = N0/3, V(n) = -(9/8) N0^2 n; the constant c of eq 163
 /// only shifts each particle's entropy.
 fn vdw_reduced(a: &mut Args, kb: f64) -> Result<EosModel, ScriptError> {
