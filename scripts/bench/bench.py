@@ -7,7 +7,7 @@ atoms` line of the timed run (the last `run` of the script; a short untimed warm
 precedes it). Writes the table (median, min-max, ratio) between the bench markers of
 docs/PERFORMANCE.md and prints it.
 
-    scripts/bench/run.sh            # everything (about 10 minutes on 2 cores)
+    scripts/bench/run.sh            # everything (about 16 minutes on 2 cores)
     scripts/bench/run.sh classic    # only cases whose name contains "classic"
 
 The 1- and 2-rank runs of an MPI scene alternate with two ceilings of the machine: the
@@ -64,9 +64,10 @@ def cases():
     for n, steps in [(10, 2000), (22, 200), (32, 60), (47, 20), (63, 8)]:
         out.append(case(f"N scaling classic rho 3, N {n ** 3}", "in.dpde", {**CLASSIC_RC1, "n": n, "steps": steps}))
     # parallel efficiency: the 1- and 2-rank runs of a scene, the pair of 1-rank runs and
-    # the 1- and 2-rank runs of the ideal kernel alternate. The kernel's pace: about the scene's one-rank step on this machine (8e6
-    # and 75e6 multiply-adds: 12 and 115 ms), the rounds, bytes and reductions per step of
-    # the scene's 2-rank run ("Comm messages per step", comm_counts.sh).
+    # the 1- and 2-rank runs of the ideal kernel alternate. The kernel's pace: about the
+    # scene's one-rank step on this machine (8e6 and 75e6 multiply-adds: 12 and 115 ms),
+    # the rounds, bytes and reductions per step of the scene's 2-rank run ("Comm messages
+    # per step", comm_counts.sh).
     for scene, script, gvars, kernel in [
             ("classic rho 3, N 27000", "in.dpde", {**CLASSIC_RC1, "n": 30, "steps": 300},
              (8_000_000, 11, 675_000, 1, 300)),
