@@ -14,9 +14,9 @@
 use std::sync::OnceLock;
 
 use gendpde_engine::Vec3;
-use gendpde_integrators::heat::{Fourier, HeatFlow, Original, Temps};
-use gendpde_integrators::noise::{Arithmetic, Harmonic, Noise};
-use gendpde_integrators::pair_update::{pair_update, PairDrive, PairState};
+use gendpde_integrators::passes::heat::{Fourier, HeatFlow, Original, Temps};
+use gendpde_integrators::passes::noise::{Arithmetic, Harmonic, Noise};
+use gendpde_integrators::passes::pair_update::{pair_update, PairDrive, PairState};
 use gendpde_potentials::{Eos, LennardJones, LinearTheta, TableGrid, Tabulated, ISOLATED_DENSITY};
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;

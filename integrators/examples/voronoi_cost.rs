@@ -13,7 +13,7 @@
 //! step and per end-of-step frame (the tessellation and the cell states; the predictor's
 //! frame costs the same, so the tessellation's share is about 2 frame_s / step_s).
 
-use gendpde_integrators::voronoi::{Cells, Dissipation, FiniteVolume, Frame, Tessellation, Transport};
+use gendpde_integrators::models::voronoi::{Cells, CellDissipation, FiniteVolume, Frame, Tessellation, CellTransport};
 use gendpde_potentials::cell_energy::{vdw_entropy, WATER_C};
 use gendpde_potentials::VdwCell;
 
@@ -59,12 +59,12 @@ fn scene(k: usize) -> (Cells, [f64; 3]) {
 fn main() {
     let sizes: Vec<usize> = std::env::args().skip(1).map(|a| a.parse().unwrap_or_else(|_| panic!("not a cell count: {a}"))).collect();
     let energy = VdwCell { c: WATER_C };
-    let transport = Transport { eta: 1.0, zeta: 1.0, kappa: 1.0, kb: 1.0 };
+    let transport = CellTransport { eta: 1.0, zeta: 1.0, kappa: 1.0, kb: 1.0 };
     let (lo, dt) = ([0.0; 3], 0.05);
     for n in sizes {
         let k = (n as f64).cbrt().round() as usize;
         let (start, len) = scene(k);
-        for (name, dissipation) in [("fv", Dissipation::Hydrodynamic), ("dpd", Dissipation::Dpd { gamma: 1.0 })] {
+        for (name, dissipation) in [("fv", CellDissipation::Hydrodynamic), ("dpd", CellDissipation::Dpd { gamma: 1.0 })] {
             let model = FiniteVolume { energy, transport, dissipation, seed: 4928 };
             let mut cells = start.clone();
             let mut frame = Frame::new(&cells, &energy, lo, len).unwrap_or_else(|e| panic!("{e}"));

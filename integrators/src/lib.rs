@@ -1,45 +1,32 @@
-//! GenDPDE integrators: the reversible velocity-Verlet step with the papers' pairwise
-//! work split or at fixed entropy, the Shardlow (eSSA) pair sweep with its heat-flow
-//! models, the heat reservoir, and the argon paper's velocity Verlet + Euler scheme.
-//! Equation numbers: 2019 PCCP paper unless stated.
+//! GenDPDE integrators, by tier: the framework ([`physics`]: the trait every model
+//! implements, [`system`], [`settings`], [`error`], [`rng`], [`simd`], [`type_table`]),
+//! the shared [`passes`] (density and forces, the Shardlow sweep, heat and noise laws,
+//! velocity Verlet, the barostat) and the [`models`] built from them (GenDPDE, LAMMPS's
+//! pairwise styles, eDPD, SDPD, Voronoi). Equation numbers: 2019 PCCP paper unless stated.
 
-pub mod barostat;
-pub mod barostat_state;
-pub mod classic;
-pub mod edpd;
 pub mod error;
-pub mod heat;
-pub mod isentropic;
-pub mod many_body;
-pub mod noise;
-pub mod pair_update;
+pub mod models;
+pub mod passes;
 pub mod physics;
 pub mod rng;
-pub mod sdpd;
-pub mod sdpd_taitwater;
 pub mod settings;
 pub mod simd;
-pub mod species;
-pub mod sweep;
 pub mod system;
-pub mod tables;
 pub mod type_table;
-pub mod verlet;
-pub mod voronoi;
-pub mod vv_euler;
 
-pub use barostat::{Couple, Nph, NphState};
-pub use classic::{ClassicDpd, DpdCoeff, DpdEnergyCoeff, DpdExt, DpdExtCoeff, Integration, MdpdCoeff, PairForce, ShardlowCoeff, ShardlowDpd};
-pub use edpd::{Edpd, EdpdCoeff, HeatSource, SourceShape};
 pub use error::StepError;
-pub use heat::HeatModel;
-pub use noise::NoiseForm;
-pub use physics::{GenDpde, Physics, SetupError};
-pub use sdpd::{Sdpd, SdpdParams};
-pub use sdpd_taitwater::SdpdTaitwater;
-pub use isentropic::FixedEntropy;
+pub use models::classic::{ClassicDpd, DpdCoeff, DpdEnergyCoeff, DpdExt, DpdExtCoeff, Integration, MdpdCoeff, PairForce, ShardlowCoeff, ShardlowDpd};
+pub use models::edpd::{Edpd, EdpdCoeff, HeatSource, SourceShape};
+pub use models::gendpde::GenDpde;
+pub use models::sdpd::generic::{Sdpd, SdpdParams};
+pub use models::sdpd::taitwater::SdpdTaitwater;
+pub use passes::barostat::{Couple, Nph, NphState};
+pub use passes::heat::HeatModel;
+pub use passes::isentropic::FixedEntropy;
+pub use passes::noise::NoiseForm;
+pub use passes::pair_tables::PairTables;
+pub use passes::species::Species;
+pub use physics::{Physics, SetupError};
 pub use settings::{Dissipation, Motion, RebuildPolicy, Reservoir, Settings, Work};
-pub use species::Species;
 pub use system::{Snapshot, System};
 pub use type_table::TypeTable;
-pub use tables::PairTables;

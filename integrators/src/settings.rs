@@ -1,7 +1,7 @@
 //! What a scene switches on: the fixes and their parameters, as the step reads them.
 
-use crate::heat::HeatModel;
-use crate::noise::NoiseForm;
+use crate::passes::heat::HeatModel;
+use crate::passes::noise::NoiseForm;
 
 /// Friction, momentum noise and pair heat flow (eqs 65-81), applied by `fix shardlow`'s
 /// sweep or by `fix vv/euler`'s pair forces.

@@ -3,7 +3,7 @@
 
 use crate::styles::fix::{Fix, FixStyle};
 use crate::styles::pair::voronoi::{CellRelation, PairVoronoi};
-use gendpde_integrators::voronoi::{Dissipation, FiniteVolume, Transport, VoronoiFv};
+use gendpde_integrators::models::voronoi::{CellDissipation, FiniteVolume, CellTransport, VoronoiFv};
 use gendpde_integrators::{Motion, Physics, RebuildPolicy, Settings};
 use gendpde_io::{Command, ScriptError};
 use gendpde_potentials::{IdealCell, VdwCell};
@@ -21,10 +21,10 @@ pub fn build_voronoi(cmd: &Command, pair: &PairVoronoi, fixes: &[Fix], dt: f64, 
         1 => {}
         _ => return Err(err("more than one fix nve/voronoi is defined")),
     }
-    let transport = Transport { eta, zeta, kappa, kb: pair.kb.unwrap_or(kb) };
+    let transport = CellTransport { eta, zeta, kappa, kb: pair.kb.unwrap_or(kb) };
     let settings = Settings { dt, skin, rebuild, motion: Motion::Fixed, dissipation: None, reservoirs: Vec::new() };
     let seed = pair.seed;
-    let dissipation = if pair.dpd { Dissipation::Dpd { gamma: eta } } else { Dissipation::Hydrodynamic };
+    let dissipation = if pair.dpd { CellDissipation::Dpd { gamma: eta } } else { CellDissipation::Hydrodynamic };
     Ok(match relation {
         CellRelation::Vdw { c } => Box::new(VoronoiFv::new(FiniteVolume { energy: VdwCell { c }, transport, dissipation, seed }, settings)),
         CellRelation::Ideal { c } => Box::new(VoronoiFv::new(FiniteVolume { energy: IdealCell { c }, transport, dissipation, seed }, settings)),

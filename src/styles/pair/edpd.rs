@@ -1,6 +1,6 @@
 //! `pair_style edpd CUTOFF SEED` and `pair_coeff I J A0 GAMMA POWER CUTOFF KAPPA POWER_T
 //! CUTOFF_T [power c1 c2 c3 c4] [kappa c1 c2 c3 c4]` (LAMMPS DPD-MESO's eDPD; the force
-//! law is in `gendpde_integrators::edpd`). Coefficients are kept per type pair.
+//! law is in `gendpde_integrators::models::edpd`). Coefficients are kept per type pair.
 
 use crate::base::args::Args;
 use gendpde_integrators::EdpdCoeff;

@@ -2,7 +2,7 @@
 //! `pair_coeff I J FILE KEYWORD [CUTOFF]` (src/DPD-REACT/pair_multi_lucy.cpp): the
 //! many-body force of a tabulated pressure-density relation. The pair_coeff lines read
 //! their sections as `pair_style table` does ([`super::table::parse_coeff`]), the density
-//! column indexed in rho^2; the force law is in `gendpde_integrators::classic`.
+//! column indexed in rho^2; the force law is in `gendpde_integrators::models::classic`.
 
 use super::table::Tabulated;
 use crate::base::args::Args;

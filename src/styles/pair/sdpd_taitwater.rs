@@ -1,5 +1,5 @@
 //! `pair_style sdpd/taitwater/isothermal T MU [SEED]` with `pair_coeff I J RHO0 C0 H`
-//! (LAMMPS DPD-SMOOTH; the force law is in `gendpde_integrators::sdpd_taitwater`).
+//! (LAMMPS DPD-SMOOTH; the force law is in `gendpde_integrators::models::sdpd::taitwater`).
 
 use crate::base::args::Args;
 use gendpde_io::{Command, ScriptError};

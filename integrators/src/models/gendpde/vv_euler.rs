@@ -30,14 +30,14 @@
 //! (see [`gendpde_engine::NeighborList`]); ghosts hold forwarded momenta, theta and 1/tau.
 
 use crate::error::StepError;
-use crate::heat::HeatFlow;
-use crate::many_body::{kick, velocity};
-use crate::noise::Arithmetic;
+use crate::passes::heat::HeatFlow;
+use crate::passes::many_body::{kick, velocity};
+use crate::passes::noise::Arithmetic;
 use crate::rng::{stream, Normals};
 use crate::settings::Dissipation;
-use crate::sweep::temps;
+use crate::passes::sweep::temps;
 use crate::system::System;
-use crate::verlet;
+use crate::passes::verlet;
 use gendpde_engine::{dot, sub, Particles, Vec3};
 
 /// Pair (i, j) of the list in the orientation of increasing tag, with r_ij and v_ij.

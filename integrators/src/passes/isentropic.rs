@@ -11,8 +11,8 @@
 #![allow(clippy::approx_constant)] // 1.4142 is the vdW b of the 2019 paper, not sqrt 2
 
 use crate::error::{lowest, StepError};
-use crate::many_body::density_of;
-use crate::species::Species;
+use crate::passes::many_body::density_of;
+use crate::passes::species::Species;
 use crate::system::System;
 use gendpde_potentials::eos::Lth;
 use gendpde_potentials::{Eos, EosError, LennardJones, LinearTheta, Tabulated, ISOLATED_DENSITY};

@@ -4,8 +4,8 @@
 //! split equally into u_i and u_j, plus the pair heat flow and its noise.
 //! Conserves total momentum and K + u exactly up to round-off.
 
-use crate::heat::{HeatFlow, Temps};
-use crate::noise::Noise;
+use crate::passes::heat::{HeatFlow, Temps};
+use crate::passes::noise::Noise;
 use gendpde_engine::{dot, Vec3};
 
 /// The pair's mechanical state, updated in place.
@@ -93,8 +93,8 @@ fn kick(qi: &mut Vec3, qj: &mut Vec3, e: Vec3, a: f64) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::heat::{Fourier, Original};
-    use crate::noise::{Arithmetic, Harmonic};
+    use crate::passes::heat::{Fourier, Original};
+    use crate::passes::noise::{Arithmetic, Harmonic};
 
     struct Lcg(u64);
     impl Lcg {

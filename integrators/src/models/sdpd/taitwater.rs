@@ -151,7 +151,7 @@ impl Physics for SdpdTaitwater {
                 s.r[i][c] += dt * s.vest[i][c] / s.mass[i];
             }
         }
-        self.relist(sys, crate::verlet::finite_positions(sys))?;
+        self.relist(sys, crate::passes::verlet::finite_positions(sys))?;
         sys.comm.forward(&mut sys.store, Fields::MOMENTUM | Fields::RHO);
         self.forces(sys, sys.step + 1);
         let s = &mut sys.store;

@@ -1,5 +1,5 @@
 //! The state of a `fix nph` barostat (what LAMMPS's FixNH keeps between steps and
-//! writes to restart files) and its restart record; the dynamics is [`crate::barostat`].
+//! writes to restart files) and its restart record; the dynamics is [`crate::passes::barostat`].
 
 /// The state of a barostat: what LAMMPS writes to its restart files (omega, omega_dot, the
 /// chain, V0, T0, h0^-1), the fixed point, and what the step derives from them.

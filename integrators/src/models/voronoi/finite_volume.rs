@@ -49,10 +49,10 @@ pub fn same_bits(a: &[f64], b: &[f64]) -> bool {
     a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())
 }
 
-/// Transport coefficients (eq 78) and the noise scale k_B (0: the deterministic
+/// CellTransport coefficients (eq 78) and the noise scale k_B (0: the deterministic
 /// finite-volume scheme of eqs 61-63; 1: thermal noise in the reduced units).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Transport {
+pub struct CellTransport {
     pub eta: f64,
     pub zeta: f64,
     pub kappa: f64,
@@ -60,10 +60,10 @@ pub struct Transport {
 }
 
 /// The irreversible part: the finite-volume hydrodynamics of eqs 76-84 (eta, zeta, kappa
-/// of `Transport`) or the Voronoi DPD of eqs 85-90 (one friction gamma, kappa; eta and zeta
+/// of `CellTransport`) or the Voronoi DPD of eqs 85-90 (one friction gamma, kappa; eta and zeta
 /// unused).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Dissipation {
+pub enum CellDissipation {
     Hydrodynamic,
     Dpd { gamma: f64 },
 }
@@ -223,7 +223,7 @@ impl Frame {
 
     /// The deterministic irreversible rates, eq 82 with eqs 60, 83, 84 (dP and dS; the
     /// k_B terms are the Ito drift of the noise of eqs 76-80).
-    pub fn irreversible(&self, cells: &Cells, tr: &Transport) -> Rates {
+    pub fn irreversible(&self, cells: &Cells, tr: &CellTransport) -> Rates {
         let n = cells.len();
         let mut out = Rates::zeroed(n);
         let l = self.velocity_gradients();
@@ -287,7 +287,7 @@ impl Frame {
 
     /// The noise increments over `dt` (eqs 76-80): dP~ and dS~ of every cell, keyed by
     /// (seed, step, tag) so that neither the order nor the rank of a cell changes them.
-    pub fn noise(&self, cells: &Cells, tr: &Transport, seed: u64, step: u64, dt: f64) -> (Vec<V3>, Vec<f64>) {
+    pub fn noise(&self, cells: &Cells, tr: &CellTransport, seed: u64, step: u64, dt: f64) -> (Vec<V3>, Vec<f64>) {
         let n = cells.len();
         let l = self.velocity_gradients();
         let mut dsig = vec![[[0.0; 3]; 3]; n];
@@ -336,8 +336,8 @@ impl Frame {
 #[derive(Clone, Debug)]
 pub struct FiniteVolume<E> {
     pub energy: E,
-    pub transport: Transport,
-    pub dissipation: Dissipation,
+    pub transport: CellTransport,
+    pub dissipation: CellDissipation,
     pub seed: u64,
 }
 
@@ -361,8 +361,8 @@ impl<E: CellEnergy> FiniteVolume<E> {
         let mut r = frame.reversible(cells);
         let tr = &self.transport;
         let irr = match self.dissipation {
-            Dissipation::Hydrodynamic => frame.irreversible(cells, tr),
-            Dissipation::Dpd { gamma } => frame.irreversible_dpd(cells, gamma, tr.kappa, tr.kb),
+            CellDissipation::Hydrodynamic => frame.irreversible(cells, tr),
+            CellDissipation::Dpd { gamma } => frame.irreversible_dpd(cells, gamma, tr.kappa, tr.kb),
         };
         for k in 0..cells.len() {
             add_to(&mut r.p[k], irr.p[k]);
@@ -380,8 +380,8 @@ impl<E: CellEnergy> FiniteVolume<E> {
         let k0 = self.rates(cells, f0);
         let tr = &self.transport;
         let noise = (tr.kb != 0.0).then(|| match self.dissipation {
-            Dissipation::Hydrodynamic => f0.noise(cells, tr, self.seed, step, dt),
-            Dissipation::Dpd { gamma } => f0.noise_dpd(cells, gamma, tr.kappa, tr.kb, self.seed, step, dt),
+            CellDissipation::Hydrodynamic => f0.noise(cells, tr, self.seed, step, dt),
+            CellDissipation::Dpd { gamma } => f0.noise_dpd(cells, gamma, tr.kappa, tr.kb, self.seed, step, dt),
         });
         let mut pred = cells.clone();
         advance(&mut pred, &k0, dt, 1.0);

@@ -224,7 +224,7 @@ impl Physics for Edpd {
             s.vest_temp[i] = s.edpd_temp[i] + dt_t * s.edpd_flux[i];
             s.edpd_temp[i] += 2.0 * lambda * dt_t * s.edpd_flux[i];
         }
-        self.relist(sys, crate::verlet::finite_positions(sys))?;
+        self.relist(sys, crate::passes::verlet::finite_positions(sys))?;
         sys.comm.forward(&mut sys.store, Fields::MOMENTUM | Fields::EDPD);
         self.forces(sys, sys.step + 1);
         self.add_sources(sys);

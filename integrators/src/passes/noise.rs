@@ -8,7 +8,7 @@
 //! law of the pair update for any EOS (docs/DESIGN.md, "Choices where the papers are
 //! silent or wrong").
 
-use crate::heat::Temps;
+use crate::passes::heat::Temps;
 
 /// A friction/noise law of one pair.
 pub trait Noise: Copy + Send + Sync {

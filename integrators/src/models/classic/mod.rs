@@ -35,20 +35,20 @@
 
 mod sums;
 
-use crate::barostat::{Nph, NphState};
+use crate::passes::barostat::{Nph, NphState};
 use crate::error::{lowest, StepError};
-use crate::heat::{Original, Temps};
-use crate::noise::Harmonic;
-use crate::pair_update::{pair_update, PairDrive, PairState};
+use crate::passes::heat::{Original, Temps};
+use crate::passes::noise::Harmonic;
+use crate::passes::pair_update::{pair_update, PairDrive, PairState};
 use crate::physics::{Physics, SetupError};
 use crate::rng::{stream, Normals, LANES};
 use crate::settings::Settings;
 use crate::simd::avx2_fn;
-use crate::sweep::SWEPT;
+use crate::passes::sweep::SWEPT;
 use crate::system::System;
 use crate::type_table::TypeTable;
-use crate::tables::PairTables;
-use crate::verlet;
+use crate::passes::pair_tables::PairTables;
+use crate::passes::verlet;
 use sums::{density, tally, velocity, within, Terms};
 use gendpde_engine::{dot, sub, Fields, Particles, Vec3};
 use gendpde_potentials::pair_table::Outside;

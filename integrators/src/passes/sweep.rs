@@ -15,15 +15,15 @@
 //! biases the dynamics at the rare states it touches).
 
 use crate::error::{lowest, StepError};
-use crate::heat::{HeatFlow, Temps};
-use crate::noise::Noise;
-use crate::pair_update::{pair_update, PairDrive, PairState};
+use crate::passes::heat::{HeatFlow, Temps};
+use crate::passes::noise::Noise;
+use crate::passes::pair_update::{pair_update, PairDrive, PairState};
 use crate::rng::{normal_pair, stream, Normals, LANES};
 use crate::settings::{Dissipation, Reservoir};
-use crate::species::Species;
+use crate::passes::species::Species;
 use crate::simd::avx2_fn;
 use crate::system::System;
-use crate::many_body::density_of;
+use crate::passes::many_body::density_of;
 use gendpde_engine::{exact_sums, Fields, Particles, Vec3};
 use gendpde_potentials::{AtDensity, Before, Eos, EosError, FixedDensity, ISOLATED_DENSITY};
 

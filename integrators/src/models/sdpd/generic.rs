@@ -23,12 +23,13 @@
 //! entropy conserves energy to O(dt^2).
 
 use crate::error::{lowest, StepError};
-use crate::many_body::{self, velocity};
+use crate::passes::many_body::{self, velocity};
 use crate::rng::Normals;
 use crate::settings::Settings;
-use crate::species::Species;
+use crate::passes::species::Species;
 use crate::system::System;
-use crate::{isentropic, verlet, FixedEntropy, Physics, SetupError};
+use crate::passes::{isentropic, verlet};
+use crate::{FixedEntropy, Physics, SetupError};
 use gendpde_engine::{exact_sums, sub, Fields, Vec3};
 use gendpde_potentials::{Eos, Weight};
 use std::cell::RefCell;

@@ -13,7 +13,7 @@
 
 use crate::error::{lowest, StepError};
 use crate::simd::avx2_fn;
-use crate::species::Species;
+use crate::passes::species::Species;
 use crate::system::System;
 use gendpde_engine::{dot, sub, Particles, Vec3};
 use gendpde_potentials::volume::PartitionVolume;

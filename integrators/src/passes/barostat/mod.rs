@@ -22,7 +22,9 @@
 //! Pressures are kept in the units' pressure (bar in metal), as LAMMPS does, and converted
 //! by nktv2p where they meet energies.
 
-pub use crate::barostat_state::NphState;
+pub mod state;
+
+pub use self::state::NphState;
 use crate::error::StepError;
 use crate::system::System;
 use gendpde_engine::exact_sums;
@@ -322,9 +324,9 @@ impl Nph {
         self.press_target(sys.step + 1, sys.domain.len(), st);
         self.omega_dot(sys, st, dt);
         self.scale_momenta(sys, st, dt);
-        crate::verlet::kick(sys, 0.5 * dt);
+        crate::passes::verlet::kick(sys, 0.5 * dt);
         self.remap(sys, st, dt);
-        let drifted = crate::verlet::drift(sys, dt);
+        let drifted = crate::passes::verlet::drift(sys, dt);
         self.remap(sys, st, dt);
         drifted
     }
@@ -332,7 +334,7 @@ impl Nph {
     /// `FixNH::final_integrate` (after the forces): the half kick, the momentum scaling,
     /// T and P at the new state, omega_dot, the chain.
     pub fn last(&self, sys: &mut System, st: &mut NphState, dt: f64) -> Result<(), StepError> {
-        crate::verlet::kick(sys, 0.5 * dt);
+        crate::passes::verlet::kick(sys, 0.5 * dt);
         self.scale_momenta(sys, st, dt);
         self.measure(sys, st, true);
         check_pressure(sys, st)?;

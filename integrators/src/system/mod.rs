@@ -1,6 +1,6 @@
 //! The simulated system: box, particles, communication and the lists built on them.
 
-use crate::barostat_state::NphState;
+use crate::passes::barostat::state::NphState;
 use crate::error::StepError;
 use std::cell::Cell;
 use std::sync::atomic::{AtomicUsize, Ordering};

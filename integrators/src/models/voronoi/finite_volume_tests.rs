@@ -39,7 +39,7 @@ fn scale1(v: &[f64]) -> f64 {
     v.iter().fold(0.0f64, |a, x| a.max(x.abs()))
 }
 
-const TR: Transport = Transport { eta: 0.7, zeta: 0.4, kappa: 1.3, kb: 0.0 };
+const TR: CellTransport = CellTransport { eta: 0.7, zeta: 0.4, kappa: 1.3, kb: 0.0 };
 
 #[test]
 fn reversible_rates_conserve_mass_momentum_energy_and_entropy_eq_75() {
@@ -70,7 +70,7 @@ fn irreversible_rates_conserve_energy_and_produce_entropy_at_kb_zero() {
     let ds: f64 = r.s.iter().sum();
     assert!(ds > 1e-3 * heat, "dS/dt = {ds} must be positive");
     // Each mechanism alone produces entropy: viscosity alone, conduction alone.
-    for tr in [Transport { kappa: 0.0, ..TR }, Transport { eta: 0.0, zeta: 0.0, ..TR }] {
+    for tr in [CellTransport { kappa: 0.0, ..TR }, CellTransport { eta: 0.0, zeta: 0.0, ..TR }] {
         let ds: f64 = f.irreversible(&c, &tr).s.iter().sum();
         assert!(ds > 0.0, "{tr:?}: dS/dt = {ds}");
     }
@@ -81,7 +81,7 @@ fn irreversible_rates_conserve_energy_and_produce_entropy_at_kb_zero() {
 fn noise_conserves_momentum_and_energy_eq_81() {
     let (c, _) = disordered(60, 13);
     let f = Frame::new(&c, &VDW, LO, LEN).unwrap();
-    let tr = Transport { kb: 1.0, ..TR };
+    let tr = CellTransport { kb: 1.0, ..TR };
     for step in 0..5 {
         let (dp, ds) = f.noise(&c, &tr, 77, step, 0.01);
         let p = sum3(&dp);
@@ -124,7 +124,7 @@ fn a_uniform_state_on_a_disordered_configuration_feels_no_force() {
     }
     let f = Frame::new(&c, &VDW, LO, LEN).unwrap();
     let p0 = f.thermo[0].pressure;
-    let tr = Transport { kb: 1.0, ..TR };
+    let tr = CellTransport { kb: 1.0, ..TR };
     let rev = f.reversible(&c);
     let irr = f.irreversible(&c, &tr);
     let amax = f.tess.faces.iter().fold(0.0f64, |a, x| a.max(x.area));
@@ -146,7 +146,7 @@ fn a_uniform_state_on_a_disordered_configuration_feels_no_force() {
 fn steps_conserve_mass_and_momentum_and_energy_to_second_order() {
     let (c0, _) = disordered(64, 15);
     let drift = |dt: f64, steps: u64, kb: f64| {
-        let model = FiniteVolume { energy: VDW, transport: Transport { kb, ..TR }, dissipation: Dissipation::Hydrodynamic, seed: 9 };
+        let model = FiniteVolume { energy: VDW, transport: CellTransport { kb, ..TR }, dissipation: CellDissipation::Hydrodynamic, seed: 9 };
         let mut c = c0.clone();
         let e0 = Frame::new(&c, &VDW, LO, LEN).unwrap().energy(&c);
         let (m0, p0): (f64, [f64; 3]) = (c.m.iter().sum(), sum3(&c.p));
@@ -221,7 +221,7 @@ fn a_cell_below_the_noise_models_heat_capacity_stops_the_step() {
     c.m[6] = 0.6;
     c.s[6] = vdw_entropy(WATER_C, 0.6, Frame::new(&c, &VDW, LO, LEN).unwrap().tess.volumes[6], 1.2);
     for (kb, fails) in [(1.0, true), (0.0, false)] {
-        let model = FiniteVolume { energy: VDW, transport: Transport { kb, ..TR }, dissipation: Dissipation::Hydrodynamic, seed: 3 };
+        let model = FiniteVolume { energy: VDW, transport: CellTransport { kb, ..TR }, dissipation: CellDissipation::Hydrodynamic, seed: 3 };
         let f0 = Frame::new(&c, &VDW, LO, LEN).unwrap();
         match model.step(&mut c.clone(), &f0, LO, LEN, 1e-3, 0) {
             Err(ModelError::State { tag, err }) if fails => assert!(tag == 7 && err.what.contains("C <= k_B"), "{tag}: {err}"),
@@ -240,7 +240,7 @@ fn noise_covariance_gives_the_irreversible_drift_eq_10() {
     let (c, _) = disordered(16, 17);
     let f = Frame::new(&c, &VDW, LO, LEN).unwrap();
     let drift = f.irreversible(&c, &TR);
-    let (worst, samples) = eq_10_deviation(&f, &drift, |step| f.noise(&c, &Transport { kb: 0.5, ..TR }, 3, step, 0.01), 0.5, 0.01);
+    let (worst, samples) = eq_10_deviation(&f, &drift, |step| f.noise(&c, &CellTransport { kb: 0.5, ..TR }, 3, step, 0.01), 0.5, 0.01);
     eprintln!("eq 10 over {samples} realisations: largest deviation {worst:.2} standard errors ({} components)", 4 * c.len());
     // eq_10_deviation asserts each component; the whole set within 5 standard errors too
     assert!(samples > 0 && worst < 5.0, "eq 10: largest deviation {worst:.2} standard errors over {samples} realisations");
@@ -272,7 +272,7 @@ fn voronoi_dpd_conserves_and_its_noise_covariance_gives_eq_89() {
     eprintln!("Voronoi DPD, eq 10 over {samples} realisations: largest deviation {worst:.2} standard errors");
 
     // Stepped with noise: mass and momentum exact.
-    let model = FiniteVolume { energy: VDW, transport: Transport { kb: 1e-3, kappa, ..TR }, dissipation: Dissipation::Dpd { gamma }, seed: 4 };
+    let model = FiniteVolume { energy: VDW, transport: CellTransport { kb: 1e-3, kappa, ..TR }, dissipation: CellDissipation::Dpd { gamma }, seed: 4 };
     let mut s = c.clone();
     let (m0, p0) = (c.m.iter().sum::<f64>(), sum3(&c.p));
     for step in 0..10 {
