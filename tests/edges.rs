@@ -35,7 +35,7 @@ fn isolated_particles_feel_no_force_and_keep_finite_states() {
     let sys = it.system().unwrap();
     let e0 = Observables::measure(sys).energy();
     for _ in 0..50 {
-        physics.step(sys).unwrap();
+        physics.advance(sys).unwrap();
     }
     let s = &sys.store;
     for i in 0..s.nlocal {
@@ -57,7 +57,7 @@ fn densities_beyond_the_vdw_cap_stay_finite_and_repulsive() {
     let ns = 0.95 / 1.4142;
     let mut max_n: f64 = 0.0;
     for _ in 0..300 {
-        physics.step(sys).unwrap();
+        physics.advance(sys).unwrap();
         let s = &sys.store;
         max_n = max_n.max(s.n[..s.nlocal].iter().cloned().fold(0.0, f64::max));
         assert!(s.pn2[..s.nlocal].iter().all(|p| p.is_finite()));
@@ -98,19 +98,19 @@ fn theta_near_zero_is_split_or_rejected_or_stops_cleanly() {
     let sys = it.system().unwrap();
     let u0: f64 = sys.store.u[..sys.store.nlocal].iter().sum();
     for _ in 0..1000 {
-        physics.step(sys).unwrap();
+        physics.advance(sys).unwrap();
     }
     let s = &sys.store;
     let u1: f64 = s.u[..s.nlocal].iter().sum();
-    eprintln!("theta -> 0: {} split pair updates, {} left out, sum u change {:.1e}", sys.substeps, sys.rejected, (u1 - u0) / u0);
-    assert!(sys.substeps > 0, "the scene must exercise the splits");
+    eprintln!("theta -> 0: {} split pair updates, {} left out, sum u change {:.1e}", sys.control.substeps, sys.control.rejected, (u1 - u0) / u0);
+    assert!(sys.control.substeps > 0, "the scene must exercise the splits");
     assert!(s.theta[..s.nlocal].iter().all(|t| *t > 0.0));
     assert!(((u1 - u0) / u0).abs() < 1e-12);
     // without splits the first failing pair stops the run with a clear error
     let mut it = common::run_script(&near_zero("substeps 0"));
     let physics = it.dynamics().unwrap();
     let sys = it.system().unwrap();
-    let err = (0..1000).find_map(|_| physics.step(sys).err()).expect("a pair update must fail without splits");
+    let err = (0..1000).find_map(|_| physics.advance(sys).err()).expect("a pair update must fail without splits");
     assert!(err.to_string().contains("particle temperature is not positive"), "{err}");
 }
 
@@ -127,7 +127,7 @@ fn heat_capacity_at_k_b_is_refused_and_just_above_runs() {
     let physics = it.dynamics().unwrap();
     let sys = it.system().unwrap();
     for _ in 0..200 {
-        physics.step(sys).unwrap();
+        physics.advance(sys).unwrap();
     }
     // shape C_V/k_B ~ 1: exponential-like theta, still positive, mean 1.5
     let s = &sys.store;

@@ -37,7 +37,7 @@ fn colour_sweep_through_ghosts_conserves_momentum_and_energy() {
     let p_scale: f64 = sys.store.p[..sys.store.nlocal].iter().map(|p| p[0].abs()).sum();
     let (mut worst_e, mut worst_p): (f64, f64) = (0.0, 0.0);
     for _ in 0..100 {
-        physics.step(sys).unwrap();
+        physics.advance(sys).unwrap();
         worst_e = worst_e.max(((Observables::measure(sys).energy() - e0) / e0).abs());
         let p = total_p(sys);
         worst_p = worst_p.max((0..3).map(|k| (p[k] - p0[k]).abs()).fold(0.0, f64::max) / p_scale);

@@ -18,7 +18,7 @@ fn sample(heat: &str) -> (Vec<f64>, Vec<f64>, f64) {
     let (mut u, mut inv_tau) = (Vec::new(), Vec::new());
     let mut worst: f64 = 0.0;
     for step in 1..=3500 {
-        physics.step(sys).unwrap();
+        physics.advance(sys).unwrap();
         let s = &sys.store;
         let total: f64 = s.u[..s.nlocal].iter().sum();
         worst = worst.max(((total - u0) / u0).abs());

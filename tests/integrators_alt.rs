@@ -28,7 +28,7 @@ fn energy_series(switch: &str, dt: f64, duration: f64) -> Vec<(f64, f64)> {
     let steps = (duration / dt).round() as u64;
     (1..=steps)
         .map(|k| {
-            physics.step(sys).unwrap();
+            physics.advance(sys).unwrap();
             (k as f64 * dt, (Observables::measure(sys).energy() - e0) / e0)
         })
         .collect()
@@ -57,7 +57,7 @@ fn vv_euler_conserves_momentum_to_round_off() {
         let scale: f64 = sys.store.p[..sys.store.nlocal].iter().map(|p| p.iter().map(|x| x.abs()).sum::<f64>()).sum();
         let mut worst: f64 = 0.0;
         for _ in 0..200 {
-            physics.step(sys).unwrap();
+            physics.advance(sys).unwrap();
             let p = Observables::measure(sys).momentum;
             worst = worst.max((0..3).map(|c| (p[c] - p0[c]).abs()).fold(0.0, f64::max) / scale);
         }
@@ -108,7 +108,7 @@ fn vv_euler_equilibrium_temperatures() {
     let sys = it.system().unwrap();
     let (mut tk, mut ti) = (vec![], vec![]);
     for k in 1..=4000 {
-        physics.step(sys).unwrap();
+        physics.advance(sys).unwrap();
         if k > 1000 && k % 10 == 0 {
             let o = Observables::measure(sys);
             tk.push(o.temperature(1.0));
@@ -156,7 +156,7 @@ fn isentropic_step_keeps_every_entropy() {
         let sys = it.system().unwrap();
         let before = entropies(sys);
         for _ in 0..200 {
-            physics.step(sys).unwrap();
+            physics.advance(sys).unwrap();
         }
         let after = entropies(sys);
         let worst = before.iter().zip(&after).map(|(a, b)| (a.1 - b.1).abs()).fold(0.0, f64::max);
@@ -193,7 +193,7 @@ fn rms_energy_error(it: &mut gendpde::Interpreter, state: &gendpde_integrators::
     let steps = (duration / dt).round() as u64;
     let sum2: f64 = (0..steps)
         .map(|_| {
-            physics.step(sys).unwrap();
+            physics.advance(sys).unwrap();
             ((Observables::measure(sys).energy() - e0) / e0).powi(2)
         })
         .sum();

@@ -54,7 +54,7 @@ fn measure(noise: &str) -> Moments {
     let (equil, frames, every) = (500, 400, 25);
     let (mut theta, mut t_kin) = (Vec::new(), Vec::new());
     for k in 1..=equil + frames * every {
-        physics.step(sys).unwrap();
+        physics.advance(sys).unwrap();
         if k > equil && k % every == 0 {
             theta.push(sys.store.theta[..sys.store.nlocal].to_vec());
             t_kin.push(Observables::measure(sys).temperature(1.0));

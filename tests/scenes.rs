@@ -34,7 +34,7 @@ fn sample(it: &mut gendpde::Interpreter, steps: u64, every: u64) -> [Vec<f64>; 5
     let sys = it.system().unwrap();
     let mut out: [Vec<f64>; 5] = Default::default();
     for k in 1..=steps {
-        physics.step(sys).unwrap();
+        physics.advance(sys).unwrap();
         if k % every == 0 {
             let o = Observables::measure(sys);
             let rho = o.atoms / o.volume;

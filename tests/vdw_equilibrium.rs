@@ -33,7 +33,7 @@ fn sample(it: &mut gendpde::Interpreter, equilibrate: u64, steps: u64, every: u6
     let sys = it.system().unwrap();
     let mut a = Averages { t_kin: vec![], t_int: vec![], last_u: vec![], u: vec![] };
     for k in 1..=equilibrate + steps {
-        physics.step(sys).unwrap();
+        physics.advance(sys).unwrap();
         if k > equilibrate && k % every == 0 {
             let o = Observables::measure(sys);
             a.t_kin.push(o.temperature(1.0));

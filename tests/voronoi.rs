@@ -30,7 +30,7 @@ fn mass_and_momentum_are_exact_and_the_energy_error_is_second_order() {
         let scale: f64 = sys.store.p[..n].iter().map(|p| p[0].abs()).sum();
         let e0 = Observables::measure(sys).energy();
         for _ in 0..20 {
-            physics.step(sys).unwrap();
+            physics.advance(sys).unwrap();
         }
         let s = &sys.store;
         let m: f64 = s.mass[..n].iter().sum();
@@ -54,13 +54,13 @@ fn a_cell_changed_between_steps_is_tessellated_afresh() {
         let mut it = scene("1", "0.05", "hydrodynamic");
         let physics = it.dynamics().unwrap();
         let sys = it.system().unwrap();
-        physics.step(sys).unwrap();
+        physics.advance(sys).unwrap();
         let i = (0..sys.store.nlocal).find(|&i| sys.store.tag[i] == 7).unwrap();
         sys.store.p[i][0] += 0.5;
         if setup_again {
             physics.setup(sys).unwrap();
         }
-        physics.step(sys).unwrap();
+        physics.advance(sys).unwrap();
         let s = &sys.store;
         let mut rows: Vec<(u64, [u64; 8])> = (0..s.nlocal)
             .map(|i| (s.tag[i], [s.r[i][0], s.r[i][1], s.r[i][2], s.p[i][0], s.p[i][1], s.p[i][2], s.mass[i], s.entropy[i]].map(f64::to_bits)))

@@ -28,5 +28,5 @@ pub use passes::pair_tables::PairTables;
 pub use passes::species::Species;
 pub use physics::{Physics, SetupError};
 pub use settings::{Dissipation, Motion, RebuildPolicy, Reservoir, Settings, Work};
-pub use system::{Snapshot, System};
+pub use system::{Clock, FixRecord, FixState, RunControl, Snapshot, System};
 pub use type_table::TypeTable;

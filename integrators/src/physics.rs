@@ -11,8 +11,15 @@ pub trait Physics {
     fn settings(&self) -> &Settings;
     /// Lays the grid, builds lists, derives u from given theta and computes the forces.
     fn setup(&self, sys: &mut System) -> Result<(), SetupError>;
-    /// Advances one time step. Every rank returns an error when any rank failed.
+    /// Advances the particles one time step, leaving the clock to [`Physics::advance`].
+    /// Every rank returns an error when any rank failed.
     fn step(&self, sys: &mut System) -> Result<(), StepError>;
+    /// One step, then the clock moved on by dt: what a run calls for every step.
+    fn advance(&self, sys: &mut System) -> Result<(), StepError> {
+        self.step(sys)?;
+        sys.clock.advance(self.settings().dt);
+        Ok(())
+    }
     /// Largest list radius (cutoff plus skin), for memory estimates.
     fn list_radius(&self) -> f64;
     /// Migrates particles and builds ghosts and lists for the positions of step `at_step`
@@ -27,9 +34,9 @@ pub trait Physics {
     /// moved more than skin/2, found in the same reduction; else the positions are
     /// forwarded.
     fn relist(&self, sys: &mut System, moved: Result<(), StepError>) -> Result<(), StepError> {
-        let (settings, next) = (self.settings(), sys.step + 1);
+        let (settings, next) = (self.settings(), sys.clock.step + 1);
         let p = &settings.rebuild;
-        let due = next - sys.last_build >= p.delay.max(1) && next % p.every.max(1) == 0;
+        let due = next - sys.lists.last >= p.delay.max(1) && next % p.every.max(1) == 0;
         let local = if due && p.check { 2.0 * sys.displacement_since_build() } else { 0.0 };
         let farthest = sys.settle_with(moved, local)?;
         if due && (!p.check || farthest > settings.skin) {

@@ -124,7 +124,7 @@ pub fn change_box(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
         }
     }
     // the cells of a restart no longer hold: the next run locates every particle afresh
-    sys.restored = false;
+    sys.control.restored = false;
     s.truncate_ghosts();
     for i in 0..s.nlocal {
         box_.wrap(&mut s.r[i], &mut s.image[i]);

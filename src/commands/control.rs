@@ -11,14 +11,14 @@ impl Interpreter {
     /// `run`: one run, or with `every M` runs of M steps each followed by the commands.
     pub(super) fn run(&mut self, a: &mut Args) -> Result<(), AppError> {
         let cmd = a.command();
-        let step = self.sim.system.as_ref().map_or(0, |s| s.step);
+        let step = self.sim.system.as_ref().map_or(0, |s| s.clock.step);
         let args = run::RunArgs::parse(a, step)?;
         let Some((every, commands)) = &args.every else {
             return run::run(&mut self.sim, &mut self.outputs, &mut self.out, &self.vars, self.mode, cmd, args.part(step, args.nsteps, true, true));
         };
         let mut left = args.nsteps;
         loop {
-            let step = self.sim.system.as_ref().map_or(0, |s| s.step);
+            let step = self.sim.system.as_ref().map_or(0, |s| s.clock.step);
             let n = left.min(*every);
             let part = args.part(step, n, left == args.nsteps, n == left);
             run::run(&mut self.sim, &mut self.outputs, &mut self.out, &self.vars, self.mode, cmd, part)?;

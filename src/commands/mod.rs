@@ -72,7 +72,7 @@ impl Interpreter {
     /// thermostat holds its TSTART).
     pub fn dynamics(&mut self) -> Result<Box<dyn Physics>, AppError> {
         let cmd = Command { name: "run".into(), args: vec![], loc: Location { file: "<api>".into(), line: 0 } };
-        let step = self.sim.system.as_ref().map_or(0, |s| s.step);
+        let step = self.sim.system.as_ref().map_or(0, |s| s.clock.step);
         run::prepare(&mut self.sim, &self.outputs.averages, &cmd, run::RunPart { nsteps: 0, ramp: [step, step], continues: false, summary: true })
     }
 

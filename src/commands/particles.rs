@@ -151,7 +151,7 @@ pub fn write_data(sim: &Sim, a: &mut Args) -> Result<(), ScriptError> {
     atoms.sort_unstable_by_key(|at| at.tag);
     velocities.sort_unstable_by_key(|v| v.0);
     let data = DataFile {
-        title: format!("gendpde data file, step {}", sys.step),
+        title: format!("gendpde data file, step {}", sys.clock.step),
         natoms: count as usize,
         ntypes: sim.ntypes,
         lo: sys.domain.lo,

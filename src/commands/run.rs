@@ -114,13 +114,13 @@ pub fn prepare(sim: &mut Sim, averages: &[AveTime], cmd: &Command, part: RunPart
     if sys.store.nlocal == 0 {
         return Err(err("the box holds no particles (create_atoms)".into()));
     }
-    sys.run = part.ramp;
+    sys.clock.run = part.ramp;
     // the cells must reach the pairs that the computes read by fix ave/time count
-    sys.min_cell = 0.0;
+    sys.lists.min_cell = 0.0;
     for rdf in sim.rdfs.iter().filter(|r| averages.iter().any(|f| f.computes().any(|c| c == r.id))) {
         let rc = rdf.cutoff_for(sim.pair.as_ref()).unwrap_or(0.0);
         rdf.check_reach(sys, rc + sim.skin).map_err(err)?;
-        sys.min_cell = sys.min_cell.max(rc + sim.skin);
+        sys.lists.min_cell = sys.lists.min_cell.max(rc + sim.skin);
     }
     if let Some(i) = (0..sys.store.nlocal).find(|&i| !sys.store.mass[i].is_finite()) {
         return Err(err(format!("the mass of type {} is not set", sys.store.kind[i])));
@@ -135,19 +135,19 @@ pub fn prepare(sim: &mut Sim, averages: &[AveTime], cmd: &Command, part: RunPart
     // while no particle has moved half the skin since the lists were built) keeps its
     // cells, lists and forces, as a restart's continuation does
     if part.continues && sim.energy0.is_some() && sys.grid.is_some() && sys.comm.max(sys.displacement_since_build()) <= 0.5 * sim.skin {
-        sys.restored = true;
-        sys.restored_grid = sys.grid.as_ref().map(|g| g.count);
+        sys.control.restored = true;
+        sys.control.restored_grid = sys.grid.as_ref().map(|g| g.count);
     }
     // a continuation keeps the forces of the step its restart was written at: they
     // depend on that step's velocities and noise, which the set-up cannot redo
-    let resume = sys.restored.then(|| sys.store.save_by_tag(gendpde_engine::stage::RESUME));
+    let resume = sys.control.restored.then(|| sys.store.save_by_tag(gendpde_engine::stage::RESUME));
     // energies and virials stored without having been computed at their step (a restart
     // written on a signal or a failure after a step without output) give way to the
     // set-up's
-    let stale = !sys.tallied;
-    sys.tally = true;
+    let stale = !sys.control.tallied;
+    sys.control.tally = true;
     physics.setup(sys).map_err(|e| err(e.to_string()))?;
-    if let Some(saved) = resume.filter(|_| sys.restored_grid == sys.grid.as_ref().map(|g| g.count)) {
+    if let Some(saved) = resume.filter(|_| sys.control.restored_grid == sys.grid.as_ref().map(|g| g.count)) {
         let fresh = stale.then(|| (sys.store.virial.clone(), sys.store.epair.clone()));
         let exchanged = sys.store.restore_by_tag(&saved);
         if let Some((virial, epair)) = fresh {
@@ -155,7 +155,7 @@ pub fn prepare(sim: &mut Sim, averages: &[AveTime], cmd: &Command, part: RunPart
         }
         sys.comm.forward(&mut sys.store, exchanged);
     }
-    sys.tallied = true;
+    sys.control.tallied = true;
     if let Some(grid) = &sys.grid {
         log::info!(
             "cell grid {:?} of side {:?}; {} ghosts; {} neighbour pairs; {} sweep pairs",
@@ -180,9 +180,9 @@ pub fn run(sim: &mut Sim, outputs: &mut Outputs, out: &mut Output, vars: &Variab
         return Ok(());
     }
     let sys = sim.system.as_mut().expect("prepared system");
-    sys.interrupt = signals::received();
+    sys.control.interrupt = signals::received();
     sim.energy0.get_or_insert_with(|| Observables::measure(sys).energy());
-    let run = Span { first: sys.step, last: sys.step + nsteps };
+    let run = Span { first: sys.clock.step, last: sys.clock.step + nsteps };
     let comm_before = sys.comm.time().as_secs_f64();
     let traffic_before = sys.comm.traffic();
     let clock = Instant::now();
@@ -202,12 +202,12 @@ pub fn run(sim: &mut Sim, outputs: &mut Outputs, out: &mut Output, vars: &Variab
         // energies and virials only for a step after which something is written, as
         // LAMMPS's eflag/vflag (the same on every rank: a restart written on a signal
         // after another step says its tallies are stale)
-        let next = sim.system.as_ref().map_or(0, |s| s.step + 1);
+        let next = sim.system.as_ref().map_or(0, |s| s.clock.step + 1);
         let wanted = next >= run.last || outputs.all().any(|o| o.next_step(next, run).is_some_and(|at| at <= next));
         let sys = sim.system.as_mut().expect("system exists during a run");
-        sys.tally = wanted;
+        sys.control.tally = wanted;
         sys.save(&mut last_good);
-        if let Err(mut e) = physics.step(sys) {
+        if let Err(mut e) = physics.advance(sys) {
             progress.finish_and_clear();
             sys.restore(&last_good);
             let file = state_file(outputs, e.step, "failed");
@@ -219,7 +219,7 @@ pub fn run(sim: &mut Sim, outputs: &mut Outputs, out: &mut Output, vars: &Variab
             return Err(AppError::Step { cmd: cmd.clone(), err: e });
         }
         write_due(sim, outputs, out, vars, run, clock, &progress).map_err(err)?;
-        let signal = sys_of(sim).interrupted.get();
+        let signal = sys_of(sim).control.interrupted.get();
         if signal != 0 {
             progress.finish_and_clear();
             return Err(interrupted(sim, outputs, signal, cmd));
@@ -252,11 +252,11 @@ pub fn run(sim: &mut Sim, outputs: &mut Outputs, out: &mut Output, vars: &Variab
             per_step(rounds, traffic_before.2)
         ));
     }
-    out.line(&format!("Neighbor list builds = {}", sys.builds));
-    if sys.substeps > 0 || sys.rejected > 0 {
+    out.line(&format!("Neighbor list builds = {}", sys.lists.count));
+    if sys.control.substeps > 0 || sys.control.rejected > 0 {
         out.line(&format!(
             "Shardlow pair updates split into half steps (theta -> 0 guard) = {}, left out = {}",
-            sys.substeps, sys.rejected
+            sys.control.substeps, sys.control.rejected
         ));
     }
     out.flush();
@@ -308,7 +308,7 @@ fn state_file(outputs: &Outputs, step: u64, why: &str) -> String {
 /// Stops a run at a signal all ranks agreed on, after a completed step: saves the state
 /// (as a failed step does) and closes every dump.
 fn interrupted(sim: &Sim, outputs: &mut Outputs, signal: usize, cmd: &Command) -> AppError {
-    let step = sys_of(sim).step;
+    let step = sys_of(sim).clock.step;
     let file = state_file(outputs, step, "interrupted");
     let mut what = match restart::write(sim, &file) {
         Ok(()) => format!("the state is in {file} (read_restart {file} to continue)"),
@@ -327,7 +327,7 @@ fn interrupted(sim: &Sim, outputs: &mut Outputs, signal: usize, cmd: &Command) -
 /// the progress bar hidden.
 fn write_due(sim: &Sim, outputs: &mut Outputs, out: &mut Output, vars: &Variables, run: Span, clock: Instant, progress: &ProgressBar) -> Result<(), String> {
     let sys = sys_of(sim);
-    let due = |o: &dyn RunOutput| o.next_step(sys.step, run).is_some_and(|next| next <= sys.step);
+    let due = |o: &dyn RunOutput| o.next_step(sys.clock.step, run).is_some_and(|next| next <= sys.clock.step);
     if !outputs.all().any(|o| due(o)) {
         return Ok(());
     }

@@ -382,9 +382,9 @@ pub fn reset_timestep(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     let n = a.u64("the new step number")?;
     a.done()?;
     let sys = sim.system.as_mut().ok_or_else(|| a.err("reset_timestep before create_box"))?;
-    sys.last_build = sys.last_build.saturating_sub(sys.step).saturating_add(n).min(n);
-    sys.noise_shift = sys.noise_shift.wrapping_add(sys.step.wrapping_sub(n));
-    sys.step = n;
+    sys.lists.last = sys.lists.last.saturating_sub(sys.clock.step).saturating_add(n).min(n);
+    sys.clock.noise_shift = sys.clock.noise_shift.wrapping_add(sys.clock.step.wrapping_sub(n));
+    sys.clock.step = n;
     Ok(())
 }
 

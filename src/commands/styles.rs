@@ -10,7 +10,7 @@ use crate::output::Outputs;
 use crate::styles::compute::{self, ComputeStyle, Definition};
 use crate::styles::fix::{parse_fix_in, FixStyle};
 use crate::styles::pair::{parse_pair_coeff, parse_pair_style};
-use gendpde_integrators::{Nph, NphState};
+use gendpde_integrators::{FixRecord, Nph, NphState};
 use gendpde_io::ScriptError;
 
 /// `pair_style STYLE args...` (before or after the box, as LAMMPS). The style in force
@@ -55,7 +55,7 @@ pub fn fix(sim: &mut Sim, outputs: &mut Outputs, a: &mut Args) -> Result<(), Scr
         if other_style || sim.fixes.iter().any(|f| f.id == id) {
             return Err(a.err(format!("fix ID '{id}' is in use by another style (unfix it first)")));
         }
-        let step = sim.system.as_ref().map_or(0, |s| s.step);
+        let step = sim.system.as_ref().map_or(0, |s| s.clock.step);
         if style == "ave/chunk" {
             let fix = AveChunk::parse(id, group, a, &sim.groups, &sim.chunks, &sim.computes, step)?;
             outputs.chunk_averages.retain(|f| f.id != fix.id);
@@ -94,7 +94,7 @@ fn define_barostat(sim: &mut Sim, nph: &mut Nph, fixedpoint: Option<[f64; 3]>) -
     let sys = sim.system.as_mut().ok_or("fix nph before the box exists (create_box, read_data or read_restart)")?;
     let d = &sys.domain;
     let centre = [0, 1, 2].map(|k| 0.5 * (d.lo[k] + d.hi[k]));
-    sys.barostat = Some(NphState::new(&nph.id, nph.pchain, fixedpoint.unwrap_or(centre)));
+    sys.fixes.set(&nph.id, FixRecord::Nph(Box::new(NphState::new(&nph.id, nph.pchain, fixedpoint.unwrap_or(centre)))));
     Ok(())
 }
 
@@ -144,9 +144,7 @@ pub fn unfix(sim: &mut Sim, outputs: &mut Outputs, a: &mut Args) -> Result<(), S
     }
     sim.fixes.retain(|f| f.id != id);
     if let Some(sys) = &mut sim.system {
-        if sys.barostat.as_ref().is_some_and(|b| b.id == id) {
-            sys.barostat = None;
-        }
+        sys.fixes.remove(id);
     }
     outputs.averages.retain(|f| f.id != id);
     outputs.chunk_averages.retain(|f| f.id != id);

@@ -12,7 +12,7 @@ use crate::styles::compute::Compute;
 use crate::styles::fix::{Fix, FixStyle};
 use crate::styles::pair::PairStyle;
 use gendpde_engine::{Fields, Transport};
-use gendpde_integrators::{NphState, RebuildPolicy, System};
+use gendpde_integrators::{FixRecord, NphState, RebuildPolicy, System};
 use gendpde_io::AtomStyle;
 use std::collections::HashMap;
 
@@ -127,11 +127,15 @@ impl Sim {
     /// as `nph/ID` ([`NphState::record`]).
     pub fn fix_state(&self) -> Vec<(String, Vec<f64>)> {
         let Some(sys) = &self.system else { return Vec::new() };
-        let mut state: Vec<_> = sys.reservoir_heat.iter().map(|(id, total)| (format!("{RESERVOIR_STATE}{id}"), vec![*total])).collect();
-        if let Some(b) = sys.barostat.as_ref().filter(|b| self.fixes.iter().any(|f| f.id == b.id)) {
-            state.push((format!("{NPH_STATE}{}", b.id), b.record()));
-        }
-        state
+        let reservoirs = sys.fixes.iter().filter_map(|(id, r)| match r {
+            FixRecord::Reservoir(total) => Some((format!("{RESERVOIR_STATE}{id}"), vec![*total])),
+            FixRecord::Nph(_) => None,
+        });
+        let barostats = sys.fixes.iter().filter_map(|(id, r)| match r {
+            FixRecord::Nph(b) if self.fixes.iter().any(|f| f.id == id) => Some((format!("{NPH_STATE}{id}"), b.record())),
+            _ => None,
+        });
+        reservoirs.chain(barostats).collect()
     }
 
     /// Puts the reservoir tallies and the barostat of a restart back (the replayed fix
@@ -140,11 +144,11 @@ impl Sim {
         let Some(sys) = &mut self.system else { return };
         for (name, v) in &self.restored_state {
             if let (Some(id), [total]) = (name.strip_prefix(RESERVOIR_STATE), v.as_slice()) {
-                *sys.reservoir_tally(id) = *total;
+                *sys.fixes.reservoir_tally(id) = *total;
             }
             if let Some(b) = name.strip_prefix(NPH_STATE).and_then(|id| NphState::from_record(id, v)) {
-                if sys.barostat.as_ref().is_some_and(|s| s.id == b.id && s.etap.len() == b.etap.len()) {
-                    sys.barostat = Some(b);
+                if sys.fixes.barostat(&b.id).is_some_and(|s| s.etap.len() == b.etap.len()) {
+                    sys.fixes.set(&b.id.clone(), FixRecord::Nph(Box::new(b)));
                 }
             }
         }

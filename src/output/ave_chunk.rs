@@ -355,12 +355,12 @@ impl RunOutput for AveChunk {
             .map_err(|e| format!("fix {} ave/chunk: v_: {e}", self.id))?;
         let one = self.sample(chunk, f.sim, sys, &variables)?;
         self.add(&one, units, bins.volume);
-        if !self.sampling.sample(sys.step, &format!("{} ave/chunk", self.id))? {
+        if !self.sampling.sample(sys.clock.step, &format!("{} ave/chunk", self.id))? {
             return Ok(());
         }
         let block = self.finish(units, bins.volume);
         let (total, norm) = self.combine(block);
         let what = format!("fix {} ave/chunk: writing {}", self.id, self.file.as_deref().unwrap_or(""));
-        write_on_rank0(sys, &what, || self.write_block(sys.step, &bins.coords, &total, norm))
+        write_on_rank0(sys, &what, || self.write_block(sys.clock.step, &bins.coords, &total, norm))
     }
 }

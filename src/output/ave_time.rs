@@ -135,10 +135,10 @@ impl RunOutput for AveTime {
                 self.sums[r * ncol + c] += row[*k];
             }
         }
-        if !self.sampling.sample(sys.step, &format!("{} ave/time", self.id))? {
+        if !self.sampling.sample(sys.clock.step, &format!("{} ave/time", self.id))? {
             return Ok(());
         }
         let what = format!("fix {} ave/time: writing {}", self.id, self.file);
-        write_on_rank0(sys, &what, || self.write_block(sys.step, nrow))
+        write_on_rank0(sys, &what, || self.write_block(sys.clock.step, nrow))
     }
 }

@@ -33,6 +33,6 @@ impl RunOutput for Checkpoint {
     }
 
     fn write(&mut self, f: &mut Frame) -> Result<(), String> {
-        restart::write(f.sim, &self.file_at(f.sys.step)).map_err(|e| format!("checkpoint: {e}"))
+        restart::write(f.sim, &self.file_at(f.sys.clock.step)).map_err(|e| format!("checkpoint: {e}"))
     }
 }

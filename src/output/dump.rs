@@ -322,9 +322,9 @@ impl TextFormat {
     /// The header of a frame (`units`: the first frame of a dump with `units yes`).
     fn header(&self, o: &mut impl Write, sim: &Sim, sys: &System, natoms: u64, units: bool) -> std::io::Result<()> {
         if self.style == Style::Xyz {
-            write!(o, "{natoms}\n Atoms. Timestep: {}", sys.step)?;
+            write!(o, "{natoms}\n Atoms. Timestep: {}", sys.clock.step)?;
             if self.time {
-                write!(o, " Time: {:.6}", sys.time)?;
+                write!(o, " Time: {:.6}", sys.clock.time)?;
             }
             return writeln!(o);
         }
@@ -332,9 +332,9 @@ impl TextFormat {
             write!(o, "ITEM: UNITS\n{}\n", sim.units.name)?;
         }
         if self.time {
-            write!(o, "ITEM: TIME\n{}\n", gendpde_io::format_g(sys.time, 16))?;
+            write!(o, "ITEM: TIME\n{}\n", gendpde_io::format_g(sys.clock.time, 16))?;
         }
-        write!(o, "ITEM: TIMESTEP\n{}\nITEM: NUMBER OF ATOMS\n{natoms}\nITEM: BOX BOUNDS pp pp pp\n", sys.step)?;
+        write!(o, "ITEM: TIMESTEP\n{}\nITEM: NUMBER OF ATOMS\n{natoms}\nITEM: BOX BOUNDS pp pp pp\n", sys.clock.step)?;
         let d = &sys.domain;
         for k in 0..3 {
             let e = |x: f64| format_printf("%1.16e", x).unwrap_or_else(|_| format!("{x:e}"));
@@ -598,7 +598,7 @@ impl RunOutput for TextDump {
     }
 
     fn write(&mut self, f: &mut Frame) -> Result<(), String> {
-        let step = f.sys.step;
+        let step = f.sys.clock.step;
         self.every.wrote(step);
         let result = (|| {
             if f.sys.comm.rank() == 0 {

@@ -109,7 +109,7 @@ impl H5mdDump {
     /// Writes a frame of the current step.
     fn write_frame(&mut self, frame: &Frame) -> Result<(), String> {
         let (sys, natoms) = (frame.sys, frame.sys.comm.count(frame.sys.store.nlocal) as usize);
-        self.every.wrote(sys.step);
+        self.every.wrote(sys.clock.step);
         // the thermo keywords at this step, the observables (every rank: collective)
         let values = thermo::values(frame.thermo, frame)?;
         let observables: Vec<(&str, f64)> = frame.thermo.keywords.iter().map(String::as_str).zip(values).filter(|(k, _)| *k != "step").collect();
@@ -138,7 +138,7 @@ impl H5mdDump {
         };
         if let Some(w) = self.writer.as_mut() {
             w.set_edges(sys.domain.len());
-            w.begin_frame(sys.step, sys.time).map_err(|e| e.0)?;
+            w.begin_frame(sys.clock.step, sys.clock.time).map_err(|e| e.0)?;
             w.write_observables(&observables).map_err(|e| e.0)?;
         }
         let mut first_row = 0;

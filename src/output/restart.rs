@@ -75,8 +75,8 @@ fn spread(ours: &[ColumnSpec], file: &[ColumnSpec]) -> Option<Spread> {
 pub fn write(sim: &Sim, file: &str) -> Result<(), String> {
     let sys = sim.system.as_ref().ok_or("no box to write")?;
     let header = RestartHeader {
-        step: sys.step,
-        time: sys.time,
+        step: sys.clock.step,
+        time: sys.clock.time,
         dt: sim.dt,
         natoms: sys.comm.count(sys.store.nlocal),
         max_tag: sim.max_tag,
@@ -85,9 +85,9 @@ pub fn write(sim: &Sim, file: &str) -> Result<(), String> {
         hi: sys.domain.hi,
         masses: sim.masses.clone(),
         energy0: sim.energy0,
-        last_build: sys.last_build,
-        noise_shift: sys.noise_shift,
-        stale_tallies: !sys.tallied,
+        last_build: sys.lists.last,
+        noise_shift: sys.clock.noise_shift,
+        stale_tallies: !sys.control.tallied,
         cell_counts: sys.grid.as_ref().map(|g| g.count),
         commands: sim.style_commands(),
         creator_version: env!("CARGO_PKG_VERSION").into(),
@@ -151,13 +151,13 @@ pub fn read(sim: &mut Sim, file: &str, transport: Box<dyn Transport>) -> Result<
         }
         start += crate::base::gather::BLOCK;
     }
-    sys.step = h.step;
-    sys.time = h.time;
-    sys.last_build = h.last_build;
-    sys.noise_shift = h.noise_shift;
-    sys.tallied = !h.stale_tallies;
-    sys.restored = true;
-    sys.restored_grid = h.cell_counts;
+    sys.clock.step = h.step;
+    sys.clock.time = h.time;
+    sys.lists.last = h.last_build;
+    sys.clock.noise_shift = h.noise_shift;
+    sys.control.tallied = !h.stale_tallies;
+    sys.control.restored = true;
+    sys.control.restored_grid = h.cell_counts;
     if spread.filled > 0 {
         // a file of an earlier gendpde: its list order and last forces cannot be redone
         log::warn!(
@@ -165,7 +165,7 @@ pub fn read(sim: &mut Sim, file: &str, transport: Box<dyn Transport>) -> Result<
              so it does not continue the writer's trajectory bit for bit",
             spread.missing
         );
-        sys.restored = false;
+        sys.control.restored = false;
     }
     sim.ntypes = h.ntypes;
     sim.masses = h.masses;

@@ -35,7 +35,7 @@ pub trait RunOutput {
     /// run). A step before `step` is one it missed; `write` reports it.
     fn next_step(&self, step: u64, run: Span) -> Option<u64>;
 
-    /// Writes at step `frame.sys.step`. Every rank calls it.
+    /// Writes at step `frame.sys.clock.step`. Every rank calls it.
     fn write(&mut self, frame: &mut Frame) -> Result<(), String>;
 }
 

@@ -23,7 +23,7 @@ use crate::output::thermo_settings::Mark;
 use crate::styles::compute::{self, ComputeStyle, Kinetic, Totals};
 use crate::styles::fix::FixStyle;
 use gendpde_engine::exact_sums;
-use gendpde_integrators::System;
+use gendpde_integrators::{FixRecord, NphState, System};
 use gendpde_io::{format_printf, Variables};
 
 impl RunOutput for ThermoConfig {
@@ -40,7 +40,7 @@ impl RunOutput for ThermoConfig {
     fn write(&mut self, f: &mut Frame) -> Result<(), String> {
         let values = values(self, f)?;
         f.out.line(&value_line(&self.keywords, &values, self.float_format.as_deref()));
-        self.last = Some(Mark { step: f.sys.step, time: f.sys.time, cpu: f.cpu });
+        self.last = Some(Mark { step: f.sys.clock.step, time: f.sys.clock.time, cpu: f.cpu });
         if self.flush {
             f.out.sync();
         }
@@ -50,7 +50,7 @@ impl RunOutput for ThermoConfig {
 
 /// The values of thermo `keywords` at the frame's step (collective: every rank calls).
 pub fn values(config: &ThermoConfig, f: &Frame) -> Result<Vec<f64>, String> {
-    let ctx = ThermoContext::new(f.sim, f.sys, config, f.vars, f.sys.step - f.run.first, f.cpu);
+    let ctx = ThermoContext::new(f.sim, f.sys, config, f.vars, f.sys.clock.step - f.run.first, f.cpu);
     let resolve = |name: &str| ctx.keyword(name);
     let mut values = Vec::with_capacity(config.keywords.len());
     for k in &config.keywords {
@@ -189,14 +189,14 @@ impl<'a> ThermoContext<'a> {
         let press = o.pressure_with(&self.kinetic);
         let etotal = self.potential() + 0.5 * self.kinetic.mv2();
         Some(match name {
-            "step" => self.sys.step as f64,
+            "step" => self.sys.clock.step as f64,
             "elapsed" => self.elapsed as f64,
-            "elaplong" => self.sys.step.saturating_sub(self.sys.run[0]) as f64,
-            "time" => self.sys.time,
+            "elaplong" => self.sys.clock.step.saturating_sub(self.sys.clock.run[0]) as f64,
+            "time" => self.sys.clock.time,
             "dt" => self.sim.dt,
             "cpu" => self.cpu,
-            "tpcpu" => self.rate(|m| self.sys.time - m.time),
-            "spcpu" => self.rate(|m| (self.sys.step - m.step) as f64),
+            "tpcpu" => self.rate(|m| self.sys.clock.time - m.time),
+            "spcpu" => self.rate(|m| (self.sys.clock.step - m.step) as f64),
             "atoms" => o.atoms,
             "temp" => self.kinetic.temperature(self.sim.units.kb, self.extra_dof),
             "tint" => if o.atoms > 0.0 { o.theta / o.atoms } else { 0.0 },
@@ -209,8 +209,8 @@ impl<'a> ThermoContext<'a> {
             "ke" => per(0.5 * self.kinetic.mv2()),
             "etotal" => per(etotal),
             "enthalpy" => per(etotal + press * o.volume),
-            "ecouple" => self.barostat_energy(),
-            "econserve" => per(etotal) + self.barostat_energy(),
+            "ecouple" => self.sys.fixes.any_barostat().map_or(0.0, |st| self.barostat_energy(st)),
+            "econserve" => per(etotal) + self.sys.fixes.any_barostat().map_or(0.0, |st| self.barostat_energy(st)),
             "edrift" => match self.sim.energy0 {
                 Some(e0) if e0 != 0.0 => (o.energy() - e0) / e0.abs(),
                 _ => 0.0,
@@ -249,8 +249,8 @@ impl<'a> ThermoContext<'a> {
     /// `c_ID[k]` of a compute (`styles::compute`) or `f_ID` of a `fix heat/reservoir`.
     fn compute(&self, name: &str) -> Option<f64> {
         if let Some(id) = name.strip_prefix("f_") {
-            if self.sys.barostat.as_ref().is_some_and(|b| b.id == id) {
-                let e = self.barostat_energy();
+            if let Some(st) = self.sys.fixes.barostat(id) {
+                let e = self.barostat_energy(st);
                 return Some(if self.norm && self.obs.atoms > 0.0 { e / self.obs.atoms } else { e });
             }
             return self.reservoir_heat(id);
@@ -265,9 +265,9 @@ impl<'a> ThermoContext<'a> {
         })
     }
 
-    /// The energy of the `fix nph` barostat (LAMMPS's `ecouple`: never per particle).
-    fn barostat_energy(&self) -> f64 {
-        let Some(st) = &self.sys.barostat else { return 0.0 };
+    /// The energy of the `fix nph` barostat in state `st` (LAMMPS's `ecouple`: never per
+    /// particle).
+    fn barostat_energy(&self, st: &NphState) -> f64 {
         let nph = self.sim.fixes.iter().find_map(|f| match &f.style {
             FixStyle::Nph { nph, .. } if nph.id == st.id => Some(nph),
             _ => None,
@@ -278,7 +278,7 @@ impl<'a> ThermoContext<'a> {
     /// Energy reservoir `id` has put into the particles since it was defined (extensive:
     /// per particle with `thermo_modify norm yes`, as LAMMPS's fix energies).
     fn reservoir_heat(&self, id: &str) -> Option<f64> {
-        let total = self.sys.reservoir_heat.iter().find(|(name, _)| name == id)?.1;
+        let Some(&FixRecord::Reservoir(total)) = self.sys.fixes.get(id) else { return None };
         Some(if self.norm && self.obs.atoms > 0.0 { total / self.obs.atoms } else { total })
     }
 }

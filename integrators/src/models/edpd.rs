@@ -202,9 +202,9 @@ impl Physics for Edpd {
     fn setup(&self, sys: &mut System) -> Result<(), SetupError> {
         sys.lay_grid(self.radius()).map_err(SetupError::Grid)?;
         sys.store.enable(Fields::EDPD | Fields::PAIR_ENERGY);
-        self.rebuild(sys, sys.step);
+        self.rebuild(sys, sys.clock.step);
         let state = Self::check_temperatures(sys);
-        self.forces(sys, sys.step);
+        self.forces(sys, sys.clock.step);
         sys.settle(state).map_err(SetupError::State)
     }
 
@@ -226,7 +226,7 @@ impl Physics for Edpd {
         }
         self.relist(sys, crate::passes::verlet::finite_positions(sys))?;
         sys.comm.forward(&mut sys.store, Fields::MOMENTUM | Fields::EDPD);
-        self.forces(sys, sys.step + 1);
+        self.forces(sys, sys.clock.step + 1);
         self.add_sources(sys);
         let s = &mut sys.store;
         for i in 0..s.nlocal {
@@ -237,8 +237,6 @@ impl Physics for Edpd {
         }
         let state = Self::check_temperatures(sys);
         sys.comm.forward(&mut sys.store, Fields::MOMENTUM | Fields::EDPD);
-        sys.step += 1;
-        sys.time += dt;
         sys.settle(state)
     }
 }

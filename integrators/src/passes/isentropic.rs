@@ -87,7 +87,7 @@ impl<E: Eos> FixedEntropy for Tabulated<E> {
 
 /// theta_i := s(u_i, n_i) for owned particles, at the densities of the start of the step.
 pub fn hold<E: Eos>(eos: &Species<E>, sys: &mut System) -> Result<(), StepError> {
-    let step = sys.step;
+    let step = sys.clock.step;
     let s = &mut sys.store;
     let mut first = Ok(());
     for i in 0..s.nlocal {
@@ -105,7 +105,7 @@ pub fn hold<E: Eos>(eos: &Species<E>, sys: &mut System) -> Result<(), StepError>
 
 /// u_i := u(s_i, n_i) and theta_i at the new densities, with s_i from [`hold`].
 pub fn release<E: FixedEntropy>(eos: &Species<E>, sys: &mut System) -> Result<(), StepError> {
-    let step = sys.step;
+    let step = sys.clock.step;
     let s = &mut sys.store;
     let mut first = Ok(());
     for i in 0..s.nlocal {

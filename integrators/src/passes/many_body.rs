@@ -23,7 +23,7 @@ avx2_fn! {
     /// n_i = sum_j w(r_ij)/[w] for owned particles (eq 2), keeping g_ij = w'(r_ij)/([w] r_ij)
     /// per pair for the force pass, or with `volume` the corrected
     /// n_i = 1/Vol(n^b_i) of the argon paper (eqs 2-3) from that sum n^b_i, keeping
-    /// zeta_i = dn_i/dn^b_i (eq 24) in `sys.zeta` for [`refresh_state`].
+    /// zeta_i = dn_i/dn^b_i (eq 24) in `sys.scratch.zeta` for [`refresh_state`].
     pub fn density<W: Weight>(w: &W, volume: Option<&PartitionVolume>, sys: &mut System) {
         let rc2 = w.cutoff() * w.cutoff();
         let s = &mut sys.store;
@@ -33,7 +33,7 @@ avx2_fn! {
         // list lies in the skin, a branch the processor cannot predict), with r^2 kept in
         // their g slot; the later passes walk this compact list
         // (written into spare capacity: no zeros written first)
-        let (pairs, active, geometry, r) = (&sys.nlist.pairs, &mut sys.active, &mut sys.pair_geometry, &s.r[..]);
+        let (pairs, active, geometry, r) = (&sys.nlist.pairs, &mut sys.scratch.active, &mut sys.scratch.pair_geometry, &s.r[..]);
         active.clear();
         geometry.clear();
         active.reserve(pairs.len());
@@ -52,13 +52,13 @@ avx2_fn! {
             active.set_len(m);
             geometry.set_len(m);
         }
-        let weights = &mut sys.pair_sums;
+        let weights = &mut sys.scratch.pair_sums;
         weigh(w, geometry, weights);
         let density = &mut s.n[..n];
         for (&[i, j], &wij) in active.iter().zip(weights.iter()) {
             add(density, i as usize, j as usize, wij);
         }
-        let zeta = &mut sys.zeta;
+        let zeta = &mut sys.scratch.zeta;
         zeta.clear();
         if let Some(v) = volume {
             zeta.resize(n, 0.0);
@@ -107,8 +107,8 @@ pub fn resolve_theta<E: Eos>(eos: &Species<E>, sys: &mut System) {
 /// kept) and 1/tau (where kept) of owned particles from (u, n). On a failure it carries on
 /// and reports the failing particle of lowest tag.
 pub fn refresh_state<E: Eos>(eos: &Species<E>, sys: &mut System) -> Result<(), StepError> {
-    let step = sys.step;
-    let (s, zeta) = (&mut sys.store, &sys.zeta);
+    let step = sys.clock.step;
+    let (s, zeta) = (&mut sys.store, &sys.scratch.zeta);
     let (keep_pressure, keep_tau) = (!s.pn2.is_empty(), !s.inv_tau.is_empty());
     let mut first = Ok(());
     for i in 0..s.nlocal {
@@ -138,10 +138,10 @@ avx2_fn! {
         s.f[..n].fill([0.0; 3]);
         s.virial[..n].fill([0.0; 3]);
         let len = s.len();
-        let (active, geometry, r, pn2) = (&sys.active[..], &sys.pair_geometry[..], &s.r[..len], &s.pn2[..len]);
+        let (active, geometry, r, pn2) = (&sys.scratch.active[..], &sys.scratch.pair_geometry[..], &s.r[..len], &s.pn2[..len]);
         let (f, virial) = (&mut s.f[..n], &mut s.virial[..n]);
-        sys.pair_force.resize(active.len(), 0.0);
-        for ((&[i, j], &g), big_f_out) in active.iter().zip(geometry).zip(sys.pair_force.iter_mut()) {
+        sys.scratch.pair_force.resize(active.len(), 0.0);
+        for ((&[i, j], &g), big_f_out) in active.iter().zip(geometry).zip(sys.scratch.pair_force.iter_mut()) {
             let (i, j) = in_store(i, j, len);
             let d = sub(r[i], r[j]);
             let big_f = -(pn2[i] + pn2[j]) * g;
@@ -168,11 +168,11 @@ avx2_fn! {
         let s = &mut sys.store;
         let n = s.nlocal;
         let len = s.len();
-        let (sums, v) = (&mut sys.pair_sums, &velocities(s, &mut sys.velocity)[..len]);
+        let (sums, v) = (&mut sys.scratch.pair_sums, &velocities(s, &mut sys.scratch.velocity)[..len]);
         sums.clear();
         sums.resize(n, 0.0);
         let r = &s.r[..len];
-        for (&[i, j], &big_f) in sys.active.iter().zip(&sys.pair_force) {
+        for (&[i, j], &big_f) in sys.scratch.active.iter().zip(&sys.scratch.pair_force) {
             if big_f != 0.0 {
                 let (i, j) = in_store(i, j, len);
                 add(sums, i, j, big_f * dot(sub(v[i], v[j]), sub(r[i], r[j])));
@@ -191,15 +191,15 @@ avx2_fn! {
     pub fn refresh_forces(sys: &mut System, work: Option<f64>) {
         let s = &mut sys.store;
         let n = s.nlocal;
-        let sums = &mut sys.pair_sums;
+        let sums = &mut sys.scratch.pair_sums;
         sums.clear();
         sums.resize(n, 0.0);
         let len = s.len();
-        let v = if work.is_some() { &velocities(s, &mut sys.velocity)[..len] } else { &[] };
+        let v = if work.is_some() { &velocities(s, &mut sys.scratch.velocity)[..len] } else { &[] };
         s.f[..n].fill([0.0; 3]);
-        let (active, geometry, r, pn2, f) = (&sys.active[..], &sys.pair_geometry[..], &s.r[..len], &s.pn2[..len], &mut s.f[..n]);
-        sys.pair_force.resize(active.len(), 0.0);
-        for ((&[i, j], &g), big_f_out) in active.iter().zip(geometry).zip(sys.pair_force.iter_mut()) {
+        let (active, geometry, r, pn2, f) = (&sys.scratch.active[..], &sys.scratch.pair_geometry[..], &s.r[..len], &s.pn2[..len], &mut s.f[..n]);
+        sys.scratch.pair_force.resize(active.len(), 0.0);
+        for ((&[i, j], &g), big_f_out) in active.iter().zip(geometry).zip(sys.scratch.pair_force.iter_mut()) {
             let (i, j) = in_store(i, j, len);
             let big_f = -(pn2[i] + pn2[j]) * g;
             *big_f_out = big_f;

@@ -10,6 +10,7 @@ pub mod many_body;
 pub mod noise;
 pub mod pair_tables;
 pub mod pair_update;
+pub mod scratch;
 pub mod species;
 pub mod sweep;
 pub mod verlet;

@@ -40,9 +40,9 @@ avx2_fn! {
         let rc = d.cutoff();
         let (inv_rcd, inv_rch) = (1.0 / d.rc_friction, 1.0 / d.rc_heat);
         let gamma = d.gamma * d.noise.scale();
-        let (step, key, normals) = (sys.step, sys.noise_step(sys.step), Normals::get());
+        let (step, key, normals) = (sys.clock.step, sys.noise_step(sys.clock.step), Normals::get());
         sys.take_inverse_masses();
-        let inv_m = &sys.inv_mass;
+        let inv_m = &sys.scratch.inv_mass;
         // each particle's EOS at its density, which the sweep does not change
         let at: Vec<E::At<'_>> = (0..sys.store.mass.len()).map(|i| at_density(eos, &sys.store, i)).collect();
         let mut outcome = Ok(());
@@ -71,8 +71,8 @@ avx2_fn! {
                         gamma: gamma * wd * wd,
                         kappa: d.kappa * wh * wh,
                     };
-                    if let Err(failed) = pair_step::<_, H, N>(&mut v, &keys, pair, xi, xibar, dt, 0, d.substeps, &mut sys.substeps) {
-                        sys.rejected += d.reject as u64;
+                    if let Err(failed) = pair_step::<_, H, N>(&mut v, &keys, pair, xi, xibar, dt, 0, d.substeps, &mut sys.control.substeps) {
+                        sys.control.rejected += d.reject as u64;
                         if !d.reject {
                             failures.push(failed);
                         }
@@ -101,7 +101,7 @@ fn at_density<'a, E: FixedDensity>(eos: &'a Species<E>, s: &Particles, i: usize)
 pub fn reservoir<E: FixedDensity, H: HeatFlow, N: Noise>(eos: &Species<E>, res: &Reservoir, sys: &mut System, dt: f64) -> Result<(), StepError> {
     let kb = eos.kb();
     let sqrt_dt = dt.sqrt();
-    let (step, key) = (sys.step, sys.noise_step(sys.step));
+    let (step, key) = (sys.clock.step, sys.noise_step(sys.clock.step));
     let s = &mut sys.store;
     let mut outcome = Ok(());
     let mut added = Vec::new();
@@ -125,7 +125,7 @@ pub fn reservoir<E: FixedDensity, H: HeatFlow, N: Noise>(eos: &Species<E>, res: 
         }
     }
     let [total] = exact_sums(sys.comm.transport(), added.iter().copied());
-    *sys.reservoir_tally(&res.id) += total;
+    *sys.fixes.reservoir_tally(&res.id) += total;
     sys.comm.forward(&mut sys.store, SWEPT);
     outcome
 }

@@ -30,5 +30,5 @@ pub fn drift(sys: &mut System, h: f64) -> Result<(), StepError> {
 pub fn finite_positions(sys: &System) -> Result<(), StepError> {
     let s = &sys.store;
     let bad = (0..s.nlocal).filter(|&i| !s.r[i].iter().all(|x| x.is_finite())).min_by_key(|&i| s.tag[i]);
-    bad.map_or(Ok(()), |i| Err(StepError::state(s, i, sys.step, "position or momentum is not finite")))
+    bad.map_or(Ok(()), |i| Err(StepError::state(s, i, sys.clock.step, "position or momentum is not finite")))
 }

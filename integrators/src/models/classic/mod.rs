@@ -45,7 +45,7 @@ use crate::rng::{stream, Normals, LANES};
 use crate::settings::Settings;
 use crate::simd::avx2_fn;
 use crate::passes::sweep::SWEPT;
-use crate::system::System;
+use crate::system::{FixRecord, System};
 use crate::type_table::TypeTable;
 use crate::passes::pair_tables::PairTables;
 use crate::passes::verlet;
@@ -204,7 +204,7 @@ pub struct ClassicDpd {
     /// `fix dpd/energy`: u integrated from the rates of [`PairForce::DpdEnergy`].
     pub energy: bool,
     /// `fix nph`: velocity Verlet under LAMMPS's Nose-Hoover barostat (its state is
-    /// [`System::barostat`]).
+    /// in [`System::fixes`]).
     pub barostat: Option<Nph>,
     pub kb: f64,
     pub seed: u64,
@@ -227,7 +227,7 @@ impl ClassicDpd {
                 let theta = s.u[i] / cv;
                 if !(theta > 0.0 && theta.is_finite()) {
                     let e = gendpde_potentials::EosError::NonPositiveTheta { u: s.u[i], n: 0.0, theta };
-                    outcome = lowest(outcome, Err(StepError::eos(s, i, sys.step, e)));
+                    outcome = lowest(outcome, Err(StepError::eos(s, i, sys.clock.step, e)));
                 }
                 s.theta[i] = theta;
             }
@@ -286,7 +286,7 @@ impl ClassicDpd {
                     Outside::Outer => ("> table outer", table.rsq_max().sqrt()),
                 };
                 let what = format!("density {:.9e} {limit} bound {bound}", s.rho[i]);
-                outcome = lowest(outcome, Err(StepError::state(s, i, sys.step, &what)));
+                outcome = lowest(outcome, Err(StepError::state(s, i, sys.clock.step, &what)));
                 continue;
             }
             if let Some(table) = t.of(s.kind[i], s.kind[i]) {
@@ -306,8 +306,8 @@ impl ClassicDpd {
     #[inline(always)]
     fn forces_any(&self, sys: &mut System, step: u64) {
         // fix nph reads the virial every step
-        let energies = sys.tally || self.barostat.is_some();
-        sys.tallied = energies;
+        let energies = sys.control.tally || self.barostat.is_some();
+        sys.control.tallied = energies;
         let inv_sqrt_dt = 1.0 / self.settings.dt.sqrt();
         let key = sys.noise_step(step);
         let (seed, pairs, s) = (self.seed, &sys.nlist.pairs, &mut sys.store);
@@ -318,8 +318,8 @@ impl ClassicDpd {
             // than half the list lies in the skin), then w = 0 beyond each pair's own rc
             // (the pairs left out would add exact zeros)
             PairForce::Dpd(t) if t.iter().all(|c| c.gamma == 0.0 && c.sigma == 0.0) => {
-                within(s, pairs, t.max_of(|c| c.rc), &mut sys.active);
-                tally::<true, false, false>(s, energies, sys.active.iter(), |_, _| f64::INFINITY, |s, i, j, _, r| {
+                within(s, pairs, t.max_of(|c| c.rc), &mut sys.scratch.active);
+                tally::<true, false, false>(s, energies, sys.scratch.active.iter(), |_, _| f64::INFINITY, |s, i, j, _, r| {
                     let DpdCoeff { a0, rc, inv_rc, .. } = *t.get(s.kind[i], s.kind[j]);
                     let w = (1.0 - r * inv_rc).max(0.0);
                     Terms::conservative(a0 * w, 0.25 * a0 * rc * w * w)
@@ -343,7 +343,7 @@ impl ClassicDpd {
                 Terms::conservative(fp, 0.25 * (a * rc * wc * wc + b * rd * rho * wd * wd))
             }),
             PairForce::DpdExt(e) => {
-                let (t, kb, normals) = (e.temperature(step, sys.run), self.kb, Normals::get());
+                let (t, kb, normals) = (e.temperature(step, sys.clock.run), self.kb, Normals::get());
                 let noise = move |s: &Particles, i: usize, j: usize, stream| normals.pair(seed, key, s.tag[i].min(s.tag[j]), s.tag[i].max(s.tag[j]), stream);
                 let ext_pair = move |s: &Particles, i: usize, j: usize, d: Vec3, r: f64, perp: bool| {
                     let c = *e.coeff.get(s.kind[i], s.kind[j]);
@@ -380,7 +380,7 @@ impl ClassicDpd {
             PairForce::MultiLucy(t) => {
                 // A = f(rho) of every particle (owned and ghost) in each table, read once;
                 // densities outside a table (NaN here) are reported by many_body_energy
-                let (nt, a) = (t.tables.len(), &mut sys.pair_sums);
+                let (nt, a) = (t.tables.len(), &mut sys.scratch.pair_sums);
                 a.clear();
                 for &rho in &s.rho {
                     a.extend(t.tables.iter().map(|table| table.eval(rho * rho).map_or(f64::NAN, |v| v.0)));
@@ -436,7 +436,7 @@ impl ClassicDpd {
     /// pair lies outside its table.
     fn table_forces(&self, sys: &mut System) -> Result<(), StepError> {
         let Some(t) = &self.tables else { return Ok(()) };
-        let outcome = t.add_forces(&mut sys.store, &sys.nlist.pairs, sys.step);
+        let outcome = t.add_forces(&mut sys.store, &sys.nlist.pairs, sys.clock.step);
         sys.settle(outcome)
     }
 
@@ -453,12 +453,12 @@ impl ClassicDpd {
     fn sweep_any(&self, sys: &mut System, p: &ShardlowDpd) -> Fields {
         let (dt, kb) = (self.settings.dt, self.kb);
         let sqrt_dt = dt.sqrt();
-        let (step, normals, reach) = (sys.noise_step(sys.step), Normals::get(), p.cutoff());
+        let (step, normals, reach) = (sys.noise_step(sys.clock.step), Normals::get(), p.cutoff());
         let fields = Fields::MOMENTUM | Fields::ENERGY | Fields::U_COND;
         let defer = self.read_by_forces().is_empty();
         let inv_2kb = 1.0 / (2.0 * kb);
         sys.take_inverse_masses();
-        let inv_m = &sys.inv_mass;
+        let inv_m = &sys.scratch.inv_mass;
         for colour in 0..sys.sweep.colours() {
             let (pairs, displacement) = sys.sweep.within_displaced(colour, &sys.store, reach);
             // every per-particle column cut to one length: a pair checked against it once
@@ -531,9 +531,9 @@ impl ClassicDpd {
             sys.settle(drifted)?;
             // the box changed: the grid is laid again for it (from the box alone, so the
             // same on every rank count) and the lists rebuilt every step
-            let laid = sys.lay_grid(self.radius()).map_err(|e| StepError::global(sys.step, &format!("fix nph changed the box: {e}")));
+            let laid = sys.lay_grid(self.radius()).map_err(|e| StepError::global(sys.clock.step, &format!("fix nph changed the box: {e}")));
             sys.settle(laid)?;
-            self.rebuild(sys, sys.step + 1);
+            self.rebuild(sys, sys.clock.step + 1);
         } else {
             self.relist(sys, drifted)?;
         }
@@ -542,7 +542,7 @@ impl ClassicDpd {
             sys.comm.forward(&mut sys.store, read);
         }
         self.rho(sys);
-        self.forces(sys, sys.step + 1);
+        self.forces(sys, sys.clock.step + 1);
         self.many_body_energy(sys)?;
         self.table_forces(sys)
     }
@@ -551,13 +551,13 @@ impl ClassicDpd {
     /// initial_integrate before fix nph's): [`Nph::initial`] (chain, P, omega_dot, scaled
     /// momenta, half kick, remap, drift, remap), the grid and lists for the new box, the
     /// forces, then [`Nph::last`] (half kick, scaled momenta, T and P, omega_dot, chain);
-    /// the state is [`System::barostat`].
+    /// the state is in [`System::fixes`].
     fn barostat_step(&self, sys: &mut System, b: &Nph) -> Result<(), StepError> {
-        let Some(mut st) = sys.barostat.take() else {
-            return Err(StepError::global(sys.step, &format!("fix {}: the barostat has no state", b.id)));
+        let Some(mut st) = sys.fixes.take_barostat(&b.id) else {
+            return Err(StepError::global(sys.clock.step, &format!("fix {}: the barostat has no state", b.id)));
         };
         let outcome = self.verlet(sys, Some((b, &mut st)));
-        sys.barostat = Some(st);
+        sys.fixes.set(&b.id, FixRecord::Nph(Box::new(st)));
         outcome
     }
 
@@ -656,7 +656,7 @@ impl Physics for ClassicDpd {
             fields = fields | Fields::RHO;
         }
         sys.store.enable(fields);
-        self.rebuild(sys, sys.step);
+        self.rebuild(sys, sys.clock.step);
         if let Some(cv) = self.cv {
             // fix eos/cv: uCond = 0, uMech = C_V theta from the given dpdTheta
             let s = &mut sys.store;
@@ -673,17 +673,16 @@ impl Physics for ClassicDpd {
         let state = self.eos(sys);
         sys.comm.forward(&mut sys.store, SWEPT | Fields::U_COND);
         self.rho(sys);
-        self.forces(sys, sys.step);
+        self.forces(sys, sys.clock.step);
         sys.settle(state).map_err(SetupError::State)?;
         self.many_body_energy(sys).map_err(SetupError::State)?;
         self.table_forces(sys).map_err(SetupError::State)?;
         if let Some(b) = &self.barostat {
-            let mut st = match sys.barostat.take() {
-                Some(st) if st.id == b.id => st,
-                _ => return Err(SetupError::Grid(format!("fix {}: the barostat has no state (define the fix after the box)", b.id))),
+            let Some(mut st) = sys.fixes.take_barostat(&b.id) else {
+                return Err(SetupError::Grid(format!("fix {}: the barostat has no state (define the fix after the box)", b.id)));
             };
-            let outcome = b.setup(sys, &mut st, (sys.run[0], sys.run[1]));
-            sys.barostat = Some(st);
+            let outcome = b.setup(sys, &mut st, (sys.clock.run[0], sys.clock.run[1]));
+            sys.fixes.set(&b.id, FixRecord::Nph(Box::new(st)));
             outcome.map_err(SetupError::Grid)?;
         }
         Ok(())
@@ -729,8 +728,6 @@ impl Physics for ClassicDpd {
             }
         }
         sys.comm.forward(&mut sys.store, ends);
-        sys.step += 1;
-        sys.time += dt;
         Ok(())
     }
 }

@@ -147,8 +147,6 @@ impl<E: FixedEntropy + FixedDensity, W: Weight> GenDpde<E, W> {
         sys.settle(moved)?;
         let outcome = self.irreversible::<H, N>(sys);
         sys.settle(outcome)?;
-        sys.step += 1;
-        sys.time += self.settings.dt;
         Ok(())
     }
 }
@@ -186,9 +184,9 @@ impl<E: FixedEntropy + FixedDensity, W: Weight> Physics for GenDpde<E, W> {
         }
         sys.store.enable(fields);
         for r in &self.settings.reservoirs {
-            sys.reservoir_tally(&r.id);
+            sys.fixes.reservoir_tally(&r.id);
         }
-        self.rebuild(sys, sys.step);
+        self.rebuild(sys, sys.clock.step);
         if self.many_body() {
             many_body::density(&self.weight, self.volume.as_ref(), sys);
         }

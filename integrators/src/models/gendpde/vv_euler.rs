@@ -55,15 +55,15 @@ fn friction_kernel(d: &Dissipation, r: f64) -> f64 {
     d.gamma * w * w
 }
 
-/// Steps 1 and 2: the friction and random impulses of the step (kept in `sys.friction`
-/// and `sys.noise` for the kicks) and the Euler update of u.
+/// Steps 1 and 2: the friction and random impulses of the step (kept in `sys.scratch.friction`
+/// and `sys.scratch.noise` for the kicks) and the Euler update of u.
 pub fn start<H: HeatFlow>(d: Option<&Dissipation>, kb: f64, sys: &mut System, dt: f64) {
     let sqrt_dt = dt.sqrt();
-    let (step, normals) = (sys.noise_step(sys.step), Normals::get());
+    let (step, normals) = (sys.noise_step(sys.clock.step), Normals::get());
     let rc = d.map_or(0.0, Dissipation::cutoff);
     let s = &mut sys.store;
     let n = s.nlocal;
-    let (friction, noise, sums) = (&mut sys.friction, &mut sys.noise, &mut sys.pair_sums);
+    let (friction, noise, sums) = (&mut sys.scratch.friction, &mut sys.scratch.noise, &mut sys.scratch.pair_sums);
     for v in [&mut *friction, &mut *noise] {
         v.clear();
         v.resize(n, [0.0; 3]);
@@ -71,7 +71,7 @@ pub fn start<H: HeatFlow>(d: Option<&Dissipation>, kb: f64, sys: &mut System, dt
     sums.clear();
     sums.resize(n, 0.0);
     // F_ij of the pairs the force pass visited (a subsequence of the list, in order)
-    let mut forced = sys.active.iter().zip(&sys.pair_force).peekable();
+    let mut forced = sys.scratch.active.iter().zip(&sys.scratch.pair_force).peekable();
     for &pair in &sys.nlist.pairs {
         let big_f = forced.next_if(|&(&p, _)| p == pair).map_or(0.0, |(_, &f)| f);
         let (i, j, dr, v) = oriented(s, pair[0], pair[1]);
@@ -121,25 +121,25 @@ pub fn first_half(sys: &mut System, dt: f64) -> Result<(), StepError> {
     let s = &mut sys.store;
     for i in 0..s.nlocal {
         for c in 0..3 {
-            s.p[i][c] += 0.5 * dt * (s.f[i][c] + sys.friction[i][c]) + 0.5 * sys.noise[i][c];
+            s.p[i][c] += 0.5 * dt * (s.f[i][c] + sys.scratch.friction[i][c]) + 0.5 * sys.scratch.noise[i][c];
         }
     }
     let drifted = verlet::drift(sys, dt);
     let s = &mut sys.store;
     for i in 0..s.nlocal {
         for c in 0..3 {
-            s.vest[i][c] = s.p[i][c] + 0.5 * sys.noise[i][c];
-            s.p[i][c] = s.vest[i][c] + 0.5 * dt * sys.friction[i][c];
+            s.vest[i][c] = s.p[i][c] + 0.5 * sys.scratch.noise[i][c];
+            s.p[i][c] = s.vest[i][c] + 0.5 * dt * sys.scratch.friction[i][c];
         }
     }
     drifted
 }
 
-/// F^D_i at the current positions and momenta (ghosts forwarded) into `sys.friction`.
+/// F^D_i at the current positions and momenta (ghosts forwarded) into `sys.scratch.friction`.
 pub fn friction(d: Option<&Dissipation>, sys: &mut System) {
     let s = &sys.store;
     let n = s.nlocal;
-    let friction = &mut sys.friction;
+    let friction = &mut sys.scratch.friction;
     friction.clear();
     friction.resize(n, [0.0; 3]);
     let Some(d) = d.filter(|d| d.gamma > 0.0) else { return };
@@ -161,7 +161,7 @@ pub fn second_half(sys: &mut System, dt: f64) {
     let s = &mut sys.store;
     for i in 0..s.nlocal {
         for c in 0..3 {
-            s.p[i][c] = s.vest[i][c] + 0.5 * dt * (s.f[i][c] + sys.friction[i][c]);
+            s.p[i][c] = s.vest[i][c] + 0.5 * dt * (s.f[i][c] + sys.scratch.friction[i][c]);
         }
     }
 }

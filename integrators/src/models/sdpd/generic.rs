@@ -141,10 +141,10 @@ impl<E: FixedEntropy, W: Weight> Sdpd<E, W> {
     fn gradients(&self, sys: &mut System, sc: &mut Scratch) {
         let nl = sys.store.nlocal;
         fill_velocities(sys);
-        let (v, s) = (&sys.velocity, &sys.store);
+        let (v, s) = (&sys.scratch.velocity, &sys.store);
         sc.grad.clear();
         sc.grad.resize(nl, [0.0; 9]);
-        for (i, j, w) in omegas(&sys.active, &sys.pair_geometry, &s.r) {
+        for (i, j, w) in omegas(&sys.scratch.active, &sys.scratch.pair_geometry, &s.r) {
             let dv = sub(v[j], v[i]);
             for o in [i, j].into_iter().filter(|&o| o < nl) {
                 for a in 0..3 {
@@ -165,7 +165,7 @@ impl<E: FixedEntropy, W: Weight> Sdpd<E, W> {
     /// K + U exact (midpoint velocities).
     fn viscous(&self, sys: &mut System, sc: &mut Scratch) {
         let (dt, p) = (self.settings.dt, &self.params);
-        let (normals, key) = (Normals::get(), sys.noise_step(sys.step));
+        let (normals, key) = (Normals::get(), sys.noise_step(sys.clock.step));
         self.gradients(sys, sc);
         let nl = sys.store.nlocal;
         for i in 0..nl {
@@ -198,7 +198,7 @@ impl<E: FixedEntropy, W: Weight> Sdpd<E, W> {
         sc.dp.resize(nl, [0.0; 3]);
         {
             let s = &sys.store;
-            for (i, j, w) in omegas(&sys.active, &sys.pair_geometry, &s.r) {
+            for (i, j, w) in omegas(&sys.scratch.active, &sys.scratch.pair_geometry, &s.r) {
                 let (di, dj) = (Self::d(sc.alpha, sys, i), Self::d(sc.alpha, sys, j));
                 let (mi, mj) = (tensor(s.sdpd_stress[i], s.sdpd_shear[i]), tensor(s.sdpd_stress[j], s.sdpd_shear[j]));
                 let mut t = [0.0; 3];
@@ -235,7 +235,7 @@ impl<E: FixedEntropy, W: Weight> Sdpd<E, W> {
     /// Heat conduction with its noise and Ito drift (eqs 82-83 in energy form).
     fn conduction(&self, sys: &mut System, sc: &mut Scratch) {
         let (dt, p) = (self.settings.dt, &self.params);
-        let (normals, key) = (Normals::get(), sys.noise_step(sys.step));
+        let (normals, key) = (Normals::get(), sys.noise_step(sys.clock.step));
         let nl = sys.store.nlocal;
         {
             let s = &sys.store;
@@ -248,7 +248,7 @@ impl<E: FixedEntropy, W: Weight> Sdpd<E, W> {
             sc.a.resize(nl, [0.0; 3]);
             sc.b.clear();
             sc.b.resize(nl, [0.0; 3]);
-            for (i, j, w) in omegas(&sys.active, &sys.pair_geometry, &s.r) {
+            for (i, j, w) in omegas(&sys.scratch.active, &sys.scratch.pair_geometry, &s.r) {
                 let dt_inv = sc.inv_tau[j] - sc.inv_tau[i];
                 for o in [i, j].into_iter().filter(|&o| o < nl) {
                     for c in 0..3 {
@@ -281,10 +281,10 @@ impl<E: FixedEntropy, W: Weight> Sdpd<E, W> {
         }
         sys.comm.forward(&mut sys.store, Fields::SDPD_FLUX);
         let s = &mut sys.store;
-        let sums = &mut sys.pair_sums;
+        let sums = &mut sys.scratch.pair_sums;
         sums.clear();
         sums.resize(nl, 0.0);
-        for (i, j, w) in omegas(&sys.active, &sys.pair_geometry, &s.r) {
+        for (i, j, w) in omegas(&sys.scratch.active, &sys.scratch.pair_geometry, &s.r) {
             let (di, dj) = (sc.alpha * s.n[i], sc.alpha * s.n[j]);
             let du: f64 = (0..3).map(|c| -w[c] * (s.sdpd_flux[i][c] / (di * di) + s.sdpd_flux[j][c] / (dj * dj))).sum();
             if i < nl {
@@ -344,8 +344,8 @@ fn tensor(d: Vec3, o: Vec3) -> [f64; 9] {
 /// Velocities of owned and ghost particles into the system's scratch.
 fn fill_velocities(sys: &mut System) {
     let s = &sys.store;
-    sys.velocity.clear();
-    sys.velocity.extend((0..s.len()).map(|i| velocity(s, i)));
+    sys.scratch.velocity.clear();
+    sys.scratch.velocity.extend((0..s.len()).map(|i| velocity(s, i)));
 }
 
 impl<E: FixedEntropy, W: Weight> Physics for Sdpd<E, W> {
@@ -365,7 +365,7 @@ impl<E: FixedEntropy, W: Weight> Physics for Sdpd<E, W> {
         }
         sys.lay_grid(self.list_radius()).map_err(SetupError::Grid)?;
         sys.store.enable(Fields::THETA | Fields::DENSITY | Fields::PRESSURE | Fields::SDPD_STRESS | Fields::SDPD_FLUX);
-        self.rebuild(sys, sys.step);
+        self.rebuild(sys, sys.clock.step);
         self.density(sys);
         many_body::resolve_theta(&self.eos, sys);
         let state = self.conservative(sys, false);
@@ -388,8 +388,6 @@ impl<E: FixedEntropy, W: Weight> Physics for Sdpd<E, W> {
         sys.settle(state)?;
         let outcome = self.irreversible(sys);
         sys.settle(outcome)?;
-        sys.step += 1;
-        sys.time += dt;
         Ok(())
     }
 }

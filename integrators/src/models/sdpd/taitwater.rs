@@ -130,10 +130,10 @@ impl Physics for SdpdTaitwater {
     fn setup(&self, sys: &mut System) -> Result<(), SetupError> {
         sys.lay_grid(self.radius()).map_err(SetupError::Grid)?;
         sys.store.enable(Fields::RHO | Fields::SPH | Fields::PAIR_ENERGY);
-        self.rebuild(sys, sys.step);
+        self.rebuild(sys, sys.clock.step);
         let state = Self::check_densities(sys);
         sys.settle(state).map_err(SetupError::State)?;
-        self.forces(sys, sys.step);
+        self.forces(sys, sys.clock.step);
         Ok(())
     }
 
@@ -153,7 +153,7 @@ impl Physics for SdpdTaitwater {
         }
         self.relist(sys, crate::passes::verlet::finite_positions(sys))?;
         sys.comm.forward(&mut sys.store, Fields::MOMENTUM | Fields::RHO);
-        self.forces(sys, sys.step + 1);
+        self.forces(sys, sys.clock.step + 1);
         let s = &mut sys.store;
         for i in 0..s.nlocal {
             for c in 0..3 {
@@ -163,8 +163,6 @@ impl Physics for SdpdTaitwater {
         }
         let state = Self::check_densities(sys);
         sys.comm.forward(&mut sys.store, Fields::MOMENTUM | Fields::RHO);
-        sys.step += 1;
-        sys.time += dt;
         sys.settle(state)
     }
 }

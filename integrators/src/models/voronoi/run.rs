@@ -84,7 +84,7 @@ impl<E: CellEnergy> VoronoiFv<E> {
             ModelError::Tessellation(_) => sys.store.tag[..sys.store.nlocal].iter().copied().min().unwrap_or(0),
         };
         let i = (0..sys.store.nlocal).find(|&i| sys.store.tag[i] == tag).unwrap_or(0);
-        StepError::state(&sys.store, i, sys.step, &e.to_string())
+        StepError::state(&sys.store, i, sys.clock.step, &e.to_string())
     }
 }
 
@@ -112,7 +112,7 @@ impl<E: CellEnergy> Physics for VoronoiFv<E> {
         let len = sys.domain.len();
         sys.lay_grid(len.iter().fold(f64::MAX, |a, &l| a.min(l)) / 4.5).map_err(SetupError::Grid)?;
         sys.store.enable(Fields::THETA | Fields::ENTROPY);
-        self.rebuild(sys, sys.step);
+        self.rebuild(sys, sys.clock.step);
         // Cells whose temperature was given (`set ... theta`) get S(M, V, T).
         if (0..sys.store.nlocal).any(|i| sys.store.theta_given[i]) {
             let (cells, order) = Self::gather(sys);
@@ -132,7 +132,7 @@ impl<E: CellEnergy> Physics for VoronoiFv<E> {
         let dt = self.settings.dt;
         let (mut cells, order) = Self::gather(sys);
         let (lo, len) = (sys.domain.lo, sys.domain.len());
-        let stepped = self.frame(&cells, lo, len).and_then(|f0| self.model.step(&mut cells, &f0, lo, len, dt, sys.noise_step(sys.step))).map_err(|e| Self::error(sys, e));
+        let stepped = self.frame(&cells, lo, len).and_then(|f0| self.model.step(&mut cells, &f0, lo, len, dt, sys.noise_step(sys.clock.step))).map_err(|e| Self::error(sys, e));
         sys.settle(stepped)?;
         for (k, &i) in order.iter().enumerate() {
             let s = &mut sys.store;
@@ -141,11 +141,9 @@ impl<E: CellEnergy> Physics for VoronoiFv<E> {
             s.mass[i] = cells.m[k];
             s.entropy[i] = cells.s[k];
         }
-        self.rebuild(sys, sys.step + 1);
+        self.rebuild(sys, sys.clock.step + 1);
         let refreshed = self.refresh(sys).map_err(|e| Self::error(sys, e));
         sys.settle(refreshed)?;
-        sys.step += 1;
-        sys.time += dt;
         Ok(())
     }
 }

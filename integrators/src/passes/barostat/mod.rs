@@ -105,7 +105,7 @@ impl Nph {
                 None => st.t_current,
             };
         }
-        self.press_target(sys.step, sys.domain.len(), st);
+        self.press_target(sys.clock.step, sys.domain.len(), st);
         let kt = self.kb * st.t0;
         let nkt = (st.natoms + 1.0) * kt;
         for d in 0..3 {
@@ -321,7 +321,7 @@ impl Nph {
         self.chain(st, dt);
         self.measure(sys, st, false);
         check_pressure(sys, st)?;
-        self.press_target(sys.step + 1, sys.domain.len(), st);
+        self.press_target(sys.clock.step + 1, sys.domain.len(), st);
         self.omega_dot(sys, st, dt);
         self.scale_momenta(sys, st, dt);
         crate::passes::verlet::kick(sys, 0.5 * dt);
@@ -376,5 +376,5 @@ fn check_pressure(sys: &System, st: &NphState) -> Result<(), StepError> {
     if st.p_current.iter().all(|p| p.is_finite()) {
         return Ok(());
     }
-    Err(StepError::global(sys.step, "fix nph: non-numeric pressure (simulation unstable)"))
+    Err(StepError::global(sys.clock.step, "fix nph: non-numeric pressure (simulation unstable)"))
 }
