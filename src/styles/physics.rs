@@ -35,19 +35,19 @@ pub fn build_physics(
     let pair = match pair.ok_or_else(|| err("no pair style is defined (pair_style)".into()))? {
         PairStyle::Gendpde(p) => p,
         PairStyle::Pairwise(p) => {
-            let settings = Settings { dt, skin, rebuild, motion: Motion::Fixed, dissipation: None, reservoirs: Vec::new() };
+            let settings = Settings { dt, skin, rebuild };
             return Ok(Box::new(pairwise(cmd, p, fixes, settings, kb, ntypes)?));
         }
         PairStyle::Edpd(p) => {
-            let settings = Settings { dt, skin, rebuild, motion: Motion::Fixed, dissipation: None, reservoirs: Vec::new() };
+            let settings = Settings { dt, skin, rebuild };
             return edpd(cmd, p, fixes, settings, kb);
         }
         PairStyle::Table(t) | PairStyle::MultiLucy(t) => {
-            let settings = Settings { dt, skin, rebuild, motion: Motion::Fixed, dissipation: None, reservoirs: Vec::new() };
+            let settings = Settings { dt, skin, rebuild };
             return tabulated(cmd, t, None, fixes, settings, kb, ntypes);
         }
         PairStyle::Overlay(o) => {
-            let settings = Settings { dt, skin, rebuild, motion: Motion::Fixed, dissipation: None, reservoirs: Vec::new() };
+            let settings = Settings { dt, skin, rebuild };
             return match (&o.table, &o.pairwise) {
                 (Some(t), p) => tabulated(cmd, t, p.as_ref().map(|(_, p)| p), fixes, settings, kb, ntypes),
                 (None, Some((_, p))) => Ok(Box::new(pairwise(cmd, p, fixes, settings, kb, ntypes)?)),
@@ -56,7 +56,7 @@ pub fn build_physics(
         }
         PairStyle::Sdpd(p) => return crate::styles::sdpd::build_sdpd(cmd, p, fixes, dt, skin, rebuild, kb),
         PairStyle::Taitwater(p) => {
-            let settings = Settings { dt, skin, rebuild, motion: Motion::Fixed, dissipation: None, reservoirs: Vec::new() };
+            let settings = Settings { dt, skin, rebuild };
             return crate::styles::sdpd::build_taitwater(cmd, p, fixes, settings, kb, mvv2e);
         }
         PairStyle::Voronoi(p) => return crate::styles::voronoi::build_voronoi(cmd, p, fixes, dt, skin, rebuild, kb),
@@ -153,25 +153,39 @@ pub fn build_physics(
             return Err(err(format!("fix {} (heat/reservoir) and fix {other} must use the same heat model", r.id)));
         }
     }
-    let settings = Settings { dt, skin, rebuild, motion, dissipation, reservoirs };
+    let scheme = Scheme { settings: Settings { dt, skin, rebuild }, motion, dissipation, reservoirs };
     if let EosModel::PerType(v) = eos {
-        return Ok(with_weight(v, pair, settings));
+        return Ok(with_weight(v, pair, scheme));
     }
-    Ok(each_eos!(eos, e => with_weight(vec![e.clone()], pair, settings)))
+    Ok(each_eos!(eos, e => with_weight(vec![e.clone()], pair, scheme)))
 }
 
 /// Monomorphises the dynamics over the weight function; `per_type` holds one EOS for
 /// all types or one per type.
-fn with_weight<E: FixedEntropy + FixedDensity + 'static>(per_type: Vec<E>, pair: &PairGendpde, settings: Settings) -> Box<dyn Physics> {
+fn with_weight<E: FixedEntropy + FixedDensity + 'static>(per_type: Vec<E>, pair: &PairGendpde, scheme: Scheme) -> Box<dyn Physics> {
     let Some(eos) = Species::new(per_type) else { unreachable!("an EOS model holds at least one EOS") };
     let rc = pair.cutoff;
     let volume = pair.volume.map(|fcut| PartitionVolume::new(rc, fcut));
-    match pair.weight {
-        WeightKind::Quadratic => Box::new(GenDpde { eos, weight: Quadratic::new(rc), volume, settings }),
-        WeightKind::Linear => Box::new(GenDpde { eos, weight: Linear::new(rc), volume, settings }),
-        WeightKind::Lucy => Box::new(GenDpde { eos, weight: Lucy::new(rc), volume, settings }),
-        WeightKind::CubicSpline => Box::new(GenDpde { eos, weight: CubicSpline::new(rc), volume, settings }),
+    let Scheme { settings, motion, dissipation, reservoirs } = scheme;
+    macro_rules! gendpde {
+        ($weight:expr) => {
+            Box::new(GenDpde { eos, weight: $weight, volume, settings, motion, dissipation, reservoirs })
+        };
     }
+    match pair.weight {
+        WeightKind::Quadratic => gendpde!(Quadratic::new(rc)),
+        WeightKind::Linear => gendpde!(Linear::new(rc)),
+        WeightKind::Lucy => gendpde!(Lucy::new(rc)),
+        WeightKind::CubicSpline => gendpde!(CubicSpline::new(rc)),
+    }
+}
+
+/// What GenDPDE's step does besides its EOS and weight, gathered from the fixes.
+struct Scheme {
+    settings: Settings,
+    motion: Motion,
+    dissipation: Option<Dissipation>,
+    reservoirs: Vec<Reservoir>,
 }
 
 /// The dynamics of a pairwise scene from the pair style and the fixes.

@@ -6,7 +6,7 @@ use crate::styles::fix::eos::{each_eos, EosModel};
 use crate::styles::fix::{Fix, FixStyle};
 use crate::styles::pair::sdpd::PairSdpd;
 use crate::styles::pair::sdpd_taitwater::PairTaitwater;
-use gendpde_integrators::{FixedEntropy, Motion, Physics, RebuildPolicy, Sdpd, SdpdParams, SdpdTaitwater, Settings, Species, Work};
+use gendpde_integrators::{FixedEntropy, Physics, RebuildPolicy, Sdpd, SdpdParams, SdpdTaitwater, Settings, Species};
 use gendpde_io::{Command, ScriptError};
 use gendpde_potentials::{CubicSpline, Linear, Lucy, Quadratic, Tait, WeightKind};
 
@@ -30,7 +30,7 @@ pub fn build_sdpd(cmd: &Command, pair: &PairSdpd, fixes: &[Fix], dt: f64, skin: 
         _ => return Err(err("more than one EOS fix is defined")),
     };
     let params = SdpdParams { eta, zeta, kappa, kb: pair.kb.unwrap_or(kb), seed: pair.seed, normalized: pair.normalized };
-    let settings = Settings { dt, skin, rebuild, motion: Motion::Verlet(Work::Isentropic), dissipation: None, reservoirs: Vec::new() };
+    let settings = Settings { dt, skin, rebuild };
     if let EosModel::PerType(v) = eos {
         return Ok(with_weight(v, pair, params, settings));
     }

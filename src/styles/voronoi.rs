@@ -4,7 +4,7 @@
 use crate::styles::fix::{Fix, FixStyle};
 use crate::styles::pair::voronoi::{CellRelation, PairVoronoi};
 use gendpde_integrators::models::voronoi::{CellDissipation, FiniteVolume, CellTransport, VoronoiFv};
-use gendpde_integrators::{Motion, Physics, RebuildPolicy, Settings};
+use gendpde_integrators::{Physics, RebuildPolicy, Settings};
 use gendpde_io::{Command, ScriptError};
 use gendpde_potentials::{IdealCell, VdwCell};
 
@@ -22,7 +22,7 @@ pub fn build_voronoi(cmd: &Command, pair: &PairVoronoi, fixes: &[Fix], dt: f64, 
         _ => return Err(err("more than one fix nve/voronoi is defined")),
     }
     let transport = CellTransport { eta, zeta, kappa, kb: pair.kb.unwrap_or(kb) };
-    let settings = Settings { dt, skin, rebuild, motion: Motion::Fixed, dissipation: None, reservoirs: Vec::new() };
+    let settings = Settings { dt, skin, rebuild };
     let seed = pair.seed;
     let dissipation = if pair.dpd { CellDissipation::Dpd { gamma: eta } } else { CellDissipation::Hydrodynamic };
     Ok(match relation {

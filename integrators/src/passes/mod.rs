@@ -4,6 +4,7 @@
 //! `fix nph` barostat.
 
 pub mod barostat;
+pub mod dissipation;
 pub mod heat;
 pub mod isentropic;
 pub mod many_body;

@@ -19,7 +19,7 @@ use crate::passes::heat::{HeatFlow, Temps};
 use crate::passes::noise::Noise;
 use crate::passes::pair_update::{pair_update, PairDrive, PairState};
 use crate::rng::{normal_pair, stream, Normals, LANES};
-use crate::settings::{Dissipation, Reservoir};
+use crate::passes::dissipation::{Dissipation, Reservoir};
 use crate::passes::species::Species;
 use crate::simd::avx2_fn;
 use crate::system::System;

@@ -6,7 +6,8 @@ use crate::error::{lowest, StepError};
 use crate::passes::heat::{Fourier, HeatFlow, HeatModel, NoHeat, Original};
 use crate::passes::noise::{Arithmetic, Harmonic, Noise, NoiseForm};
 use crate::passes::isentropic::{self, FixedEntropy};
-use crate::settings::{Motion, Settings, Work};
+use crate::passes::dissipation::{Dissipation, Reservoir};
+use crate::settings::Settings;
 use crate::passes::species::Species;
 use crate::system::System;
 use crate::passes::{many_body, sweep, verlet};
@@ -17,6 +18,28 @@ use gendpde_engine::Fields;
 use gendpde_potentials::volume::PartitionVolume;
 use gendpde_potentials::{Eos, FixedDensity, Weight};
 
+/// How the particles move.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Motion {
+    /// No integrator fix: particles stay fixed (heat-only scenes), lists never rebuild.
+    Fixed,
+    /// `fix nve/gendpde`: the reversible velocity-Verlet part of the eSSA (eq 84); the
+    /// dissipation, if any, is `fix shardlow`'s sweep.
+    Verlet(Work),
+    /// `fix vv/euler`: velocity Verlet for r and p with all pair forces, forward Euler for
+    /// u (argon paper eqs 19-21); the dissipation acts through the pair forces.
+    VvEuler,
+}
+
+/// How the reversible velocity-Verlet step changes the internal energies.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Work {
+    /// Each pair's work split equally between u_i and u_j (eq 84).
+    Split,
+    /// u_i = u(s_i, n_i) at the entropy s_i of the start of the step (SPEC section 6).
+    Isentropic,
+}
+
 /// The generalised DPDE of the 2019 paper with EOS `E` and density weight `W`.
 pub struct GenDpde<E: Eos, W: Weight> {
     /// The EOS of each particle type (or one for all).
@@ -25,6 +48,11 @@ pub struct GenDpde<E: Eos, W: Weight> {
     /// The corrected particle volume of the argon paper (eqs 2-3), if chosen.
     pub volume: Option<PartitionVolume>,
     pub settings: Settings,
+    pub motion: Motion,
+    /// Friction, noise and pair heat flow (`fix shardlow` or `fix vv/euler`), if any.
+    pub dissipation: Option<Dissipation>,
+    /// Heat baths, each on its own group (applied in this order after the sweep).
+    pub reservoirs: Vec<Reservoir>,
 }
 
 impl<E: FixedEntropy + FixedDensity, W: Weight> GenDpde<E, W> {
@@ -33,13 +61,13 @@ impl<E: FixedEntropy + FixedDensity, W: Weight> GenDpde<E, W> {
     }
 
     fn heat_model(&self) -> Option<HeatModel> {
-        let s = &self.settings;
+        let s = self;
         s.dissipation.as_ref().map(|d| d.heat).or(s.reservoirs.first().map(|r| r.heat))
     }
 
     /// The sweep's friction/noise law (the papers' eq 76 without a sweep).
     fn noise(&self) -> NoiseForm {
-        let s = &self.settings;
+        let s = self;
         s.dissipation.as_ref().filter(|_| s.motion != Motion::VvEuler).map_or(NoiseForm::Arithmetic, |d| d.noise)
     }
 
@@ -48,8 +76,8 @@ impl<E: FixedEntropy + FixedDensity, W: Weight> GenDpde<E, W> {
     fn radii(&self) -> (Option<f64>, Option<f64>) {
         let skin = self.settings.skin;
         let density = self.many_body().then(|| self.weight.cutoff());
-        let dissipation = self.settings.dissipation.as_ref().map(|d| d.cutoff());
-        if self.settings.motion == Motion::VvEuler {
+        let dissipation = self.dissipation.as_ref().map(|d| d.cutoff());
+        if self.motion == Motion::VvEuler {
             let reach = density.into_iter().chain(dissipation).reduce(f64::max);
             return (reach.map(|r| r + skin), None);
         }
@@ -110,7 +138,7 @@ impl<E: FixedEntropy + FixedDensity, W: Weight> GenDpde<E, W> {
     /// `fix vv/euler` (see [`vv_euler`]).
     fn vv_euler<H: HeatFlow>(&self, sys: &mut System) -> Result<(), StepError> {
         let dt = self.settings.dt;
-        let dissipation = self.settings.dissipation.as_ref();
+        let dissipation = self.dissipation.as_ref();
         vv_euler::start::<H>(dissipation, self.eos.kb(), sys, dt);
         let drifted = vv_euler::first_half(sys, dt);
         self.relist(sys, drifted)?;
@@ -129,17 +157,17 @@ impl<E: FixedEntropy + FixedDensity, W: Weight> GenDpde<E, W> {
     fn irreversible<H: HeatFlow, N: Noise>(&self, sys: &mut System) -> Result<(), StepError> {
         let dt = self.settings.dt;
         let mut outcome = Ok(());
-        if let Some(d) = self.settings.dissipation.as_ref().filter(|_| self.settings.motion != Motion::VvEuler) {
+        if let Some(d) = self.dissipation.as_ref().filter(|_| self.motion != Motion::VvEuler) {
             outcome = sweep::sweep::<E, H, N>(&self.eos, d, sys, dt);
         }
-        for r in &self.settings.reservoirs {
+        for r in &self.reservoirs {
             outcome = lowest(outcome, sweep::reservoir::<E, H, N>(&self.eos, r, sys, dt));
         }
         outcome
     }
 
     fn advance<H: HeatFlow, N: Noise>(&self, sys: &mut System) -> Result<(), StepError> {
-        let moved = match self.settings.motion {
+        let moved = match self.motion {
             Motion::Fixed => Ok(()),
             Motion::Verlet(work) => self.reversible(sys, work),
             Motion::VvEuler => self.vv_euler::<H>(sys),
@@ -183,7 +211,7 @@ impl<E: FixedEntropy + FixedDensity, W: Weight> Physics for GenDpde<E, W> {
             fields = fields | Fields::INV_TAU;
         }
         sys.store.enable(fields);
-        for r in &self.settings.reservoirs {
+        for r in &self.reservoirs {
             sys.fixes.reservoir_tally(&r.id);
         }
         self.rebuild(sys, sys.clock.step);
@@ -197,7 +225,7 @@ impl<E: FixedEntropy + FixedDensity, W: Weight> Physics for GenDpde<E, W> {
 
     fn step(&self, sys: &mut System) -> Result<(), StepError> {
         let heat_on = |model| {
-            let s = &self.settings;
+            let s = self;
             s.dissipation.as_ref().is_some_and(|d| d.kappa > 0.0 && d.heat == model)
                 || s.reservoirs.iter().any(|r| r.heat == model)
         };

@@ -34,7 +34,7 @@ use crate::passes::heat::HeatFlow;
 use crate::passes::many_body::{kick, velocity};
 use crate::passes::noise::Arithmetic;
 use crate::rng::{stream, Normals};
-use crate::settings::Dissipation;
+use crate::passes::dissipation::Dissipation;
 use crate::passes::sweep::temps;
 use crate::system::System;
 use crate::passes::verlet;
