@@ -202,7 +202,7 @@ fn bad_edpd_input_is_refused_naming_the_line() {
         (format!("{head}{pair}fix s all edpd/source cube 0 0 0 1 0.1\n"), "in.bad:9: fix: expected sphere, cuboid or region, got 'cube'"),
         (format!("{head}{pair}run 0\n"), "in.bad:9: run: pair edpd integrates with fix mvv/edpd"),
         (format!("{head}pair_style edpd 1.58 9872598\npair_coeff 1 1 18.75 4.5 0.41 1.58 1.41E-5 2.0 1.58\nfix 1 all mvv/edpd\nrun 0\n"), "in.bad:10: run: pair edpd: no coefficients for types 1 2"),
-        (format!("{head}{pair}fix 1 all nve\nrun 0\n"), "in.bad:10: run: fix 1 does not act on pair edpd"),
+        (format!("{head}{pair}fix 1 all nve\nrun 0\n"), "in.bad:10: run: fix 1 does not work with pair edpd: nve is not one of its fixes (mvv/edpd, edpd/source)"),
         ("units lj\natom_style atomic\nregion b block 0 8 0 8 0 8\ncreate_box 1 b\ncreate_atoms 1 random 10 7 NULL\nset atom * edpd/cv 2.0\n".to_string(), "in.bad:6: set: set edpd/cv needs atom_style edpd"),
     ];
     for (script, expected) in cases {

@@ -127,5 +127,5 @@ fn bad_fix_nph_input_is_a_clear_error() {
     std::fs::write(dir.join("in.bad"), scene).unwrap();
     let out = common::gendpde(&dir, &["run", "in.bad", "-log", "none"]);
     let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(stderr.contains("in.bad:12: run: pair gendpde integrates with fix nve/gendpde or vv/euler (fix nve, nph"), "{stderr}");
+    assert!(stderr.contains("in.bad:12: run: fix 2 does not work with pair gendpde: nph is not one of its fixes (eos/..., nve/gendpde, shardlow, vv/euler, heat/reservoir)"), "{stderr}");
 }

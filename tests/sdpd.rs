@@ -205,5 +205,5 @@ fn bad_sdpd_input_names_the_line() {
                              fix eos all eos/vdw 60.0 2.4682 1.4142\nfix int all nve/sdpd\nrun 0\n";
     let mut it = gendpde::Interpreter::new(gendpde::Mode::Run, gendpde::Output::new(false));
     let err = it.execute_str("test.in", gendpde_with_sdpd).err().map(|e| e.to_string()).unwrap_or_default();
-    assert!(err.contains("test.in:12: run: fix int (nve/sdpd) integrates pair sdpd/generic"), "got '{err}'");
+    assert!(err.contains("test.in:12: run: fix int does not work with pair gendpde: nve/sdpd is not one of its fixes"), "got '{err}'");
 }

@@ -153,7 +153,7 @@ fn bad_taitwater_input_is_refused_naming_the_line() {
             "run: Not all pair sdpd/taitwater/isothermal coeffs are set: no pair_coeff for types 1 2",
         ),
         (with_nve.as_str(), "run: fix 2 does not work with pair sdpd/taitwater/isothermal"),
-        ("pair_style dpd 1.0 1.0 5\npair_coeff * * 25 4.5\nfix 1 all sph\nrun 0", "run: fix 1 (sph) integrates pair sdpd/taitwater/isothermal"),
+        ("pair_style dpd 1.0 1.0 5\npair_coeff * * 25 4.5\nfix 1 all sph\nrun 0", "run: fix 1 does not work with pair dpd: sph is not one of its fixes"),
     ];
     let d = dir("errors");
     let stage = |script: &str| {

@@ -105,7 +105,7 @@ fn bad_tables_and_styles_are_refused_naming_the_line() {
             with("pair_style hybrid/overlay table linear 100 dpd 1.0 1.0 5\npair_coeff * * dpd/fdt 1.0 1.0\n"),
             "'dpd/fdt' is not a sub-style of this pair_style hybrid/overlay",
         ),
-        ("shardlow", with("pair_style table linear 100\npair_coeff * * table-lj.pot LJ_R\nfix 2 all shardlow\n"), "fix 2 does not work with pair table alone"),
+        ("shardlow", with("pair_style table linear 100\npair_coeff * * table-lj.pot LJ_R\nfix 2 all shardlow\n"), "fix 2 does not work with pair table: shardlow is not one of its fixes (nve; overlay dpd/fdt for fix shardlow)"),
     ];
     for (name, script, expected) in cases {
         expect_error(name, script, expected);

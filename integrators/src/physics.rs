@@ -20,8 +20,12 @@ pub trait Physics {
         sys.clock.advance(self.settings().dt);
         Ok(())
     }
-    /// Largest list radius (cutoff plus skin), for memory estimates.
-    fn list_radius(&self) -> f64;
+    /// The largest interaction cutoff (LAMMPS's `cutforce`; `compute rdf`'s default).
+    fn cutoff(&self) -> f64;
+    /// Largest list radius (by default the cutoff plus the skin), for memory estimates.
+    fn list_radius(&self) -> f64 {
+        self.cutoff() + self.settings().skin
+    }
     /// Migrates particles and builds ghosts and lists for the positions of step `at_step`
     /// (by default one pair list of radius [`Physics::list_radius`] and no sweep list).
     fn rebuild(&self, sys: &mut System, at_step: u64) {

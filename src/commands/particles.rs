@@ -8,7 +8,6 @@ use crate::base::args::Args;
 use crate::commands::styles::pair_coeff;
 use crate::model::sim::Sim;
 use crate::output::restart;
-use crate::styles::pair::PairStyle;
 use gendpde_engine::{Comm, Domain, Fields, ProcGrid};
 use gendpde_integrators::System;
 use gendpde_io::{Command, DataAtom, DataFile, Location, PairCoeffs, ScriptError};
@@ -108,7 +107,7 @@ pub fn write_data(sim: &Sim, a: &mut Args) -> Result<(), ScriptError> {
     }
     let sys = sim.system.as_ref().ok_or_else(|| a.err("write_data before create_box"))?;
     let pair_coeffs = match &sim.pair {
-        Some(PairStyle::Pairwise(p)) if coeff => p.data_section(sim.ntypes, ij).map_err(|e| a.err(e))?,
+        Some(p) if coeff => p.data_section(sim.ntypes, ij).map_err(|e| a.err(e))?,
         _ => None,
     };
     if pair_coeffs.is_some() && !ij && sim.ntypes > 1 && sys.comm.rank() == 0 {

@@ -13,7 +13,7 @@ use crate::output::restart;
 use crate::output::schedule::{Frame, RunOutput, Span};
 use crate::output::thermo::{header_line, Observables};
 use crate::output::Outputs;
-use crate::styles::physics::build_physics;
+use crate::styles::pair::{build_physics, RunInputs};
 use gendpde_integrators::{Physics, Snapshot};
 use gendpde_io::{Command, ScriptError, Variables};
 use indicatif::ProgressBar;
@@ -109,7 +109,8 @@ pub struct RunPart {
 /// densities, forces) for a run of `part.nsteps`; errors name `cmd`.
 pub fn prepare(sim: &mut Sim, averages: &[AveTime], cmd: &Command, part: RunPart) -> Result<Box<dyn Physics>, AppError> {
     let err = |m: String| AppError::Script(ScriptError::at(cmd, m));
-    let physics = build_physics(cmd, sim.pair.as_ref(), &sim.fixes, sim.dt, sim.skin, sim.rebuild.clone(), sim.units.kb, sim.units.mvv2e, sim.ntypes)?;
+    let inputs = RunInputs { fixes: &sim.fixes, dt: sim.dt, skin: sim.skin, rebuild: sim.rebuild.clone(), kb: sim.units.kb, mvv2e: sim.units.mvv2e, ntypes: sim.ntypes };
+    let physics = build_physics(cmd, sim.pair.as_deref(), &inputs)?;
     let sys = sim.system.as_mut().ok_or_else(|| err("run before create_box".into()))?;
     if sys.store.nlocal == 0 {
         return Err(err("the box holds no particles (create_atoms)".into()));
@@ -117,8 +118,9 @@ pub fn prepare(sim: &mut Sim, averages: &[AveTime], cmd: &Command, part: RunPart
     sys.clock.run = part.ramp;
     // the cells must reach the pairs that the computes read by fix ave/time count
     sys.lists.min_cell = 0.0;
+    sys.lists.cutoff = physics.cutoff();
     for rdf in sim.rdfs.iter().filter(|r| averages.iter().any(|f| f.computes().any(|c| c == r.id))) {
-        let rc = rdf.cutoff_for(sim.pair.as_ref()).unwrap_or(0.0);
+        let rc = rdf.cutoff_for(sys.lists.cutoff);
         rdf.check_reach(sys, rc + sim.skin).map_err(err)?;
         sys.lists.min_cell = sys.lists.min_cell.max(rc + sim.skin);
     }

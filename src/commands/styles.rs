@@ -9,16 +9,16 @@ use crate::output::ave_time::AveTime;
 use crate::output::Outputs;
 use crate::styles::compute::{self, ComputeStyle, Definition};
 use crate::styles::fix::{parse_fix_in, FixStyle};
-use crate::styles::pair::{parse_pair_coeff, parse_pair_style};
+use crate::styles::pair::parse_pair_style;
 use gendpde_integrators::{FixRecord, Nph, NphState};
 use gendpde_io::ScriptError;
 
 /// `pair_style STYLE args...` (before or after the box, as LAMMPS). The style in force
-/// named again keeps its coefficients (see `PairStyle::keep_coefficients`); the restart's
+/// named again keeps its coefficients (see `Pair::keep_coefficients`); the restart's
 /// command text then replays both lines.
 pub fn pair_style(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     let mut pair = parse_pair_style(a.command())?;
-    let kept = sim.pair.as_ref().is_some_and(|old| pair.keep_coefficients(old));
+    let kept = sim.pair.as_deref().is_some_and(|old| pair.keep_coefficients(old));
     if !kept {
         sim.pair_text.clear();
     }
@@ -34,7 +34,7 @@ pub fn pair_coeff(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
         return Err(a.err("pair_coeff before the box exists (create_box, read_data or read_restart)"));
     }
     let pair = sim.pair.as_mut().ok_or_else(|| a.err("pair_coeff before pair_style"))?;
-    parse_pair_coeff(a.command(), pair, sim.ntypes)?;
+    pair.coeff(a.command(), sim.ntypes)?;
     sim.pair_text.push(echo(a.command()));
     Ok(())
 }

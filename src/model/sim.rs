@@ -10,7 +10,7 @@ use crate::styles::compute::reduce::Reduce;
 use crate::styles::compute::rdf::Rdf;
 use crate::styles::compute::Compute;
 use crate::styles::fix::{Fix, FixStyle};
-use crate::styles::pair::PairStyle;
+use crate::styles::pair::Pair;
 use gendpde_engine::{Fields, Transport};
 use gendpde_integrators::{FixRecord, NphState, RebuildPolicy, System};
 use gendpde_io::AtomStyle;
@@ -33,7 +33,7 @@ pub struct Sim {
     pub masses: Vec<Option<f64>>,
     pub system: Option<System>,
     pub units: Units,
-    pub pair: Option<PairStyle>,
+    pub pair: Option<Box<dyn Pair>>,
     pub fixes: Vec<Fix>,
     pub dt: f64,
     pub skin: f64,
@@ -119,7 +119,7 @@ impl Sim {
 
     /// Whether thermo `pe` is a pair energy (LAMMPS's pairwise styles, tables and edpd).
     pub fn pe_is_pair(&self) -> bool {
-        matches!(self.pair, Some(PairStyle::Pairwise(_) | PairStyle::Edpd(_) | PairStyle::Taitwater(_) | PairStyle::Table(_) | PairStyle::MultiLucy(_) | PairStyle::Overlay(_)))
+        self.pair.as_ref().is_some_and(|p| p.pe_is_pair())
     }
 
     /// The accumulated state of fixes, for a restart file: each reservoir's energy

@@ -114,13 +114,13 @@ impl RunOutput for AveTime {
     /// Adds a sample and writes a block when it is complete. A failure on rank 0 stops
     /// all ranks.
     fn write(&mut self, f: &mut Frame) -> Result<(), String> {
-        let (sys, rdfs, pair, skin) = (f.sys, &f.sim.rdfs, f.sim.pair.as_ref(), f.sim.skin);
+        let (sys, rdfs, skin) = (f.sys, &f.sim.rdfs, f.sim.skin);
         // each compute once per sample
         let mut tables: Vec<(&str, Vec<[f64; COLUMNS]>)> = Vec::new();
         for id in self.computes() {
             let rdf = rdfs.iter().find(|r| r.id == id).ok_or_else(|| format!("fix {} ave/time: compute rdf '{id}' no longer exists", self.id))?;
             if tables.iter().all(|t| t.0 != rdf.id) {
-                let rc = rdf.cutoff_for(pair).ok_or_else(|| format!("compute {id} rdf needs a pair style or the cutoff keyword"))?;
+                let rc = rdf.cutoff_for(sys.lists.cutoff);
                 tables.push((&rdf.id, rdf.rows(sys, rc, rc + skin)?));
             }
         }

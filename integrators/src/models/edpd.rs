@@ -103,7 +103,7 @@ pub struct Edpd {
 
 impl Edpd {
     fn radius(&self) -> f64 {
-        self.coeff.iter().map(|c| c.rc.max(c.rc_t)).fold(0.0, f64::max) + self.settings.skin
+        self.cutoff() + self.settings.skin
     }
 
     /// Forces, pair energies, virials and the pair heat flux Q of the owned particles, at
@@ -193,8 +193,8 @@ impl Physics for Edpd {
         &self.settings
     }
 
-    fn list_radius(&self) -> f64 {
-        self.radius()
+    fn cutoff(&self) -> f64 {
+        self.coeff.iter().map(|c| c.rc.max(c.rc_t)).fold(0.0, f64::max)
     }
 
     /// As LAMMPS's set-up: forces and the pair flux, without the sources (fix

@@ -27,7 +27,7 @@ pub struct System {
     /// Coloured pair lists for the Shardlow sweep.
     pub sweep: SweepPairs,
     pub clock: Clock,
-    /// When and how often the lists were built.
+    /// When and how often the lists were built, and the reach they need.
     pub lists: ListLog,
     /// The passes' per-pair and per-particle scratch.
     pub scratch: Scratch,
@@ -37,7 +37,7 @@ pub struct System {
     pub fixes: FixState,
 }
 
-/// The list builds of a run.
+/// The list builds of a run and the reach the lists and cells need.
 #[derive(Clone, Debug, Default)]
 pub struct ListLog {
     /// Step of the last list build.
@@ -47,6 +47,8 @@ pub struct ListLog {
     /// Smallest cell side the grid must have beyond the styles' own reach (outputs that
     /// search pairs farther out, e.g. `compute rdf ... cutoff`).
     pub min_cell: f64,
+    /// The interaction cutoff of the run's model ([`crate::Physics::cutoff`]).
+    pub cutoff: f64,
 }
 
 impl System {

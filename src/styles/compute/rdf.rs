@@ -8,7 +8,6 @@
 //! each count by its ideal-gas share N (N - 1) V_shell / V, with LAMMPS's operation order.
 
 use crate::base::args::Args;
-use crate::styles::pair::PairStyle;
 use gendpde_engine::{build_lists, dot, sub, CellGrid, ListRequest, NeighborList};
 use gendpde_integrators::System;
 use gendpde_io::ScriptError;
@@ -48,9 +47,9 @@ impl Rdf {
         Ok(Self { id, nbin: nbin as usize, cutoff })
     }
 
-    /// Rc: the `cutoff` keyword, else the pair style's cutoff.
-    pub fn cutoff_for(&self, pair: Option<&PairStyle>) -> Option<f64> {
-        self.cutoff.or(pair.map(PairStyle::cutoff))
+    /// Rc: the `cutoff` keyword, else the interaction cutoff of the run's model.
+    pub fn cutoff_for(&self, model: f64) -> f64 {
+        self.cutoff.unwrap_or(model)
     }
 
     /// Checks that a box holds the cell grid for pairs out to `reach` = Rc + skin.

@@ -4,13 +4,17 @@
 //!
 //! A new EOS is one file in `potentials/src/eos/`, one arm in `parse_model` and, if it
 //! is a new Rust type, one variant of [`EosModel`] with its arms in [`each_eos`] and
-//! `styles::physics` (see docs/DESIGN.md).
+//! the builders of the pair styles that take an EOS (`styles::pair::gendpde`,
+//! `styles::pair::sdpd_generic`; see docs/ARCHITECTURE.md).
 
 use crate::base::args::Args;
-use crate::styles::FIX_STYLES;
+use crate::styles::fix::{Fix, FixStyle};
 use gendpde_io::ScriptError;
 use gendpde_potentials::eos::Lth;
 use gendpde_potentials::{Eos, LennardJones, LinearTheta, TableError, TableErrors, TableGrid, Tabulated};
+
+/// The EOS fix styles (the arms of `parse_model`).
+pub const EOS_STYLES: &[&str] = &["eos/vdw", "eos/vdw/reduced", "eos/lj", "eos/lth", "eos/ideal", "eos/cv", "eos/density", "eos/linear"];
 
 /// A particle EOS chosen by a `fix eos/...`, analytic or through a table (`table`
 /// keyword).
@@ -45,6 +49,16 @@ macro_rules! each_eos {
     };
 }
 pub(crate) use each_eos;
+
+/// The EOS of the one `fix eos/...` among `fixes`.
+pub fn one_eos(fixes: &[Fix]) -> Result<EosModel, String> {
+    let mut models = fixes.iter().filter_map(|f| if let FixStyle::Eos(e) = &f.style { Some(e) } else { None });
+    match (models.next(), models.next()) {
+        (Some(e), None) => Ok(e.clone()),
+        (None, _) => Err("no EOS fix is defined (fix ID all eos/...)".into()),
+        (Some(_), Some(_)) => Err("more than one EOS fix is defined".into()),
+    }
+}
 
 impl EosModel {
     /// Largest mean number density the model admits, if bounded.
@@ -184,7 +198,7 @@ fn parse_model(style: &str, a: &mut Args, kb: f64) -> Result<EosModel, ScriptErr
             let b = a.non_negative("the excluded volume b")?;
             LinearTheta { q, r, b, v_coeffs: coefficients(a)?, ..LinearTheta::cv_only(cv) }
         }
-        other => return Err(a.err(format!("unknown EOS fix '{other}'; known: {FIX_STYLES}"))),
+        other => return Err(a.err(format!("unknown EOS fix '{other}'; known: {}", EOS_STYLES.join(", ")))),
     };
     eos.cv = cv;
     eos.kb = kb;

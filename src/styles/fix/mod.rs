@@ -1,5 +1,6 @@
 //! Fix styles: `fix ID GROUP STYLE args...` parsed into declarative [`Fix`]es (the
-//! EOS models in [`eos`]); `styles::physics` turns them into the dynamics of a run.
+//! EOS models in [`eos`]); the pair style in force builds the dynamics of a run from
+//! them (`styles::pair`).
 //! `fix ave/time` is an output (`output::ave_time`).
 
 pub mod eos;
@@ -9,7 +10,6 @@ use self::eos::{parse_eos, EosModel};
 use crate::base::args::Args;
 use crate::base::region::Region;
 use crate::base::script::echo;
-use crate::styles::FIX_STYLES;
 use gendpde_integrators::{HeatModel, NoiseForm, Work};
 use gendpde_io::{Command, ScriptError};
 use std::collections::HashMap;
@@ -67,6 +67,8 @@ pub enum Source {
 #[derive(Clone, Debug)]
 pub struct Fix {
     pub id: String,
+    /// The style's name, as the command gives it.
+    pub name: String,
     pub style: FixStyle,
     /// The command as written (restart files re-create fixes from it).
     pub text: String,
@@ -75,6 +77,49 @@ pub struct Fix {
 /// Default and largest number of halving levels of a failing Shardlow pair update.
 pub const DEFAULT_SUBSTEPS: u32 = 4;
 pub const MAX_SUBSTEPS: u32 = 8;
+
+/// What a fix style's parser reads besides its own words.
+pub struct FixContext<'a> {
+    pub id: &'a str,
+    /// Boltzmann's constant of the units.
+    pub kb: f64,
+    /// The group names by bit, and the bit of the fix's group.
+    pub groups: &'a [String],
+    pub mask: u32,
+    /// The regions defined so far (fix edpd/source region).
+    pub regions: &'a HashMap<String, Region>,
+}
+
+/// Parses the words after `fix ID GROUP NAME`.
+type ParseFix = fn(name: &str, a: &mut Args, c: &FixContext) -> Result<FixStyle, ScriptError>;
+
+/// Every fix style of the dynamics (the EOS fixes are [`eos::EOS_STYLES`], the
+/// averaging fixes [`AVERAGING`]), with its parser and whether it takes a group other
+/// than all.
+pub const FIX_STYLES: &[(&str, ParseFix, bool)] = &[
+    ("nve/gendpde", nve_gendpde, false),
+    ("vv/euler", |_, a, _| Ok(FixStyle::VvEuler { heat: heat_keyword(a)?.unwrap_or(HeatModel::Original) }), false),
+    ("shardlow", shardlow, false),
+    ("heat/reservoir", heat_reservoir, true),
+    ("nve/sdpd", |_, _, _| Ok(FixStyle::NveSdpd), false),
+    ("nve/voronoi", |_, _, _| Ok(FixStyle::NveVoronoi), false),
+    ("nve", |_, _, _| Ok(FixStyle::Nve), false),
+    ("nph", |_, a, c| nph::parse_nph(c.id, a, c.kb, c.groups).map(|(nph, fixedpoint)| FixStyle::Nph { nph: Box::new(nph), fixedpoint }), false),
+    ("mvv/dpd", |_, a, _| Ok(FixStyle::Mvv { lambda: if a.remaining() > 0 { a.positive("lambda")? } else { 0.5 } }), false),
+    ("dpd/energy", |_, _, _| Ok(FixStyle::DpdEnergy), false),
+    ("mvv/edpd", |_, a, _| Ok(FixStyle::MvvEdpd { lambda: if a.remaining() > 0 { a.f64("lambda")? } else { 0.5 } }), false),
+    ("edpd/source", |_, a, c| edpd_source(a, c.mask, c.regions), true),
+    ("sph", |_, _, _| Ok(FixStyle::Sph), false),
+];
+
+/// The fixes that are outputs (`output::ave_time`, `output::ave_chunk`).
+pub const AVERAGING: [&str; 2] = ["ave/time", "ave/chunk"];
+
+/// Every fix style's name, as error messages list them.
+pub fn known_styles() -> String {
+    let names = eos::EOS_STYLES.iter().chain(FIX_STYLES.iter().map(|(name, ..)| name)).chain(&AVERAGING);
+    names.copied().collect::<Vec<_>>().join(", ")
+}
 
 /// `fix ID GROUP STYLE args...`; `kb` is Boltzmann's constant of the units, `groups`
 /// the group names by bit (no regions: see [`parse_fix_in`]).
@@ -87,81 +132,81 @@ pub fn parse_fix_in(cmd: &Command, kb: f64, groups: &[String], regions: &HashMap
     let mut a = Args::new(cmd);
     let id = a.word("a fix ID")?.to_string();
     let group = a.word("a group")?;
-    let style_name = a.word("a fix style")?;
+    let name = a.word("a fix style")?;
     // as LAMMPS: the group must exist, then the style; then gendpde's restriction to all
     let mask = crate::base::groups::mask(groups, group, &a)?;
-    let style = match style_name {
-        s if s.starts_with("eos/") => FixStyle::Eos(parse_eos(s, &mut a, kb)?),
-        "nve/gendpde" => {
-            let mut work = Work::Split;
-            while let Some(k) = a.peek() {
-                a.word("keyword")?;
-                match k {
-                    "work" => {
-                        work = match a.word("split or isentropic")? {
-                            "split" => Work::Split,
-                            "isentropic" => Work::Isentropic,
-                            w => return Err(a.err(format!("unknown work rule '{w}'; known: split, isentropic"))),
-                        }
-                    }
-                    _ => return Err(a.err(format!("unknown keyword '{k}'; known: work"))),
-                }
-            }
-            FixStyle::Verlet { work }
-        }
-        "vv/euler" => FixStyle::VvEuler { heat: heat_keyword(&mut a)?.unwrap_or(HeatModel::Original) },
-        "nve/sdpd" => FixStyle::NveSdpd,
-        "sph" => FixStyle::Sph,
-        "nve/voronoi" => FixStyle::NveVoronoi,
-        "nve" => FixStyle::Nve,
-        "nph" => {
-            let (nph, fixedpoint) = nph::parse_nph(&id, &mut a, kb, groups)?;
-            FixStyle::Nph { nph: Box::new(nph), fixedpoint }
-        }
-        "dpd/energy" => FixStyle::DpdEnergy,
-        "mvv/dpd" => FixStyle::Mvv { lambda: if a.remaining() > 0 { a.positive("lambda")? } else { 0.5 } },
-        "mvv/edpd" => FixStyle::MvvEdpd { lambda: if a.remaining() > 0 { a.f64("lambda")? } else { 0.5 } },
-        "edpd/source" => edpd_source(&mut a, mask, regions)?,
-        "shardlow" => {
-            let (mut heat, mut substeps, mut reject) = (HeatModel::Original, DEFAULT_SUBSTEPS, false);
-            let mut noise = NoiseForm::Arithmetic;
-            while let Some(k) = a.peek() {
-                match k {
-                    "heat" => heat = heat_keyword(&mut a)?.unwrap_or(heat),
-                    "noise" => {
-                        a.word("noise")?;
-                        noise = match a.word("a noise form (arithmetic or harmonic T0)")? {
-                            "arithmetic" => NoiseForm::Arithmetic,
-                            "harmonic" => NoiseForm::Harmonic { temperature: a.positive("the harmonic noise's temperature T0")? },
-                            w => return Err(a.err(format!("unknown noise form '{w}'; known: arithmetic, harmonic"))),
-                        }
-                    }
-                    "substeps" => {
-                        a.word("substeps")?;
-                        substeps = a.u64("the number of halving levels")?.min(MAX_SUBSTEPS as u64) as u32;
-                    }
-                    "reject" => {
-                        a.word("reject")?;
-                        reject = a.yes_no("reject")?;
-                    }
-                    _ => return Err(a.err(format!("unknown keyword '{k}'; known: heat, noise, substeps, reject"))),
-                }
-            }
-            FixStyle::Shardlow { heat, noise, substeps, reject }
-        }
-        "heat/reservoir" => {
-            let temperature = a.positive("the reservoir temperature")?;
-            let kappa = a.positive("the reservoir coupling kappa")?;
-            let seed = a.u64("the random seed")?;
-            FixStyle::Reservoir { temperature, kappa, seed, heat: heat_keyword(&mut a)?, mask }
-        }
-        other => return Err(a.err(format!("unknown fix style '{other}'; known: {FIX_STYLES}"))),
+    let c = FixContext { id: &id, kb, groups, mask, regions };
+    let (style, grouped) = if eos::EOS_STYLES.contains(&name) {
+        (FixStyle::Eos(parse_eos(name, &mut a, kb)?), false)
+    } else {
+        let Some((_, parse, grouped)) = FIX_STYLES.iter().find(|(n, ..)| *n == name) else {
+            return Err(a.err(format!("unknown fix style '{name}'; known: {}", known_styles())));
+        };
+        (parse(name, &mut a, &c)?, *grouped)
     };
-    if group != "all" && !matches!(style, FixStyle::Reservoir { .. } | FixStyle::EdpdSource { .. }) {
-        return Err(a.err(format!("group '{group}': fix {style_name} acts on group all (only heat/reservoir and edpd/source take a group)")));
+    if group != "all" && !grouped {
+        let takers: Vec<&str> = FIX_STYLES.iter().filter(|(.., g)| *g).map(|(n, ..)| *n).collect();
+        return Err(a.err(format!("group '{group}': fix {name} acts on group all (only {} take a group)", takers.join(" and "))));
     }
     a.done()?;
-    Ok(Fix { id, style, text: echo(cmd) })
+    Ok(Fix { id, name: name.to_string(), style, text: echo(cmd) })
+}
+
+/// `fix nve/gendpde [work split|isentropic]`.
+fn nve_gendpde(_: &str, a: &mut Args, _: &FixContext) -> Result<FixStyle, ScriptError> {
+    let mut work = Work::Split;
+    while let Some(k) = a.peek() {
+        a.word("keyword")?;
+        match k {
+            "work" => {
+                work = match a.word("split or isentropic")? {
+                    "split" => Work::Split,
+                    "isentropic" => Work::Isentropic,
+                    w => return Err(a.err(format!("unknown work rule '{w}'; known: split, isentropic"))),
+                }
+            }
+            _ => return Err(a.err(format!("unknown keyword '{k}'; known: work"))),
+        }
+    }
+    Ok(FixStyle::Verlet { work })
+}
+
+/// `fix shardlow [heat original|fourier] [noise arithmetic|harmonic T0] [substeps N]
+/// [reject yes|no]`.
+fn shardlow(_: &str, a: &mut Args, _: &FixContext) -> Result<FixStyle, ScriptError> {
+    let (mut heat, mut substeps, mut reject) = (HeatModel::Original, DEFAULT_SUBSTEPS, false);
+    let mut noise = NoiseForm::Arithmetic;
+    while let Some(k) = a.peek() {
+        match k {
+            "heat" => heat = heat_keyword(a)?.unwrap_or(heat),
+            "noise" => {
+                a.word("noise")?;
+                noise = match a.word("a noise form (arithmetic or harmonic T0)")? {
+                    "arithmetic" => NoiseForm::Arithmetic,
+                    "harmonic" => NoiseForm::Harmonic { temperature: a.positive("the harmonic noise's temperature T0")? },
+                    w => return Err(a.err(format!("unknown noise form '{w}'; known: arithmetic, harmonic"))),
+                }
+            }
+            "substeps" => {
+                a.word("substeps")?;
+                substeps = a.u64("the number of halving levels")?.min(MAX_SUBSTEPS as u64) as u32;
+            }
+            "reject" => {
+                a.word("reject")?;
+                reject = a.yes_no("reject")?;
+            }
+            _ => return Err(a.err(format!("unknown keyword '{k}'; known: heat, noise, substeps, reject"))),
+        }
+    }
+    Ok(FixStyle::Shardlow { heat, noise, substeps, reject })
+}
+
+/// `fix ID GROUP heat/reservoir T KAPPA SEED [heat original|fourier]`.
+fn heat_reservoir(_: &str, a: &mut Args, c: &FixContext) -> Result<FixStyle, ScriptError> {
+    let temperature = a.positive("the reservoir temperature")?;
+    let kappa = a.positive("the reservoir coupling kappa")?;
+    let seed = a.u64("the random seed")?;
+    Ok(FixStyle::Reservoir { temperature, kappa, seed, heat: heat_keyword(a)?, mask: c.mask })
 }
 
 fn heat_keyword(a: &mut Args) -> Result<Option<HeatModel>, ScriptError> {

@@ -2,9 +2,12 @@
 //! CUTOFF_T [power c1 c2 c3 c4] [kappa c1 c2 c3 c4]` (LAMMPS DPD-MESO's eDPD; the force
 //! law is in `gendpde_integrators::models::edpd`). Coefficients are kept per type pair.
 
+use super::{Pair, RunInputs};
 use crate::base::args::Args;
-use gendpde_integrators::EdpdCoeff;
+use crate::styles::fix::{FixStyle, Source};
+use gendpde_integrators::{Edpd, EdpdCoeff, HeatSource, Physics, SourceShape};
 use gendpde_io::{Command, ScriptError};
+use std::any::Any;
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct PairEdpd {
@@ -18,7 +21,7 @@ pub struct PairEdpd {
 }
 
 /// The words after `pair_style edpd`.
-pub fn parse_style(a: &mut Args) -> Result<PairEdpd, ScriptError> {
+fn parse(a: &mut Args) -> Result<PairEdpd, ScriptError> {
     let cutoff = a.positive("the cutoff")?;
     let seed = a.u64("the random seed")?;
     if seed == 0 {
@@ -29,7 +32,7 @@ pub fn parse_style(a: &mut Args) -> Result<PairEdpd, ScriptError> {
 }
 
 /// A `pair_coeff` line of pair edpd.
-pub fn parse_coeff(p: &mut PairEdpd, cmd: &Command, ntypes: usize) -> Result<(), ScriptError> {
+fn parse_coeff(p: &mut PairEdpd, cmd: &Command, ntypes: usize) -> Result<(), ScriptError> {
     let mut a = Args::new(cmd);
     let (ti, tj) = (a.types(ntypes)?, a.types(ntypes)?);
     let mut c = EdpdCoeff {
@@ -68,12 +71,7 @@ pub fn parse_coeff(p: &mut PairEdpd, cmd: &Command, ntypes: usize) -> Result<(),
 }
 
 impl PairEdpd {
-    /// The largest force or heat cutoff (the pair_style cutoff before any pair_coeff).
-    pub fn cutoff(&self) -> f64 {
-        self.coeff.iter().flatten().map(|c| c.rc.max(c.rc_t)).reduce(f64::max).unwrap_or(self.cutoff)
-    }
-
-    /// The coefficients of every type pair; Err names the first pair without.
+    /// The coefficients of every type pair; Err names the first pair without any.
     pub fn table(&self) -> Result<Vec<EdpdCoeff>, String> {
         if self.ntypes == 0 {
             return Err("pair edpd has no coefficients (pair_coeff)".into());
@@ -82,5 +80,59 @@ impl PairEdpd {
         (0..ntypes * ntypes)
             .map(|k| self.coeff.get(k).cloned().flatten().ok_or_else(|| format!("pair edpd: no coefficients for types {} {} (pair_coeff)", k / ntypes + 1, k % ntypes + 1)))
             .collect()
+    }
+}
+
+/// `pair_style edpd ...`.
+pub fn parse_style(_name: &str, a: &mut Args) -> Result<Box<dyn Pair>, ScriptError> {
+    parse(a).map(|p| Box::new(p) as Box<dyn Pair>)
+}
+
+impl Pair for PairEdpd {
+    fn name(&self) -> &str {
+        "edpd"
+    }
+
+    fn coeff(&mut self, cmd: &Command, ntypes: usize) -> Result<(), ScriptError> {
+        parse_coeff(self, cmd, ntypes)
+    }
+
+    fn accepts(&self, fix: &FixStyle) -> bool {
+        matches!(fix, FixStyle::MvvEdpd { .. } | FixStyle::EdpdSource { .. })
+    }
+
+    fn fixes(&self) -> &'static str {
+        "mvv/edpd, edpd/source"
+    }
+
+    fn keep_coefficients(&mut self, old: &dyn Pair) -> bool {
+        let Some(old) = old.as_any().downcast_ref::<Self>() else { return false };
+        (self.ntypes, self.coeff) = (old.ntypes, old.coeff.clone());
+        self.coeff.iter_mut().flatten().for_each(|c| c.rc = self.cutoff);
+        true
+    }
+
+    /// pair edpd, fix mvv/edpd and any fix edpd/source.
+    fn build(&self, run: &RunInputs) -> Result<Box<dyn Physics>, String> {
+        let coeff = self.table()?;
+        let lambda = run.one("mvv/edpd", |s| if let FixStyle::MvvEdpd { lambda } = s { Some(*lambda) } else { None })?;
+        let sources = run.fixes.iter().filter_map(|f| match &f.style {
+            FixStyle::EdpdSource { shape, value, mask } => {
+                let shape = match shape.clone() {
+                    Source::Sphere { centre, radius } => SourceShape::Sphere { centre, radius },
+                    Source::Cuboid { centre, edges } => SourceShape::Cuboid { centre, edges },
+                    Source::Region(r) => SourceShape::Region(std::sync::Arc::new(move |x| r.contains(x))),
+                };
+                Some(HeatSource { mask: *mask, shape, value: *value })
+            }
+            _ => None,
+        });
+        let sources = sources.collect();
+        let (_, lambda) = lambda.ok_or("pair edpd integrates with fix mvv/edpd")?;
+        Ok(Box::new(Edpd { coeff, ntypes: self.ntypes, seed: self.seed, kb: run.kb, lambda, sources, settings: run.settings() }))
+    }
+
+    fn as_any(&self) -> &dyn Any {
+        self
     }
 }

@@ -7,8 +7,12 @@
 
 use super::pairwise::{self, Pairwise};
 use super::table::{self, Tabulated};
+use super::{Pair, RunInputs};
 use crate::base::args::Args;
+use crate::styles::fix::FixStyle;
+use gendpde_integrators::Physics;
 use gendpde_io::{Command, ScriptError};
+use std::any::Any;
 
 /// The sub-styles of a hybrid/overlay line.
 #[derive(Clone, Debug, PartialEq)]
@@ -23,12 +27,12 @@ pub struct Overlay {
 const TABLE_WORDS: [&str; 11] = ["linear", "spline", "lookup", "bitmap", "ewald", "pppm", "msm", "dispersion", "tip4p", "rlinear", "rsquared"];
 
 /// Whether a `hybrid/overlay` line is many-body DPD's (`mdpd/rhosum mdpd ...`).
-pub fn is_mdpd(a: &Args) -> bool {
+fn is_mdpd(a: &Args) -> bool {
     a.peek() == Some("mdpd/rhosum")
 }
 
 /// The words after `pair_style hybrid/overlay` (`name` is `hybrid` or `hybrid/overlay`).
-pub fn parse_style(name: &str, a: &mut Args) -> Result<Overlay, ScriptError> {
+fn parse(name: &str, a: &mut Args) -> Result<Overlay, ScriptError> {
     if name == "hybrid" {
         return Err(a.err("pair_style hybrid (one sub-style per type pair) is not supported: use hybrid/overlay"));
     }
@@ -50,14 +54,14 @@ pub fn parse_style(name: &str, a: &mut Args) -> Result<Overlay, ScriptError> {
         let mut s = Args::new(&sub);
         let style = s.word("a sub-style")?;
         match style {
-            "table" if o.table.is_none() => o.table = Some(table::parse_style(&mut s)?),
+            "table" if o.table.is_none() => o.table = Some(table::parse(&mut s)?),
             "table" => return Err(a.err("hybrid/overlay takes one table sub-style")),
             "gendpde" => return Err(a.err("pair gendpde is many-body (densities and EOS): it cannot be combined in hybrid/overlay")),
             "mdpd" | "mdpd/rhosum" => {
                 return Err(a.err("many-body DPD combines only as 'hybrid/overlay mdpd/rhosum mdpd T CUTOFF SEED', without other sub-styles"))
             }
             "hybrid" | "hybrid/overlay" => return Err(a.err("a hybrid style cannot be a sub-style")),
-            other if o.pairwise.is_none() => o.pairwise = Some((other.to_string(), pairwise::parse_style(other, &mut s)?)),
+            other if o.pairwise.is_none() => o.pairwise = Some((other.to_string(), pairwise::parse(other, &mut s)?)),
             other => return Err(a.err(format!("'{other}': hybrid/overlay takes one pairwise DPD sub-style (besides table)"))),
         }
     }
@@ -65,7 +69,7 @@ pub fn parse_style(name: &str, a: &mut Args) -> Result<Overlay, ScriptError> {
 }
 
 /// `pair_coeff I J STYLE args` for the sub-style named STYLE.
-pub fn parse_coeff(o: &mut Overlay, cmd: &Command, ntypes: usize) -> Result<(), ScriptError> {
+fn parse_coeff(o: &mut Overlay, cmd: &Command, ntypes: usize) -> Result<(), ScriptError> {
     let mut a = Args::new(cmd);
     let types = (a.types(ntypes)?, a.types(ntypes)?);
     let style = a.word("the sub-style of the pair coefficients")?;
@@ -80,5 +84,54 @@ pub fn parse_coeff(o: &mut Overlay, cmd: &Command, ntypes: usize) -> Result<(), 
         }
         ("none", ..) => Err(a.err("pair_coeff I J none is not supported")),
         (other, ..) => Err(a.err(format!("'{other}' is not a sub-style of this pair_style hybrid/overlay"))),
+    }
+}
+
+/// `pair_style hybrid/overlay ...`: many-body DPD's `mdpd/rhosum mdpd` line is a pairwise
+/// style of its own; plain `hybrid` is refused.
+pub fn parse_style(name: &str, a: &mut Args) -> Result<Box<dyn Pair>, ScriptError> {
+    if name == "hybrid/overlay" && is_mdpd(a) {
+        return pairwise::parse_style(name, a);
+    }
+    parse(name, a).map(|o| Box::new(o) as Box<dyn Pair>)
+}
+
+impl Pair for Overlay {
+    fn name(&self) -> &str {
+        "hybrid/overlay"
+    }
+
+    fn coeff(&mut self, cmd: &Command, ntypes: usize) -> Result<(), ScriptError> {
+        parse_coeff(self, cmd, ntypes)
+    }
+
+    /// The pairwise sub-style's fixes, else those of the table alone.
+    fn accepts(&self, fix: &FixStyle) -> bool {
+        match (&self.pairwise, &self.table) {
+            (Some((_, p)), _) => p.accepts(fix),
+            (None, Some(t)) => t.accepts(fix),
+            (None, None) => false,
+        }
+    }
+
+    fn fixes(&self) -> &'static str {
+        match (&self.pairwise, &self.table) {
+            (Some((_, p)), _) => p.fixes(),
+            (None, Some(t)) => t.fixes(),
+            (None, None) => "none",
+        }
+    }
+
+    fn build(&self, run: &RunInputs) -> Result<Box<dyn Physics>, String> {
+        match (&self.table, &self.pairwise) {
+            (Some(t), Some((_, p))) => table::overlaid(t, p, run),
+            (Some(t), None) => t.build(run),
+            (None, Some((_, p))) => p.build(run),
+            (None, None) => Err("pair_style hybrid/overlay has no sub-styles".into()),
+        }
+    }
+
+    fn as_any(&self) -> &dyn Any {
+        self
     }
 }

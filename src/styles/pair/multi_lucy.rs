@@ -5,12 +5,13 @@
 //! column indexed in rho^2; the force law is in `gendpde_integrators::models::classic`.
 
 use super::table::Tabulated;
+use super::Pair;
 use crate::base::args::Args;
 use gendpde_io::ScriptError;
 use gendpde_potentials::pair_table::TableStyle;
 
 /// The words after `pair_style multi/lucy`.
-pub fn parse_style(a: &mut Args) -> Result<Tabulated, ScriptError> {
+pub fn parse_style(_name: &str, a: &mut Args) -> Result<Box<dyn Pair>, ScriptError> {
     let style = match a.word("the table style (lookup or linear)")? {
         "lookup" => TableStyle::Lookup,
         "linear" => TableStyle::Linear,
@@ -21,5 +22,5 @@ pub fn parse_style(a: &mut Args) -> Result<Tabulated, ScriptError> {
         return Err(a.err(format!("illegal number of pair table entries: {n} (2 to {})", super::table::MAX_POINTS)));
     }
     a.done()?;
-    Ok(Tabulated { style, n: n as usize, tables: None, multi_lucy: true })
+    Ok(Box::new(Tabulated { style, n: n as usize, tables: None, multi_lucy: true }))
 }

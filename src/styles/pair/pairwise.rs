@@ -20,9 +20,15 @@
 //! with J < I are swapped. None of these styles mixes: a pair left unset stops `run`
 //! with LAMMPS's "All pair coeffs are not set".
 
+use super::type_pairs::TypePairs;
+use super::{Pair, RunInputs};
 use crate::base::args::Args;
-use crate::styles::PAIR_STYLES;
+use crate::styles::fix::eos::EosModel;
+use crate::styles::fix::FixStyle;
+use gendpde_integrators::{ClassicDpd, DpdCoeff, DpdEnergyCoeff, DpdExt, DpdExtCoeff, Integration, MdpdCoeff, NoiseForm, PairForce, Physics, ShardlowCoeff, ShardlowDpd, TypeTable};
 use gendpde_io::{Command, PairCoeffs, ScriptError};
+use gendpde_potentials::Lucy;
+use std::any::Any;
 
 #[derive(Clone, Debug, PartialEq)]
 pub enum Kind {
@@ -62,64 +68,6 @@ pub struct Coeff {
     pub s_perp: f64,
 }
 
-/// One value per unordered pair of types 1..=n (LAMMPS's `setflag` with its
-/// coefficient arrays), `None` where no `pair_coeff` set it.
-#[derive(Clone, Debug, PartialEq)]
-pub struct TypePairs<T> {
-    n: usize,
-    set: Vec<Option<T>>,
-}
-
-impl<T> Default for TypePairs<T> {
-    fn default() -> Self {
-        Self { n: 0, set: Vec::new() }
-    }
-}
-
-impl<T: Clone> TypePairs<T> {
-    /// The number of types the table holds (0 before the first `pair_coeff`).
-    pub fn ntypes(&self) -> usize {
-        self.n
-    }
-
-    /// The value of types `i`, `j` (1-based, either order).
-    pub fn get(&self, i: usize, j: usize) -> Option<&T> {
-        let (i, j) = (i.min(j), i.max(j));
-        if i == 0 || j > self.n {
-            return None;
-        }
-        self.set[(i - 1) * self.n + j - 1].as_ref()
-    }
-
-    /// Every set value.
-    pub fn values(&self) -> impl Iterator<Item = &T> {
-        self.set.iter().flatten()
-    }
-
-    /// The table for `n` types, or the first pair (i <= j) left unset.
-    pub fn complete(&self, n: usize) -> Result<Vec<T>, (usize, usize)> {
-        let mut flat = Vec::with_capacity(n * n);
-        for i in 1..=n {
-            for j in 1..=n {
-                flat.push(self.get(i, j).cloned().ok_or((i.min(j), i.max(j)))?);
-            }
-        }
-        Ok(flat)
-    }
-
-    /// Applies `f` to every set value.
-    pub fn for_each_set(&mut self, f: impl FnMut(&mut T)) {
-        self.set.iter_mut().flatten().for_each(f);
-    }
-
-    fn put(&mut self, n: usize, i: usize, j: usize, v: T) {
-        if self.n != n {
-            *self = Self { n, set: vec![None; n * n] };
-        }
-        self.set[(i - 1) * n + j - 1] = Some(v);
-    }
-}
-
 impl Pairwise {
     /// The `Pair Coeffs` (`i a0 gamma`, LAMMPS's `write_data` default) or `PairIJ Coeffs`
     /// (`i j a0 gamma cutoff`) section of `write_data`: `pair dpd` only, as in LAMMPS
@@ -151,7 +99,7 @@ impl Pairwise {
 }
 
 /// A pairwise `pair_style` line (the words after the style name in `a`).
-pub fn parse_style(style: &str, a: &mut Args) -> Result<Pairwise, ScriptError> {
+pub fn parse(style: &str, a: &mut Args) -> Result<Pairwise, ScriptError> {
     let kind = match style {
         "dpd" => Kind::Dpd { temperature: a.non_negative("the temperature T")? },
         "dpd/ext" => Kind::DpdExt { temperature: a.non_negative("the temperature T")? },
@@ -175,7 +123,7 @@ pub fn parse_style(style: &str, a: &mut Args) -> Result<Pairwise, ScriptError> {
             }
             Kind::Mdpd { temperature: a.positive("the temperature T")? }
         }
-        other => return Err(a.err(format!("unknown pair style '{other}'; known: {PAIR_STYLES}"))),
+        other => return Err(a.err(format!("unknown pair style '{other}'; known: {}", super::known_styles()))),
     };
     let cutoff = a.positive("the cutoff")?;
     let seed = a.u64("the random seed")?;
@@ -259,4 +207,140 @@ pub fn parse_coeff(p: &mut Pairwise, cmd: &Command, ntypes: usize) -> Result<(),
         p.coeff.put(ntypes, i, j, c.clone());
     }
     Ok(())
+}
+
+/// `pair_style dpd|dpd/ext|dpd/tstat|dpd/ext/tstat|dpd/fdt|dpd/fdt/energy ...` (and
+/// `hybrid/overlay mdpd/rhosum mdpd ...` through [`super::hybrid`]).
+pub fn parse_style(name: &str, a: &mut Args) -> Result<Box<dyn Pair>, ScriptError> {
+    parse(name, a).map(|p| Box::new(p) as Box<dyn Pair>)
+}
+
+impl Pair for Pairwise {
+    fn name(&self) -> &str {
+        match self.kind {
+            Kind::Dpd { .. } => "dpd",
+            Kind::DpdExt { .. } => "dpd/ext",
+            Kind::DpdTstat { .. } => "dpd/tstat",
+            Kind::DpdExtTstat { .. } => "dpd/ext/tstat",
+            Kind::DpdFdt { .. } => "dpd/fdt",
+            Kind::DpdFdtEnergy => "dpd/fdt/energy",
+            Kind::Mdpd { .. } => "hybrid/overlay mdpd/rhosum mdpd",
+        }
+    }
+
+    fn coeff(&mut self, cmd: &Command, ntypes: usize) -> Result<(), ScriptError> {
+        parse_coeff(self, cmd, ntypes)
+    }
+
+    fn accepts(&self, fix: &FixStyle) -> bool {
+        matches!(fix, FixStyle::Nve | FixStyle::Nph { .. } | FixStyle::Mvv { .. } | FixStyle::DpdEnergy | FixStyle::Shardlow { .. } | FixStyle::Eos(_))
+    }
+
+    fn fixes(&self) -> &'static str {
+        "nve, nph, shardlow, eos/cv, mvv/dpd, dpd/energy"
+    }
+
+    fn keep_coefficients(&mut self, old: &dyn Pair) -> bool {
+        let Some(old) = old.as_any().downcast_ref::<Self>() else { return false };
+        if std::mem::discriminant(&self.kind) != std::mem::discriminant(&old.kind) || matches!(self.kind, Kind::Mdpd { .. }) {
+            return false;
+        }
+        self.coeff = old.coeff.clone();
+        let cutoff = self.cutoff;
+        self.coeff.for_each_set(|c| c.rc = cutoff);
+        true
+    }
+
+    fn data_section(&self, ntypes: usize, ij: bool) -> Result<Option<PairCoeffs>, String> {
+        Pairwise::data_section(self, ntypes, ij)
+    }
+
+    fn build(&self, run: &RunInputs) -> Result<Box<dyn Physics>, String> {
+        self.dynamics(run).map(|d| Box::new(d) as Box<dyn Physics>)
+    }
+
+    fn as_any(&self) -> &dyn Any {
+        self
+    }
+}
+
+impl Pairwise {
+    /// The dynamics of the style with its fixes (fix nve, nph, mvv/dpd, shardlow,
+    /// dpd/energy, eos/cv).
+    pub fn dynamics(&self, run: &RunInputs) -> Result<ClassicDpd, String> {
+        let ntypes = run.ntypes;
+        // LAMMPS's Pair::init and init_one: no mixing in these styles
+        let unset = |(i, j): (usize, usize), what: &str| format!("All {what}coeffs are not set: no pair_coeff for types {i} {j}");
+        let c = self.coeff.complete(ntypes).map_err(|ij| unset(ij, "pair "))?;
+        let shardlow = run.has(|s| matches!(s, FixStyle::Shardlow { .. }));
+        if run.has(|s| matches!(s, FixStyle::Shardlow { noise: NoiseForm::Harmonic { .. }, .. })) {
+            return Err("fix shardlow: 'noise' belongs to pair gendpde (dpd/fdt/energy's noise is already the harmonic form on theta)".into());
+        }
+        let nve = run.has(|s| *s == FixStyle::Nve);
+        let barostat = run.one("nph", |s| if let FixStyle::Nph { nph, .. } = s { Some((**nph).clone()) } else { None })?.map(|(_, b)| b);
+        let mvv = run.fixes.iter().find_map(|f| if let FixStyle::Mvv { lambda } = f.style { Some(lambda) } else { None });
+        let cv = run.fixes.iter().find_map(|f| match &f.style {
+            FixStyle::Eos(EosModel::Linear(e)) if !gendpde_potentials::Eos::density_dependent(e) && e.q == 0.0 => Some(e.cv),
+            _ => None,
+        });
+        if nve && barostat.is_some() {
+            return Err("fix nve and fix nph both integrate: keep one".into());
+        }
+        let integration = match (nve || barostat.is_some(), mvv) {
+            (true, None) => Integration::Nve,
+            (false, Some(lambda)) => Integration::Mvv { lambda },
+            (true, Some(_)) => return Err("fix mvv/dpd and fix nve (or nph) both integrate: keep one".into()),
+            (false, None) => return Err("no integrator: add fix nve or nph (or fix mvv/dpd for mdpd)".into()),
+        };
+        let energy = run.has(|s| *s == FixStyle::DpdEnergy);
+        fn table<T>(ntypes: usize, v: Vec<T>) -> Result<TypeTable<T>, String> {
+            TypeTable::new(ntypes, v).ok_or_else(|| "the box has no particle types".to_string())
+        }
+        let kb = run.kb;
+        let conservative = || table(ntypes, c.iter().map(|c| DpdCoeff::new(c.a, c.rc, 0.0, 0.0)).collect());
+        let sweep_of = |temperature: Option<f64>| {
+            let kappa = |k: f64| if temperature.is_some() { 0.0 } else { k };
+            let coeff = c.iter().map(|c| ShardlowCoeff::new(c.sigma, kappa(c.kappa), c.rc)).collect();
+            table(ntypes, coeff).map(|coeff| ShardlowDpd { coeff, temperature })
+        };
+        // dpd/ext and the thermostats (a0 = 0, gamma_perp = 0 and s = 1 for dpd/tstat)
+        let ext = |start: f64, stop: f64| {
+            let coeff = c.iter().map(|c| DpdExtCoeff { a0: c.a, rc: c.rc, gamma_par: c.gamma, gamma_perp: c.gamma_perp, s_par: c.s_par, s_perp: c.s_perp });
+            table(ntypes, coeff.collect()).map(|coeff| DpdExt { coeff, start, stop })
+        };
+        let (force, sweep) = match self.kind {
+            Kind::Dpd { temperature } => (PairForce::Dpd(table(ntypes, c.iter().map(|c| DpdCoeff::isothermal(c.a, c.rc, c.gamma, kb * temperature)).collect())?), None),
+            Kind::DpdExt { temperature } => (PairForce::DpdExt(ext(temperature, temperature)?), None),
+            Kind::DpdTstat { start, stop } | Kind::DpdExtTstat { start, stop } => (PairForce::DpdExt(ext(start, stop)?), None),
+            // velocity Verlet (pair_dpd_fdt.cpp without fix shardlow)
+            Kind::DpdFdt { temperature } if !shardlow => (PairForce::Dpd(table(ntypes, c.iter().map(|c| DpdCoeff::from_sigma(c.a, c.rc, c.sigma, kb * temperature)).collect())?), None),
+            Kind::DpdFdtEnergy if !shardlow => {
+                let coeff = c.iter().map(|c| DpdEnergyCoeff { a0: c.a, rc: c.rc, sigma: c.sigma, kappa: c.kappa });
+                (PairForce::DpdEnergy(table(ntypes, coeff.collect())?), None)
+            }
+            Kind::DpdFdt { temperature } => (PairForce::Dpd(conservative()?), Some(sweep_of(Some(temperature))?)),
+            Kind::DpdFdtEnergy => (PairForce::Dpd(conservative()?), Some(sweep_of(None)?)),
+            Kind::Mdpd { temperature } => {
+                if self.rhosum.ntypes() == 0 {
+                    return Err("pair mdpd needs 'pair_coeff * * mdpd/rhosum H'".into());
+                }
+                let h = self.rhosum.complete(ntypes).map_err(|ij| unset(ij, "pair mdpd/rhosum "))?;
+                let coeff = c.iter().zip(h).map(|(c, h)| MdpdCoeff::isothermal(c.a, c.b, c.rc, c.rd, c.gamma, kb * temperature, Lucy::new(h)));
+                (PairForce::Mdpd(table(ntypes, coeff.collect())?), None)
+            }
+        };
+        if shardlow && matches!(self.kind, Kind::Dpd { .. } | Kind::DpdExt { .. } | Kind::DpdTstat { .. } | Kind::DpdExtTstat { .. } | Kind::Mdpd { .. }) {
+            return Err("fix shardlow works with pair dpd/fdt and dpd/fdt/energy".into());
+        }
+        if energy && (shardlow || !matches!(self.kind, Kind::DpdFdtEnergy)) {
+            return Err("fix dpd/energy integrates pair dpd/fdt/energy without fix shardlow (with it the sweep moves u)".into());
+        }
+        if matches!(self.kind, Kind::DpdFdtEnergy) && cv.is_none() {
+            return Err("pair dpd/fdt/energy needs fix eos/cv".into());
+        }
+        if matches!(integration, Integration::Mvv { .. }) && !matches!(self.kind, Kind::Mdpd { .. }) {
+            return Err("fix mvv/dpd integrates pair mdpd".into());
+        }
+        Ok(ClassicDpd { force, tables: None, shardlow: sweep, integration, cv, energy, barostat, kb, seed: self.seed, settings: run.settings() })
+    }
 }

@@ -1,8 +1,13 @@
 //! `pair_style sdpd/taitwater/isothermal T MU [SEED]` with `pair_coeff I J RHO0 C0 H`
 //! (LAMMPS DPD-SMOOTH; the force law is in `gendpde_integrators::models::sdpd::taitwater`).
 
+use super::{Pair, RunInputs};
 use crate::base::args::Args;
+use crate::styles::fix::FixStyle;
+use gendpde_integrators::{Physics, SdpdTaitwater};
 use gendpde_io::{Command, ScriptError};
+use gendpde_potentials::{Lucy, Tait};
+use std::any::Any;
 
 /// Tait water of one type: reference density and sound speed.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -26,7 +31,7 @@ pub struct PairTaitwater {
 }
 
 /// The words after `pair_style sdpd/taitwater/isothermal`.
-pub fn parse_style(a: &mut Args) -> Result<PairTaitwater, ScriptError> {
+fn parse(a: &mut Args) -> Result<PairTaitwater, ScriptError> {
     let temperature = a.f64("the temperature")?;
     let viscosity = a.f64("the dynamic viscosity")?;
     if temperature <= 0.0 {
@@ -42,7 +47,7 @@ pub fn parse_style(a: &mut Args) -> Result<PairTaitwater, ScriptError> {
 
 /// A `pair_coeff I J RHO0 C0 H` line: as LAMMPS, only pairs with J >= I are set, and
 /// rho0 and c0 go to every type of the range I.
-pub fn parse_coeff(p: &mut PairTaitwater, cmd: &Command, ntypes: usize) -> Result<(), ScriptError> {
+fn parse_coeff(p: &mut PairTaitwater, cmd: &Command, ntypes: usize) -> Result<(), ScriptError> {
     let mut a = Args::new(cmd);
     let (ti, tj) = (a.types(ntypes)?, a.types(ntypes)?);
     let water = TaitCoeff { rho0: a.positive("the reference density rho0")?, c0: a.positive("the sound speed")? };
@@ -67,11 +72,6 @@ pub fn parse_coeff(p: &mut PairTaitwater, cmd: &Command, ntypes: usize) -> Resul
 }
 
 impl PairTaitwater {
-    /// The largest kernel support (0 before any pair_coeff).
-    pub fn cutoff(&self) -> f64 {
-        self.cut.iter().flatten().copied().fold(0.0, f64::max)
-    }
-
     /// Tait water per type and the kernel support per type pair; Err names the first
     /// type pair without coefficients.
     pub fn table(&self) -> Result<(Vec<TaitCoeff>, Vec<f64>), String> {
@@ -83,5 +83,50 @@ impl PairTaitwater {
         let cut = (0..n * n).map(|k| self.cut[k].ok_or_else(|| unset(k))).collect::<Result<Vec<_>, _>>()?;
         let water = (0..n).map(|i| self.water[i].ok_or_else(|| unset(i * n + i))).collect::<Result<Vec<_>, _>>()?;
         Ok((water, cut))
+    }
+}
+
+/// `pair_style sdpd/taitwater/isothermal ...`.
+pub fn parse_style(_name: &str, a: &mut Args) -> Result<Box<dyn Pair>, ScriptError> {
+    parse(a).map(|p| Box::new(p) as Box<dyn Pair>)
+}
+
+impl Pair for PairTaitwater {
+    fn name(&self) -> &str {
+        "sdpd/taitwater/isothermal"
+    }
+
+    fn coeff(&mut self, cmd: &Command, ntypes: usize) -> Result<(), ScriptError> {
+        parse_coeff(self, cmd, ntypes)
+    }
+
+    fn accepts(&self, fix: &FixStyle) -> bool {
+        *fix == FixStyle::Sph
+    }
+
+    fn fixes(&self) -> &'static str {
+        "sph"
+    }
+
+    /// LAMMPS's isothermal Tait-water SDPD, integrated by `fix sph`.
+    fn build(&self, run: &RunInputs) -> Result<Box<dyn Physics>, String> {
+        let (water, cut) = self.table()?;
+        if run.one("sph", |s| (*s == FixStyle::Sph).then_some(()))?.is_none() {
+            return Err("pair sdpd/taitwater/isothermal needs fix sph".into());
+        }
+        Ok(Box::new(SdpdTaitwater {
+            eos: water.iter().map(|w| Tait::new(w.rho0, w.c0)).collect(),
+            kernel: cut.iter().map(|&h| Lucy::new(h)).collect(),
+            ntypes: self.ntypes,
+            kbt: run.kb * self.temperature,
+            viscosity: self.viscosity,
+            seed: self.seed,
+            mvv2e: run.mvv2e,
+            settings: run.settings(),
+        }))
+    }
+
+    fn as_any(&self) -> &dyn Any {
+        self
     }
 }

@@ -4,9 +4,13 @@
 //! its pair_coeff, as in LAMMPS. `pair_style multi/lucy` ([`super::multi_lucy`]) reads
 //! its pressure-density tables through the same pair_coeff.
 
+use super::pairwise::Pairwise;
+use super::{Pair, RunInputs};
 use crate::base::args::Args;
-use gendpde_integrators::PairTables;
-use gendpde_io::ScriptError;
+use crate::styles::fix::FixStyle;
+use gendpde_integrators::{ClassicDpd, Integration, PairForce, PairTables, Physics};
+use gendpde_io::{Command, ScriptError};
+use std::any::Any;
 use gendpde_potentials::pair_table::{FileTable, PairTable, TableStyle};
 
 type Types = std::ops::RangeInclusive<usize>;
@@ -26,15 +30,9 @@ pub struct Tabulated {
     pub multi_lucy: bool,
 }
 
-impl Tabulated {
-    /// The largest table cutoff (0 before any pair_coeff).
-    pub fn cutoff(&self) -> f64 {
-        self.tables.as_ref().map_or(0.0, PairTables::cutoff)
-    }
-}
 
 /// The words after `pair_style table` (or after `table` in a hybrid line).
-pub fn parse_style(a: &mut Args) -> Result<Tabulated, ScriptError> {
+pub fn parse(a: &mut Args) -> Result<Tabulated, ScriptError> {
     let style = match a.word("the table style (lookup, linear or spline)")? {
         "lookup" => TableStyle::Lookup,
         "linear" => TableStyle::Linear,
@@ -105,4 +103,50 @@ pub fn tables_for_run(t: &Tabulated, partial: bool) -> Result<PairTables, String
         }
     }
     Ok(tables)
+}
+
+/// `pair_style table STYLE N`.
+pub fn parse_style(_name: &str, a: &mut Args) -> Result<Box<dyn Pair>, ScriptError> {
+    parse(a).map(|t| Box::new(t) as Box<dyn Pair>)
+}
+
+impl Pair for Tabulated {
+    fn name(&self) -> &str {
+        if self.multi_lucy { "multi/lucy" } else { "table" }
+    }
+
+    fn coeff(&mut self, cmd: &Command, ntypes: usize) -> Result<(), ScriptError> {
+        let mut a = Args::new(cmd);
+        let types = (a.types(ntypes)?, a.types(ntypes)?);
+        parse_coeff(self, &mut a, types, ntypes)
+    }
+
+    fn accepts(&self, fix: &FixStyle) -> bool {
+        matches!(fix, FixStyle::Nve | FixStyle::Eos(_))
+    }
+
+    fn fixes(&self) -> &'static str {
+        if self.multi_lucy { "nve" } else { "nve; overlay dpd/fdt for fix shardlow" }
+    }
+
+    /// `pair_style table` or `multi/lucy` alone, integrated by fix nve.
+    fn build(&self, run: &RunInputs) -> Result<Box<dyn Physics>, String> {
+        let tables = tables_for_run(self, false)?;
+        if !run.has(|s| *s == FixStyle::Nve) {
+            return Err("no integrator: add fix nve".into());
+        }
+        let (force, tables) = if self.multi_lucy { (PairForce::MultiLucy(tables), None) } else { (PairForce::Off, Some(tables)) };
+        let settings = run.settings();
+        Ok(Box::new(ClassicDpd { force, tables, shardlow: None, integration: Integration::Nve, cv: None, energy: false, barostat: None, kb: run.kb, seed: 1, settings }))
+    }
+
+    fn as_any(&self) -> &dyn Any {
+        self
+    }
+}
+
+/// A table overlaid on the pairwise style `p`, which sets the fixes it works with.
+pub fn overlaid(t: &Tabulated, p: &Pairwise, run: &RunInputs) -> Result<Box<dyn Physics>, String> {
+    let tables = tables_for_run(t, true)?;
+    Ok(Box::new(ClassicDpd { tables: Some(tables), ..p.dynamics(run)? }))
 }

@@ -69,6 +69,18 @@ impl DpdCoeff {
     pub fn new(a0: f64, rc: f64, gamma: f64, sigma: f64) -> Self {
         Self { a0, rc, gamma, sigma, inv_rc: 1.0 / rc }
     }
+
+    /// Friction `gamma` at k_B T = `kbt`, the noise from the fluctuation-dissipation
+    /// relation sigma^2 = 2 gamma k_B T (Espanol and Warren 1995; `pair dpd`).
+    pub fn isothermal(a0: f64, rc: f64, gamma: f64, kbt: f64) -> Self {
+        Self::new(a0, rc, gamma, (2.0 * kbt * gamma).sqrt())
+    }
+
+    /// Noise `sigma` at k_B T = `kbt`, the friction gamma = sigma^2 / (2 k_B T) (`pair
+    /// dpd/fdt` integrated by velocity Verlet, pair_dpd_fdt.cpp).
+    pub fn from_sigma(a0: f64, rc: f64, sigma: f64, kbt: f64) -> Self {
+        Self::new(a0, rc, sigma * sigma / (2.0 * kbt), sigma)
+    }
 }
 
 /// `pair dpd/ext` (and dpd/tstat, dpd/ext/tstat: a0 = 0) coefficients of one type pair:
@@ -123,6 +135,13 @@ pub struct MdpdCoeff {
     pub sigma: f64,
     /// The Lucy kernel of `mdpd/rhosum` (support h) this pair adds to rho.
     pub kernel: Lucy,
+}
+
+impl MdpdCoeff {
+    /// Friction `gamma` at k_B T = `kbt`, the noise sigma = sqrt(2 gamma k_B T).
+    pub fn isothermal(a: f64, b: f64, rc: f64, rd: f64, gamma: f64, kbt: f64, kernel: Lucy) -> Self {
+        Self { a, b, rc, rd, gamma, sigma: (2.0 * kbt * gamma).sqrt(), kernel }
+    }
 }
 
 /// The pair force computed in the force pass.
@@ -213,8 +232,7 @@ pub struct ClassicDpd {
 
 impl ClassicDpd {
     fn radius(&self) -> f64 {
-        let tables = self.tables.as_ref().map_or(0.0, PairTables::cutoff);
-        self.force.cutoff().max(self.shardlow.as_ref().map_or(0.0, ShardlowDpd::cutoff)).max(tables) + self.settings.skin
+        self.cutoff() + self.settings.skin
     }
 
     /// theta = u / C_V for owned particles (fix eos/cv), and 1/theta, which the sweep
@@ -639,8 +657,9 @@ impl Physics for ClassicDpd {
         }
     }
 
-    fn list_radius(&self) -> f64 {
-        self.radius()
+    fn cutoff(&self) -> f64 {
+        let tables = self.tables.as_ref().map_or(0.0, PairTables::cutoff);
+        self.force.cutoff().max(self.shardlow.as_ref().map_or(0.0, ShardlowDpd::cutoff)).max(tables)
     }
 
     fn setup(&self, sys: &mut System) -> Result<(), SetupError> {

@@ -184,6 +184,12 @@ impl<E: FixedEntropy + FixedDensity, W: Weight> Physics for GenDpde<E, W> {
         &self.settings
     }
 
+    /// The density cutoff, or the friction and heat cutoffs if larger.
+    fn cutoff(&self) -> f64 {
+        let dissipation = self.dissipation.as_ref().map_or(0.0, |d| d.rc_friction.max(d.rc_heat));
+        self.weight.cutoff().max(dissipation)
+    }
+
     fn list_radius(&self) -> f64 {
         let (density, sweep) = self.radii();
         density.unwrap_or(0.0).max(sweep.unwrap_or(0.0))

@@ -353,8 +353,8 @@ impl<E: FixedEntropy, W: Weight> Physics for Sdpd<E, W> {
         &self.settings
     }
 
-    fn list_radius(&self) -> f64 {
-        self.weight.cutoff() + self.settings.skin
+    fn cutoff(&self) -> f64 {
+        self.weight.cutoff()
     }
 
     fn setup(&self, sys: &mut System) -> Result<(), SetupError> {

@@ -49,7 +49,7 @@ pub struct SdpdTaitwater {
 
 impl SdpdTaitwater {
     fn radius(&self) -> f64 {
-        self.kernel.iter().map(Lucy::cutoff).fold(0.0, f64::max) + self.settings.skin
+        self.cutoff() + self.settings.skin
     }
 
     /// Forces, virials and drho/dt of the owned particles at the current
@@ -122,8 +122,8 @@ impl Physics for SdpdTaitwater {
         &self.settings
     }
 
-    fn list_radius(&self) -> f64 {
-        self.radius()
+    fn cutoff(&self) -> f64 {
+        self.kernel.iter().map(Lucy::cutoff).fold(0.0, f64::max)
     }
 
     /// As LAMMPS's set-up: the forces and drho/dt with the estimates equal to v.

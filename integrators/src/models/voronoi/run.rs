@@ -94,6 +94,11 @@ impl<E: CellEnergy> Physics for VoronoiFv<E> {
     }
 
     /// No neighbour lists: the grid only carries migration and periodic wrapping.
+    /// The cells interact through the tessellation, not within a cutoff.
+    fn cutoff(&self) -> f64 {
+        0.0
+    }
+
     fn list_radius(&self) -> f64 {
         0.0
     }
