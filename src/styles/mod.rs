@@ -5,6 +5,3 @@
 pub mod compute;
 pub mod fix;
 pub mod pair;
-
-/// The compute styles, as error messages list them.
-pub const COMPUTE_STYLES: &str = "dpd, tint, temp, com, ke/atom, pe/atom, reduce, rdf, chunk/atom, msd, edpd/temp/atom";

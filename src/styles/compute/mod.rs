@@ -13,7 +13,6 @@ use self::msd::Msd;
 use self::reduce::Reduce;
 use self::rdf::Rdf;
 use crate::base::args::Args;
-use crate::styles::COMPUTE_STYLES;
 use gendpde_engine::exact_sums;
 use gendpde_integrators::System;
 use gendpde_io::ScriptError;
@@ -98,46 +97,85 @@ impl Definition {
     }
 }
 
-/// The words of `compute ID GROUP STYLE args...`; `groups` are the group names by bit,
-/// `spacing` the lattice spacings (LAMMPS's default lattice has spacing 1), `system` and
-/// `max_tag` the particles so far (compute msd records their positions).
-/// `computes` are those defined so far (compute reduce reads them).
+/// What a compute style's parser reads besides its own words: the group names by bit,
+/// the lattice spacings (LAMMPS's default lattice has spacing 1), the particles so far
+/// (compute msd records their positions) and the computes defined so far (compute
+/// reduce reads them).
+pub struct ComputeContext<'a> {
+    pub id: String,
+    pub group: &'a str,
+    pub groups: &'a [String],
+    pub computes: &'a [Compute],
+    pub spacing: gendpde_engine::Vec3,
+    pub system: Option<&'a System>,
+    pub max_tag: u64,
+}
+
+impl ComputeContext<'_> {
+    fn mask(&self, a: &Args) -> Result<u32, ScriptError> {
+        crate::base::groups::mask(self.groups, self.group, a)
+    }
+
+    /// A global or per-atom value compute of style `style` (no more words).
+    fn value(&self, a: &mut Args, style: ComputeStyle) -> Result<Definition, ScriptError> {
+        a.done()?;
+        Ok(Definition::Value(Compute { id: self.id.clone(), style }))
+    }
+}
+
+/// Parses the words after `compute ID GROUP NAME`.
+type ParseCompute = fn(a: &mut Args, c: &ComputeContext) -> Result<Definition, ScriptError>;
+
+/// Every compute style, with its parser.
+pub const COMPUTE_STYLES: &[(&str, ParseCompute)] = &[
+    ("dpd", |a, c| match c.group {
+        "all" => c.value(a, ComputeStyle::Dpd),
+        group => Err(a.err(format!("compute dpd on group '{group}': only group all is supported"))),
+    }),
+    ("tint", |a, c| c.value(a, ComputeStyle::Tint { mask: c.mask(a)? })),
+    ("temp", |a, c| c.value(a, ComputeStyle::Temp { mask: c.mask(a)?, extra_dof: 3.0 })),
+    ("com", |a, c| c.value(a, ComputeStyle::Com { mask: c.mask(a)? })),
+    ("ke/atom", |a, c| c.value(a, ComputeStyle::KeAtom { mask: c.mask(a)? })),
+    ("pe/atom", |a, c| {
+        // LAMMPS's keywords select energy terms; gendpde's pair (or internal) energy is all of pe
+        while let Some(k) = a.peek() {
+            match k {
+                "pair" | "bond" | "angle" | "dihedral" | "improper" | "kspace" | "fix" => a.word("a keyword")?,
+                k => return Err(a.err(format!("unknown keyword '{k}'; known: pair, bond, angle, dihedral, improper, kspace, fix"))),
+            };
+        }
+        c.value(a, ComputeStyle::PeAtom { mask: c.mask(a)? })
+    }),
+    ("reduce", |a, c| {
+        let per_atom = |cid: &str| c.computes.iter().find(|k| k.id == cid).map(Compute::is_per_atom);
+        Ok(Definition::Reduce(Reduce::parse(c.id.clone(), c.mask(a)?, a, per_atom)?))
+    }),
+    ("rdf", |a, c| match c.group {
+        "all" => Ok(Definition::Rdf(Rdf::parse(c.id.clone(), a)?)),
+        group => Err(a.err(format!("compute rdf on group {group}: only group all is supported"))),
+    }),
+    ("chunk/atom", |a, c| Ok(Definition::Chunk(ChunkAtom::parse(c.id.clone(), c.mask(a)?, a, c.spacing)?))),
+    ("msd", |a, c| {
+        let sys = c.system.ok_or_else(|| a.err("compute msd before the box exists (create_box, read_data or read_restart)"))?;
+        Ok(Definition::Msd(Msd::parse(c.id.clone(), c.mask(a)?, a, sys, c.max_tag)?))
+    }),
+    ("edpd/temp/atom", |a, c| c.value(a, ComputeStyle::EdpdTempAtom { mask: c.mask(a)? })),
+];
+
+/// `compute ID GROUP STYLE args...` with what the parsers read besides the words
+/// ([`ComputeContext`], whose `id` and `group` are read here).
 pub fn parse(a: &mut Args, groups: &[String], computes: &[Compute], spacing: gendpde_engine::Vec3, system: Option<&System>, max_tag: u64) -> Result<Definition, ScriptError> {
     let id = a.word("a compute ID")?.to_string();
     let group = a.word("a group")?;
-    let style = match a.word("a compute style")? {
-        "dpd" if group == "all" => ComputeStyle::Dpd,
-        "dpd" => return Err(a.err(format!("compute dpd on group '{group}': only group all is supported"))),
-        "tint" => ComputeStyle::Tint { mask: crate::base::groups::mask(groups, group, a)? },
-        "temp" => ComputeStyle::Temp { mask: crate::base::groups::mask(groups, group, a)?, extra_dof: 3.0 },
-        "com" => ComputeStyle::Com { mask: crate::base::groups::mask(groups, group, a)? },
-        "ke/atom" => ComputeStyle::KeAtom { mask: crate::base::groups::mask(groups, group, a)? },
-        "edpd/temp/atom" => ComputeStyle::EdpdTempAtom { mask: crate::base::groups::mask(groups, group, a)? },
-        "pe/atom" => {
-            // LAMMPS's keywords select energy terms; gendpde's pair (or internal) energy is all of pe
-            while let Some(k) = a.peek() {
-                match k {
-                    "pair" | "bond" | "angle" | "dihedral" | "improper" | "kspace" | "fix" => a.word("a keyword")?,
-                    k => return Err(a.err(format!("unknown keyword '{k}'; known: pair, bond, angle, dihedral, improper, kspace, fix"))),
-                };
-            }
-            ComputeStyle::PeAtom { mask: crate::base::groups::mask(groups, group, a)? }
+    let name = a.word("a compute style")?;
+    let c = ComputeContext { id, group, groups, computes, spacing, system, max_tag };
+    match COMPUTE_STYLES.iter().find(|(n, _)| *n == name) {
+        Some((_, parse)) => parse(a, &c),
+        None => {
+            let known: Vec<&str> = COMPUTE_STYLES.iter().map(|(n, _)| *n).collect();
+            Err(a.err(format!("unknown compute style '{name}'; known: {}", known.join(", "))))
         }
-        "rdf" if group == "all" => return Ok(Definition::Rdf(Rdf::parse(id, a)?)),
-        "reduce" => {
-            let per_atom = |cid: &str| computes.iter().find(|c| c.id == cid).map(Compute::is_per_atom);
-            return Ok(Definition::Reduce(Reduce::parse(id, crate::base::groups::mask(groups, group, a)?, a, per_atom)?));
-        }
-        "rdf" => return Err(a.err(format!("compute rdf on group {group}: only group all is supported"))),
-        "msd" => {
-            let sys = system.ok_or_else(|| a.err("compute msd before the box exists (create_box, read_data or read_restart)"))?;
-            return Ok(Definition::Msd(Msd::parse(id, crate::base::groups::mask(groups, group, a)?, a, sys, max_tag)?));
-        }
-        "chunk/atom" => return Ok(Definition::Chunk(ChunkAtom::parse(id, crate::base::groups::mask(groups, group, a)?, a, spacing)?)),
-        other => return Err(a.err(format!("unknown compute style '{other}'; known: {COMPUTE_STYLES}"))),
-    };
-    a.done()?;
-    Ok(Definition::Value(Compute { id, style }))
+    }
 }
 
 impl Compute {

@@ -8,7 +8,6 @@
 //! `styles::pair::sdpd_generic`; see docs/ARCHITECTURE.md).
 
 use crate::base::args::Args;
-use crate::styles::fix::{Fix, FixStyle};
 use gendpde_io::ScriptError;
 use gendpde_potentials::eos::Lth;
 use gendpde_potentials::{Eos, LennardJones, LinearTheta, TableError, TableErrors, TableGrid, Tabulated};
@@ -50,15 +49,6 @@ macro_rules! each_eos {
 }
 pub(crate) use each_eos;
 
-/// The EOS of the one `fix eos/...` among `fixes`.
-pub fn one_eos(fixes: &[Fix]) -> Result<EosModel, String> {
-    let mut models = fixes.iter().filter_map(|f| if let FixStyle::Eos(e) = &f.style { Some(e) } else { None });
-    match (models.next(), models.next()) {
-        (Some(e), None) => Ok(e.clone()),
-        (None, _) => Err("no EOS fix is defined (fix ID all eos/...)".into()),
-        (Some(_), Some(_)) => Err("more than one EOS fix is defined".into()),
-    }
-}
 
 impl EosModel {
     /// Largest mean number density the model admits, if bounded.

@@ -209,6 +209,16 @@ fn heat_reservoir(_: &str, a: &mut Args, c: &FixContext) -> Result<FixStyle, Scr
     Ok(FixStyle::Reservoir { temperature, kappa, seed, heat: heat_keyword(a)?, mask: c.mask })
 }
 
+/// The EOS of the one `fix eos/...` among `fixes`.
+pub fn one_eos(fixes: &[Fix]) -> Result<EosModel, String> {
+    let mut models = fixes.iter().filter_map(|f| if let FixStyle::Eos(e) = &f.style { Some(e) } else { None });
+    match (models.next(), models.next()) {
+        (Some(e), None) => Ok(e.clone()),
+        (None, _) => Err("no EOS fix is defined (fix ID all eos/...)".into()),
+        (Some(_), Some(_)) => Err("more than one EOS fix is defined".into()),
+    }
+}
+
 fn heat_keyword(a: &mut Args) -> Result<Option<HeatModel>, ScriptError> {
     match a.peek() {
         None => Ok(None),

@@ -2,6 +2,7 @@
 //! CUTOFF_T [power c1 c2 c3 c4] [kappa c1 c2 c3 c4]` (LAMMPS DPD-MESO's eDPD; the force
 //! law is in `gendpde_integrators::models::edpd`). Coefficients are kept per type pair.
 
+use super::type_pairs::TypePairs;
 use super::{Pair, RunInputs};
 use crate::base::args::Args;
 use crate::styles::fix::{FixStyle, Source};
@@ -14,10 +15,8 @@ pub struct PairEdpd {
     /// The global cutoff of `pair_style` (each pair_coeff gives its own).
     pub cutoff: f64,
     pub seed: u64,
-    /// The number of particle types (set by the first pair_coeff).
-    pub ntypes: usize,
-    /// Coefficients by type pair (`ntypes * ntypes`, symmetric), None while unset.
-    pub coeff: Vec<Option<EdpdCoeff>>,
+    /// Coefficients by type pair, None while unset.
+    pub coeff: TypePairs<EdpdCoeff>,
 }
 
 /// The words after `pair_style edpd`.
@@ -28,7 +27,7 @@ fn parse(a: &mut Args) -> Result<PairEdpd, ScriptError> {
         return Err(a.err("the random seed must be positive"));
     }
     a.done()?;
-    Ok(PairEdpd { cutoff, seed, ntypes: 0, coeff: Vec::new() })
+    Ok(PairEdpd { cutoff, seed, coeff: TypePairs::default() })
 }
 
 /// A `pair_coeff` line of pair edpd.
@@ -58,13 +57,9 @@ fn parse_coeff(p: &mut PairEdpd, cmd: &Command, ntypes: usize) -> Result<(), Scr
             _ => return Err(a.err(format!("unknown keyword '{k}'; known: power, kappa"))),
         }
     }
-    if p.ntypes != ntypes {
-        (p.ntypes, p.coeff) = (ntypes, vec![None; ntypes * ntypes]);
-    }
     for i in ti {
         for j in tj.clone() {
-            p.coeff[(i - 1) * ntypes + j - 1] = Some(c.clone());
-            p.coeff[(j - 1) * ntypes + i - 1] = Some(c.clone());
+            p.coeff.put(ntypes, i.min(j), i.max(j), c.clone());
         }
     }
     Ok(())
@@ -73,13 +68,10 @@ fn parse_coeff(p: &mut PairEdpd, cmd: &Command, ntypes: usize) -> Result<(), Scr
 impl PairEdpd {
     /// The coefficients of every type pair; Err names the first pair without any.
     pub fn table(&self) -> Result<Vec<EdpdCoeff>, String> {
-        if self.ntypes == 0 {
+        if self.coeff.ntypes() == 0 {
             return Err("pair edpd has no coefficients (pair_coeff)".into());
         }
-        let ntypes = self.ntypes;
-        (0..ntypes * ntypes)
-            .map(|k| self.coeff.get(k).cloned().flatten().ok_or_else(|| format!("pair edpd: no coefficients for types {} {} (pair_coeff)", k / ntypes + 1, k % ntypes + 1)))
-            .collect()
+        self.coeff.complete(self.coeff.ntypes()).map_err(|(i, j)| format!("pair edpd: no coefficients for types {i} {j} (pair_coeff)"))
     }
 }
 
@@ -107,8 +99,9 @@ impl Pair for PairEdpd {
 
     fn keep_coefficients(&mut self, old: &dyn Pair) -> bool {
         let Some(old) = old.as_any().downcast_ref::<Self>() else { return false };
-        (self.ntypes, self.coeff) = (old.ntypes, old.coeff.clone());
-        self.coeff.iter_mut().flatten().for_each(|c| c.rc = self.cutoff);
+        self.coeff = old.coeff.clone();
+        let cutoff = self.cutoff;
+        self.coeff.for_each_set(|c| c.rc = cutoff);
         true
     }
 
@@ -129,7 +122,7 @@ impl Pair for PairEdpd {
         });
         let sources = sources.collect();
         let (_, lambda) = lambda.ok_or("pair edpd integrates with fix mvv/edpd")?;
-        Ok(Box::new(Edpd { coeff, ntypes: self.ntypes, seed: self.seed, kb: run.kb, lambda, sources, settings: run.settings() }))
+        Ok(Box::new(Edpd { coeff, ntypes: self.coeff.ntypes(), seed: self.seed, kb: run.kb, lambda, sources, settings: run.settings() }))
     }
 
     fn as_any(&self) -> &dyn Any {

@@ -4,7 +4,8 @@
 
 use super::{Pair, RunInputs};
 use crate::base::args::Args;
-use crate::styles::fix::eos::{each_eos, one_eos, EosModel};
+use crate::styles::fix::eos::{each_eos, EosModel};
+use crate::styles::fix::one_eos;
 use crate::styles::fix::FixStyle;
 use gendpde_integrators::{FixedEntropy, Physics, Sdpd, SdpdParams, Settings, Species};
 use gendpde_io::{Command, ScriptError};

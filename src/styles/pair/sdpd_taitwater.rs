@@ -1,6 +1,7 @@
 //! `pair_style sdpd/taitwater/isothermal T MU [SEED]` with `pair_coeff I J RHO0 C0 H`
 //! (LAMMPS DPD-SMOOTH; the force law is in `gendpde_integrators::models::sdpd::taitwater`).
 
+use super::type_pairs::TypePairs;
 use super::{Pair, RunInputs};
 use crate::base::args::Args;
 use crate::styles::fix::FixStyle;
@@ -22,12 +23,11 @@ pub struct PairTaitwater {
     pub viscosity: f64,
     /// The random seed (0 when omitted).
     pub seed: u64,
-    /// The number of particle types (set by the first pair_coeff).
-    pub ntypes: usize,
-    /// rho0 and c0 per type, from the last pair_coeff whose I range held the type.
+    /// rho0 and c0 per type (index type - 1), from the last pair_coeff whose I range
+    /// held the type.
     pub water: Vec<Option<TaitCoeff>>,
-    /// The kernel support h per type pair (`ntypes * ntypes`, symmetric), None while unset.
-    pub cut: Vec<Option<f64>>,
+    /// The kernel support h per type pair, None while unset.
+    pub cut: TypePairs<f64>,
 }
 
 /// The words after `pair_style sdpd/taitwater/isothermal`.
@@ -42,7 +42,7 @@ fn parse(a: &mut Args) -> Result<PairTaitwater, ScriptError> {
     }
     let seed = if a.remaining() > 0 { a.u64("the random seed")? } else { 0 };
     a.done()?;
-    Ok(PairTaitwater { temperature, viscosity, seed, ntypes: 0, water: Vec::new(), cut: Vec::new() })
+    Ok(PairTaitwater { temperature, viscosity, seed, water: Vec::new(), cut: TypePairs::default() })
 }
 
 /// A `pair_coeff I J RHO0 C0 H` line: as LAMMPS, only pairs with J >= I are set, and
@@ -53,15 +53,14 @@ fn parse_coeff(p: &mut PairTaitwater, cmd: &Command, ntypes: usize) -> Result<()
     let water = TaitCoeff { rho0: a.positive("the reference density rho0")?, c0: a.positive("the sound speed")? };
     let h = a.positive("the kernel cutoff h")?;
     a.done()?;
-    if p.ntypes != ntypes {
-        (p.ntypes, p.water, p.cut) = (ntypes, vec![None; ntypes], vec![None; ntypes * ntypes]);
+    if p.cut.ntypes() != ntypes {
+        (p.water, p.cut) = (vec![None; ntypes], TypePairs::default());
     }
     let mut count = 0;
     for i in ti {
         p.water[i - 1] = Some(water);
         for j in tj.clone().filter(|&j| j >= i) {
-            p.cut[(i - 1) * ntypes + j - 1] = Some(h);
-            p.cut[(j - 1) * ntypes + i - 1] = Some(h);
+            p.cut.put(ntypes, i, j, h);
             count += 1;
         }
     }
@@ -75,12 +74,12 @@ impl PairTaitwater {
     /// Tait water per type and the kernel support per type pair; Err names the first
     /// type pair without coefficients.
     pub fn table(&self) -> Result<(Vec<TaitCoeff>, Vec<f64>), String> {
-        let n = self.ntypes;
+        let n = self.cut.ntypes();
         let unset = |k: usize| format!("Not all pair sdpd/taitwater/isothermal coeffs are set: no pair_coeff for types {} {}", k / n + 1, k % n + 1);
         if n == 0 {
             return Err("pair sdpd/taitwater/isothermal has no coefficients (pair_coeff)".into());
         }
-        let cut = (0..n * n).map(|k| self.cut[k].ok_or_else(|| unset(k))).collect::<Result<Vec<_>, _>>()?;
+        let cut = self.cut.complete(n).map_err(|(i, j)| unset((i - 1) * n + j - 1))?;
         let water = (0..n).map(|i| self.water[i].ok_or_else(|| unset(i * n + i))).collect::<Result<Vec<_>, _>>()?;
         Ok((water, cut))
     }
@@ -117,7 +116,7 @@ impl Pair for PairTaitwater {
         Ok(Box::new(SdpdTaitwater {
             eos: water.iter().map(|w| Tait::new(w.rho0, w.c0)).collect(),
             kernel: cut.iter().map(|&h| Lucy::new(h)).collect(),
-            ntypes: self.ntypes,
+            ntypes: self.cut.ntypes(),
             kbt: run.kb * self.temperature,
             viscosity: self.viscosity,
             seed: self.seed,
