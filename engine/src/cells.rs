@@ -1,6 +1,6 @@
 //! The global cell grid: cells of side >= (cutoff + skin) / k, so that a pair spans at
 //! most k cells per dimension (the grid's `reach`), with a count per dimension that is a
-//! multiple of k + 1, so that the block-colour ownership of ARCHITECTURE.md (8 colours
+//! multiple of k + 1, so that the block-colour ownership of docs/models/sweep.md (8 colours
 //! for k = 1) is well defined.
 //!
 //! A pair of particles in cells A and B (at most k apart per dimension, periodic) is

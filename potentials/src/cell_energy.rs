@@ -49,7 +49,7 @@ pub trait CellEnergy: Send + Sync {
     fn entropy(&self, m: f64, v: f64, t: f64) -> f64;
 }
 
-/// Eq 162's constant c (water, D = 3, with the printed h, which is h-bar; see docs/DESIGN.md).
+/// Eq 162's constant c (water, D = 3, with the printed h, which is h-bar; see docs/models/voronoi.md).
 pub const WATER_C: f64 = 4.836e-5;
 
 fn domain(m: f64, s: f64, v: f64, n_max: f64) -> Result<(f64, f64), CellStateError> {

@@ -88,7 +88,7 @@ parameter changed at a time (skewness errors treat the frames as independent):
 The deviation does not shrink with the time step, so it is not a discretisation error of
 the integrator; it shrinks when the heat conduction outweighs the friction (gamma / 10 or
 kappa x 10). It comes from eq 76's momentum noise, whose stationary law is not eq 88 (the
-heat laws, original and Fourier, both have eq 88 as their stationary law: docs/DESIGN.md,
+heat laws, original and Fourier, both have eq 88 as their stationary law: docs/models/gendpde.md,
 "Choices where the papers are silent or wrong"), so the shape moves with gamma / kappa.
 The paper's figures, at C_V = 60 and on a linear scale, cannot show a skewness difference
 of 0.09. `fix shardlow ... noise harmonic T0` offers the form that reproduces eq 91 (next
@@ -128,7 +128,7 @@ def noise_forms_section(d, rows):
 arithmetic`, the default: constant gamma_ij, sigma_ij^2 = k_B (theta_i + theta_j) gamma_ij)
 and the classic DPDE form (`noise harmonic T0`: constant sigma_ij^2 = 2 k_B gamma omega^2 T0,
 gamma_ij = sigma_ij^2 / (2 k_B Theta_ij), 1/Theta_ij = (1/tau_i + 1/tau_j)/2). A Fokker-Planck
-argument along the line one pair update moves on (docs/DESIGN.md, "Choices where the
+argument along the line one pair update moves on (docs/models/gendpde.md, "Choices where the
 papers are silent or wrong") shows that only the harmonic form has eq 88 as its stationary
 law, for any EOS and unequal masses; eq 76 misses it by k_B/(2 C_V) at equal temperatures,
 which vanishes in the isothermal limit.
@@ -721,7 +721,7 @@ continuum limit (pair correlation g = 1, d = n), a kernel average: integrating b
 sum_nu omega_(mu nu) f_nu/d^2 -> grad f times W^(k) = int W(r) e^(ik.r) d^3r. The viscous
 and conduction rates apply two such gradients (W^2); sound applies one to a pressure
 that follows the kernel-averaged density (W^2 on w^2, so W^ on w). The column "operator on the fluid" is
-exact instead: the linearised viscous step of integrators/src/sdpd.rs applied to
+exact instead: the linearised viscous step of integrators/src/models/sdpd/generic.rs applied to
 v_x = sin(k z) on each seed's relaxed configuration (driver's `discrete_factors`), over
 eta k^2/rho; the same for conduction gives the kappa column ("kappa/(n c_p) x operator").
 The last c_s column is the EOS at the fluid's mean kernel density d (a uniform compression

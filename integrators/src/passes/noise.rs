@@ -5,7 +5,7 @@
 //! sigma_ij^2 = k_B (theta_i + theta_j) gamma_ij. Harmonic (the classic DPDE form):
 //! sigma_ij^2 = 2 k_B gamma T0 omega^2 constant, gamma_ij = sigma_ij^2 / (2 k_B Theta_ij),
 //! 1/Theta_ij = (1/tau_i + 1/tau_j)/2. Only the harmonic form has eq 88 as the stationary
-//! law of the pair update for any EOS (docs/DESIGN.md, "Choices where the papers are
+//! law of the pair update for any EOS (docs/models/gendpde.md, "Choices where the papers are
 //! silent or wrong").
 
 use crate::passes::heat::Temps;

@@ -3,7 +3,7 @@
 //!
 //! Between colours the ghosts written in the colour return their values to their
 //! owners, and the particles the colour touched forward their new values to their ghosts
-//! (ARCHITECTURE.md).
+//! (docs/models/sweep.md).
 //!
 //! theta -> 0: a pair update that would leave a particle temperature non-positive (or
 //! non-finite) is undone and redone as two half steps whose noises split the step's

@@ -3,7 +3,7 @@
 //! capacity C_V (eq 22) and the dressed temperature tau (eqs 19, 23).
 //!
 //! A new EOS is one file in this folder implementing [`Eos`], plus one registration in
-//! the app's style table (see docs/DESIGN.md).
+//! the app's style table (see docs/ARCHITECTURE.md, "What a new X touches").
 
 mod linear;
 mod lj;

@@ -1,5 +1,5 @@
-//! Thermal SDPD: the GENERIC SPH model of Serrano and Espanol (Sec VII; docs/DESIGN.md
-//! "Thermal SDPD"). Particles of constant mass with volume 1/d_mu from the kernel density
+//! Thermal SDPD: the GENERIC SPH model of Serrano and Espanol (Sec VII; docs/models/sdpd.md).
+//! Particles of constant mass with volume 1/d_mu from the kernel density
 //! (eqs 92-93; the density pass of GenDPDE, W = w/[w], plus the self term W(0)) or the
 //! normalised volume of eq 97;
 //! the reversible part is eq 96 (GenDPDE's many-body force at fixed entropy) or eq 99,
@@ -7,7 +7,7 @@
 //! and bulk viscosity, heat conduction) and the noise of eqs 76-80 with k_B a parameter.
 //!
 //! The internal energy u is the state variable. In energy form the irreversible step is
-//! (derivation in docs/DESIGN.md), with L_mu = sum_nu Omega_{nu mu} v_nu^T
+//! (derivation in docs/models/sdpd.md), with L_mu = sum_nu Omega_{nu mu} v_nu^T
 //! = d_mu^-2 sum_nu omega_{mu nu} (v_nu - v_mu)^T and omega_{mu nu} = W'(r) e_{mu nu}:
 //!
 //! dsigma_mu = -[2 eta/V (L_mu)^S0 + zeta/V tr L_mu 1] dt + dsigma~_mu   (eqs 60, 77-78)

@@ -5,7 +5,7 @@
 //! Eq 88's B is short of a factor sqrt 2: eq 10 applied to eqs 85-86 with the printed B
 //! gives the friction gamma/(2 Vbar) and heating gamma/(4 Vbar), half of eq 89; with
 //! B^2 = 4 k_B gamma T_mu T_nu/((T_mu + T_nu) Vbar) Omega Omega every term of eqs 89-90,
-//! the k_B ones included, follows from eq 10 (derivation in docs/DESIGN.md), and the
+//! the k_B ones included, follows from eq 10 (derivation in docs/models/voronoi.md), and the
 //! paper's m is 2/m = 1/M_mu + 1/M_nu.
 
 use super::finite_volume::{Frame, Rates};

@@ -3,7 +3,7 @@
 //! flow through the faces.
 //!
 //! - reversible part: eq 75 (the finite-volume equations 46 plus eq 74's Gibbs-Duhem term);
-//! - irreversible part: eq 82 with eq 60, 83 (sign corrected, docs/DESIGN.md), 84;
+//! - irreversible part: eq 82 with eq 60, 83 (sign corrected, docs/models/voronoi.md), 84;
 //! - noise: eqs 76-80.
 //!
 //! Divergences are written in flux form, sum_nu Omega_mu_nu . (X_nu + X_mu), and gradients

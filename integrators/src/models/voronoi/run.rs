@@ -3,7 +3,7 @@
 //! the field-table row `entropy` holds S, `u` the cell energy E(M, S, V), `theta` T,
 //! `volume` the cell volume (dump `vol`) and `virial` p dV/d epsilon (its trace 3 p V),
 //! so thermo's pe + ke is the model's energy (eq 64) and press its pressure. One rank
-//! only (docs/DESIGN.md "Voronoi fluid particles", plan for ranks).
+//! only (docs/models/voronoi.md, plan for ranks).
 
 use super::finite_volume::{same_bits, Cells, FiniteVolume, Frame, ModelError};
 use crate::error::StepError;

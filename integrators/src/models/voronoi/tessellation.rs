@@ -3,7 +3,7 @@
 //! distance R between the generators and the centroid offset c (eqs 22, 127, 128).
 //!
 //! Built by the `meshless_voronoi` crate (exact predicates on degenerate input; the measured
-//! choice is in docs/DESIGN.md "Voronoi cells"). Each face is kept once, so a pair term
+//! choice is in docs/models/voronoi.md). Each face is kept once, so a pair term
 //! added to one cell and subtracted from the other conserves exactly.
 
 use glam::DVec3;
