@@ -13,7 +13,7 @@
 //! step and per end-of-step frame (the tessellation and the cell states; the predictor's
 //! frame costs the same, so the tessellation's share is about 2 frame_s / step_s).
 
-use gendpde_integrators::models::voronoi::{Cells, CellDissipation, FiniteVolume, Frame, Tessellation, CellTransport};
+use gendpde_integrators::models::voronoi::{Cells, CellDissipation, FiniteVolume, CellFrame, Tessellation, CellTransport};
 use gendpde_potentials::cell_energy::{vdw_entropy, WATER_C};
 use gendpde_potentials::VdwCell;
 
@@ -67,14 +67,14 @@ fn main() {
         for (name, dissipation) in [("fv", CellDissipation::Hydrodynamic), ("dpd", CellDissipation::Dpd { gamma: 1.0 })] {
             let model = FiniteVolume { energy, transport, dissipation, seed: 4928 };
             let mut cells = start.clone();
-            let mut frame = Frame::new(&cells, &energy, lo, len).unwrap_or_else(|e| panic!("{e}"));
+            let mut frame = CellFrame::new(&cells, &energy, lo, len).unwrap_or_else(|e| panic!("{e}"));
             let steps = (60_000 / cells.len()).clamp(2, 50) as u64;
             let (mut total, mut end) = (0.0, 0.0);
             for step in 0..steps {
                 let t0 = cpu();
                 model.step(&mut cells, &frame, lo, len, dt, step).unwrap_or_else(|e| panic!("{e}"));
                 let t1 = cpu();
-                frame = Frame::new(&cells, &energy, lo, len).unwrap_or_else(|e| panic!("{e}"));
+                frame = CellFrame::new(&cells, &energy, lo, len).unwrap_or_else(|e| panic!("{e}"));
                 let t2 = cpu();
                 (total, end) = (total + t2 - t0, end + t2 - t1);
             }

@@ -17,7 +17,7 @@
 //! Where the printed tables differ from these equations (tests/lth.rs checks every entry):
 //! - C_V0*: Tables 1 and 9 print Cbar_V/(N k_B) = C~_V0 m/k_B (eq 111, 12.51 and 8.56,
 //!   [`LthParams::cv_macro`]), not C_V of eq 108 (11.008 and 7.063). Their kappa* values
-//!   also follow from eq 113 with that C_V ([`Dissipation::kappa_macro`]): with eq 108,
+//!   also follow from eq 113 with that C_V ([`LthDissipation::kappa_macro`]): with eq 108,
 //!   kappa* = 0.0079638, 0.0025042, 0.00072502 (liquid) and 0.034838 (supercritical), printed
 //!   0.0079, 0.0025, 0.00072, 0.034; with Cbar_V/N, 0.0079608 (printed 0.0079, which
 //!   rounding would make 0.0080), 0.0025026, 0.00072429, 0.034213.
@@ -113,7 +113,7 @@ pub struct Scales {
 
 /// Friction and heat conductivity for one cutoff (eqs 112-113, reduced).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Dissipation {
+pub struct LthDissipation {
     pub rcut: f64,
     /// gamma*, the larger root of eq 112 (NaN if eq 112 has no real root).
     pub gamma: f64,
@@ -154,7 +154,7 @@ pub struct LthParams {
     /// Thermal conductivity lambda*.
     pub lambda: f64,
     /// gamma*, kappa* for each cutoff of the reference.
-    pub dissipation: Vec<Dissipation>,
+    pub dissipation: Vec<LthDissipation>,
 }
 
 impl LthParams {
@@ -191,7 +191,7 @@ impl LthParams {
                     let heat = 45.0 * cv * t / (2.0 * PI * gamma * rc.powi(3));
                     (lambda - heat) * 315.0 * t * t / (2.0 * PI * rc.powi(5) * c * c)
                 };
-                Dissipation { rcut: rc, gamma, kappa: kappa(cv), kappa_macro: kappa(cv_macro) }
+                LthDissipation { rcut: rc, gamma, kappa: kappa(cv), kappa_macro: kappa(cv_macro) }
             })
             .collect();
         Self {

@@ -50,12 +50,12 @@ pub enum FixStyle {
     /// and v with the velocity estimate v + dt f/m, and of the density.
     Sph,
     /// `fix ID GROUP edpd/source sphere|cuboid|region ... VALUE` (pair edpd).
-    EdpdSource { shape: Source, value: f64, mask: u32 },
+    EdpdSource { shape: SourceSpec, value: f64, mask: u32 },
 }
 
 /// Where `fix edpd/source` heats.
 #[derive(Clone, Debug, PartialEq)]
-pub enum Source {
+pub enum SourceSpec {
     /// `sphere CX CY CZ RADIUS`.
     Sphere { centre: [f64; 3], radius: f64 },
     /// `cuboid CX CY CZ LX LY LZ`.
@@ -235,11 +235,11 @@ fn heat_keyword(a: &mut Args) -> Result<Option<HeatModel>, ScriptError> {
 fn edpd_source(a: &mut Args, mask: u32, regions: &HashMap<String, Region>) -> Result<FixStyle, ScriptError> {
     let vec3 = |a: &mut Args, what: &str| -> Result<[f64; 3], ScriptError> { Ok([a.f64(what)?, a.f64(what)?, a.f64(what)?]) };
     let shape = match a.word("sphere, cuboid or region")? {
-        "sphere" => Source::Sphere { centre: vec3(a, "the centre (3 numbers)")?, radius: a.f64("the radius")? },
-        "cuboid" => Source::Cuboid { centre: vec3(a, "the centre (3 numbers)")?, edges: vec3(a, "the edge lengths (3 numbers)")? },
+        "sphere" => SourceSpec::Sphere { centre: vec3(a, "the centre (3 numbers)")?, radius: a.f64("the radius")? },
+        "cuboid" => SourceSpec::Cuboid { centre: vec3(a, "the centre (3 numbers)")?, edges: vec3(a, "the edge lengths (3 numbers)")? },
         "region" => {
             let id = a.word("a region ID")?;
-            Source::Region(regions.get(id).cloned().ok_or_else(|| a.err(format!("region {id} for fix edpd/source does not exist")))?)
+            SourceSpec::Region(regions.get(id).cloned().ok_or_else(|| a.err(format!("region {id} for fix edpd/source does not exist")))?)
         }
         w => return Err(a.err(format!("expected sphere, cuboid or region, got '{w}'"))),
     };

@@ -5,7 +5,7 @@
 use super::type_pairs::TypePairs;
 use super::{Pair, RunInputs};
 use crate::base::args::Args;
-use crate::styles::fix::{FixStyle, Source};
+use crate::styles::fix::{FixStyle, SourceSpec};
 use gendpde_integrators::{Edpd, EdpdCoeff, HeatSource, Physics, SourceShape};
 use gendpde_io::{Command, ScriptError};
 use std::any::Any;
@@ -112,9 +112,9 @@ impl Pair for PairEdpd {
         let sources = run.fixes.iter().filter_map(|f| match &f.style {
             FixStyle::EdpdSource { shape, value, mask } => {
                 let shape = match shape.clone() {
-                    Source::Sphere { centre, radius } => SourceShape::Sphere { centre, radius },
-                    Source::Cuboid { centre, edges } => SourceShape::Cuboid { centre, edges },
-                    Source::Region(r) => SourceShape::Region(std::sync::Arc::new(move |x| r.contains(x))),
+                    SourceSpec::Sphere { centre, radius } => SourceShape::Sphere { centre, radius },
+                    SourceSpec::Cuboid { centre, edges } => SourceShape::Cuboid { centre, edges },
+                    SourceSpec::Region(r) => SourceShape::Region(std::sync::Arc::new(move |x| r.contains(x))),
                 };
                 Some(HeatSource { mask: *mask, shape, value: *value })
             }

@@ -6,7 +6,7 @@
 //! does not combine. `pair_style hybrid` (one sub-style per type pair) is refused.
 
 use super::pairwise::{self, Pairwise};
-use super::table::{self, Tabulated};
+use super::table::{self, TablePair};
 use super::{Pair, RunInputs};
 use crate::base::args::Args;
 use crate::styles::fix::FixStyle;
@@ -17,7 +17,7 @@ use std::any::Any;
 /// The sub-styles of a hybrid/overlay line.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Overlay {
-    pub table: Option<Tabulated>,
+    pub table: Option<TablePair>,
     /// The pairwise DPD sub-style and its name.
     pub pairwise: Option<(String, Pairwise)>,
 }

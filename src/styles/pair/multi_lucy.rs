@@ -4,7 +4,7 @@
 //! their sections as `pair_style table` does ([`super::table::parse_coeff`]), the density
 //! column indexed in rho^2; the force law is in `gendpde_integrators::models::classic`.
 
-use super::table::Tabulated;
+use super::table::TablePair;
 use super::Pair;
 use crate::base::args::Args;
 use gendpde_io::ScriptError;
@@ -22,5 +22,5 @@ pub fn parse_style(_name: &str, a: &mut Args) -> Result<Box<dyn Pair>, ScriptErr
         return Err(a.err(format!("illegal number of pair table entries: {n} (2 to {})", super::table::MAX_POINTS)));
     }
     a.done()?;
-    Ok(Box::new(Tabulated { style, n: n as usize, tables: None, multi_lucy: true }))
+    Ok(Box::new(TablePair { style, n: n as usize, tables: None, multi_lucy: true }))
 }

@@ -20,7 +20,7 @@ pub(super) const MAX_POINTS: u64 = 1 << 24;
 
 /// `pair_style table` and the tables its pair_coeff lines read.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Tabulated {
+pub struct TablePair {
     pub style: TableStyle,
     /// N, the points of the re-tabulation.
     pub n: usize,
@@ -32,7 +32,7 @@ pub struct Tabulated {
 
 
 /// The words after `pair_style table` (or after `table` in a hybrid line).
-pub fn parse(a: &mut Args) -> Result<Tabulated, ScriptError> {
+pub fn parse(a: &mut Args) -> Result<TablePair, ScriptError> {
     let style = match a.word("the table style (lookup, linear or spline)")? {
         "lookup" => TableStyle::Lookup,
         "linear" => TableStyle::Linear,
@@ -51,12 +51,12 @@ pub fn parse(a: &mut Args) -> Result<Tabulated, ScriptError> {
             _ => Err(a.err(format!("unexpected '{w}' after N"))),
         };
     }
-    Ok(Tabulated { style, n: n as usize, tables: None, multi_lucy: false })
+    Ok(TablePair { style, n: n as usize, tables: None, multi_lucy: false })
 }
 
 /// `pair_coeff I J FILE KEYWORD [CUTOFF]` (`a` positioned after I J): reads the section
 /// and assigns its table to the type pairs I <= J of the ranges, and J I.
-pub fn parse_coeff(t: &mut Tabulated, a: &mut Args, types: (Types, Types), ntypes: usize) -> Result<(), ScriptError> {
+pub fn parse_coeff(t: &mut TablePair, a: &mut Args, types: (Types, Types), ntypes: usize) -> Result<(), ScriptError> {
     let file = a.word("the table file")?;
     let keyword = a.word("the section keyword")?;
     let cut = if a.remaining() > 0 { Some(a.positive("the cutoff")?) } else { None };
@@ -94,7 +94,7 @@ pub fn parse_coeff(t: &mut Tabulated, a: &mut Args, types: (Types, Types), ntype
 
 /// The tables of a run: every type pair must have one unless `partial` (another
 /// sub-style of hybrid/overlay covers the rest).
-pub fn tables_for_run(t: &Tabulated, partial: bool) -> Result<PairTables, String> {
+pub fn tables_for_run(t: &TablePair, partial: bool) -> Result<PairTables, String> {
     let tables = t.tables.clone().ok_or("pair table has no coefficients (pair_coeff I J FILE KEYWORD)")?;
     if !partial {
         if let Some(k) = tables.index.iter().position(Option::is_none) {
@@ -110,7 +110,7 @@ pub fn parse_style(_name: &str, a: &mut Args) -> Result<Box<dyn Pair>, ScriptErr
     parse(a).map(|t| Box::new(t) as Box<dyn Pair>)
 }
 
-impl Pair for Tabulated {
+impl Pair for TablePair {
     fn name(&self) -> &str {
         if self.multi_lucy { "multi/lucy" } else { "table" }
     }
@@ -146,7 +146,7 @@ impl Pair for Tabulated {
 }
 
 /// A table overlaid on the pairwise style `p`, which sets the fixes it works with.
-pub fn overlaid(t: &Tabulated, p: &Pairwise, run: &RunInputs) -> Result<Box<dyn Physics>, String> {
+pub fn overlaid(t: &TablePair, p: &Pairwise, run: &RunInputs) -> Result<Box<dyn Physics>, String> {
     let tables = tables_for_run(t, true)?;
     Ok(Box::new(ClassicDpd { tables: Some(tables), ..p.dynamics(run)? }))
 }

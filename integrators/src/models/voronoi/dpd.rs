@@ -8,7 +8,7 @@
 //! the k_B ones included, follows from eq 10 (derivation in docs/models/voronoi.md), and the
 //! paper's m is 2/m = 1/M_mu + 1/M_nu.
 
-use super::finite_volume::{Frame, Rates};
+use super::finite_volume::{CellFrame, Rates};
 use super::tessellation::Face;
 use crate::rng;
 use super::finite_volume::Cells;
@@ -23,7 +23,7 @@ fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
-impl Frame {
+impl CellFrame {
     /// The mean cell volume Vbar = V_T/N.
     fn mean_volume(&self) -> f64 {
         self.tess.volumes.iter().sum::<f64>() / self.tess.len() as f64

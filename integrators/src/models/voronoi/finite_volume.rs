@@ -103,13 +103,13 @@ impl std::error::Error for ModelError {}
 
 /// The geometry and thermodynamics of one configuration.
 #[derive(Clone, Debug)]
-pub struct Frame {
+pub struct CellFrame {
     pub tess: Tessellation,
     pub thermo: Vec<CellState>,
     pub v: Vec<V3>,
 }
 
-impl Frame {
+impl CellFrame {
     /// Tessellates the periodic box [lo, lo + len) and evaluates every cell's state.
     pub fn new<E: CellEnergy>(cells: &Cells, energy: &E, lo: V3, len: V3) -> Result<Self, ModelError> {
         let tess = Tessellation::build(&cells.r, lo, len).map_err(ModelError::Tessellation)?;
@@ -345,7 +345,7 @@ impl<E: CellEnergy> FiniteVolume<E> {
     /// With thermal noise every cell needs C > k_B: the factors 1 - k_B/C of eqs 82-84 and
     /// 89-90 change sign below, and the heating they scale runs away (a cell of a few
     /// molecules; larger cells keep clear of it). Stops the step at the first such cell.
-    fn check_capacities(&self, cells: &Cells, frame: &Frame) -> Result<(), ModelError> {
+    fn check_capacities(&self, cells: &Cells, frame: &CellFrame) -> Result<(), ModelError> {
         let kb = self.transport.kb;
         match (0..cells.len()).find(|&k| kb > 0.0 && frame.thermo[k].heat_capacity <= kb) {
             None => Ok(()),
@@ -357,7 +357,7 @@ impl<E: CellEnergy> FiniteVolume<E> {
     }
 
     /// All deterministic rates at a frame.
-    pub fn rates(&self, cells: &Cells, frame: &Frame) -> Rates {
+    pub fn rates(&self, cells: &Cells, frame: &CellFrame) -> Rates {
         let mut r = frame.reversible(cells);
         let tr = &self.transport;
         let irr = match self.dissipation {
@@ -375,7 +375,7 @@ impl<E: CellEnergy> FiniteVolume<E> {
     /// deterministic rates, plus the noise increments with coefficients at the start (Ito).
     /// `f0` is the frame of `cells` (a run reuses the previous step's end frame), so the
     /// step tessellates once, for the predictor.
-    pub fn step(&self, cells: &mut Cells, f0: &Frame, lo: V3, len: V3, dt: f64, step: u64) -> Result<(), ModelError> {
+    pub fn step(&self, cells: &mut Cells, f0: &CellFrame, lo: V3, len: V3, dt: f64, step: u64) -> Result<(), ModelError> {
         self.check_capacities(cells, f0)?;
         let k0 = self.rates(cells, f0);
         let tr = &self.transport;
@@ -385,7 +385,7 @@ impl<E: CellEnergy> FiniteVolume<E> {
         });
         let mut pred = cells.clone();
         advance(&mut pred, &k0, dt, 1.0);
-        let f1 = Frame::new(&pred, &self.energy, lo, len)?;
+        let f1 = CellFrame::new(&pred, &self.energy, lo, len)?;
         self.check_capacities(&pred, &f1)?;
         let k1 = self.rates(&pred, &f1);
         advance(cells, &k0, dt, 0.5);

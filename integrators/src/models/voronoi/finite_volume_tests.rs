@@ -44,7 +44,7 @@ const TR: CellTransport = CellTransport { eta: 0.7, zeta: 0.4, kappa: 1.3, kb: 0
 #[test]
 fn reversible_rates_conserve_mass_momentum_energy_and_entropy_eq_75() {
     let (c, _) = disordered(80, 11);
-    let f = Frame::new(&c, &VDW, LO, LEN).unwrap();
+    let f = CellFrame::new(&c, &VDW, LO, LEN).unwrap();
     let r = f.reversible(&c);
     let (dm, ds): (f64, f64) = (r.m.iter().sum(), r.s.iter().sum());
     assert!(dm.abs() < 1e-14 * scale1(&r.m) * 80.0 && scale1(&r.m) > 1e-3, "sum dM/dt = {dm}");
@@ -59,7 +59,7 @@ fn reversible_rates_conserve_mass_momentum_energy_and_entropy_eq_75() {
 #[test]
 fn irreversible_rates_conserve_energy_and_produce_entropy_at_kb_zero() {
     let (c, _) = disordered(80, 12);
-    let f = Frame::new(&c, &VDW, LO, LEN).unwrap();
+    let f = CellFrame::new(&c, &VDW, LO, LEN).unwrap();
     let r = f.irreversible(&c, &TR);
     let dp = sum3(&r.p);
     assert!(dp.iter().all(|x| x.abs() < 1e-14 * scale3(&r.p) * 80.0), "sum dP/dt = {dp:?}");
@@ -80,7 +80,7 @@ fn irreversible_rates_conserve_energy_and_produce_entropy_at_kb_zero() {
 #[test]
 fn noise_conserves_momentum_and_energy_eq_81() {
     let (c, _) = disordered(60, 13);
-    let f = Frame::new(&c, &VDW, LO, LEN).unwrap();
+    let f = CellFrame::new(&c, &VDW, LO, LEN).unwrap();
     let tr = CellTransport { kb: 1.0, ..TR };
     for step in 0..5 {
         let (dp, ds) = f.noise(&c, &tr, 77, step, 0.01);
@@ -99,7 +99,7 @@ fn noise_conserves_momentum_and_energy_eq_81() {
     rev.p.reverse();
     rev.m.reverse();
     rev.s.reverse();
-    let fr = Frame::new(&rev, &VDW, LO, LEN).unwrap();
+    let fr = CellFrame::new(&rev, &VDW, LO, LEN).unwrap();
     let (a, _) = f.noise(&c, &tr, 5, 3, 0.01);
     let (b, _) = fr.noise(&rev, &tr, 5, 3, 0.01);
     for k in 0..c.len() {
@@ -122,7 +122,7 @@ fn a_uniform_state_on_a_disordered_configuration_feels_no_force() {
         c.s[k] = vdw_entropy(WATER_C, c.m[k], vols[k], 0.9);
         c.p[k] = [c.m[k] * u[0], c.m[k] * u[1], c.m[k] * u[2]];
     }
-    let f = Frame::new(&c, &VDW, LO, LEN).unwrap();
+    let f = CellFrame::new(&c, &VDW, LO, LEN).unwrap();
     let p0 = f.thermo[0].pressure;
     let tr = CellTransport { kb: 1.0, ..TR };
     let rev = f.reversible(&c);
@@ -148,10 +148,10 @@ fn steps_conserve_mass_and_momentum_and_energy_to_second_order() {
     let drift = |dt: f64, steps: u64, kb: f64| {
         let model = FiniteVolume { energy: VDW, transport: CellTransport { kb, ..TR }, dissipation: CellDissipation::Hydrodynamic, seed: 9 };
         let mut c = c0.clone();
-        let e0 = Frame::new(&c, &VDW, LO, LEN).unwrap().energy(&c);
+        let e0 = CellFrame::new(&c, &VDW, LO, LEN).unwrap().energy(&c);
         let (m0, p0): (f64, [f64; 3]) = (c.m.iter().sum(), sum3(&c.p));
         for s in 0..steps {
-            let f0 = Frame::new(&c, &VDW, LO, LEN).unwrap();
+            let f0 = CellFrame::new(&c, &VDW, LO, LEN).unwrap();
             model.step(&mut c, &f0, LO, LEN, dt, s).unwrap();
             let m: f64 = c.m.iter().sum();
             let p = sum3(&c.p);
@@ -159,7 +159,7 @@ fn steps_conserve_mass_and_momentum_and_energy_to_second_order() {
             let pscale: f64 = c.p.iter().flatten().map(|x| x.abs()).sum();
             assert!((0..3).all(|x| (p[x] - p0[x]).abs() < 1e-14 * pscale), "step {s}: sum P {p:?} vs {p0:?}");
         }
-        let e1 = Frame::new(&c, &VDW, LO, LEN).unwrap().energy(&c);
+        let e1 = CellFrame::new(&c, &VDW, LO, LEN).unwrap().energy(&c);
         (e1 - e0).abs() / e0.abs()
     };
     let coarse = drift(0.02, 10, 0.0);
@@ -177,7 +177,7 @@ fn steps_conserve_mass_and_momentum_and_energy_to_second_order() {
 #[test]
 fn virial_is_minus_the_strain_derivative_of_the_cell_energies() {
     let (c, _) = disordered(60, 19);
-    let f = Frame::new(&c, &VDW, LO, LEN).unwrap();
+    let f = CellFrame::new(&c, &VDW, LO, LEN).unwrap();
     let w = f.virial();
     for k in 0..c.len() {
         let pv = 3.0 * f.thermo[k].pressure * f.tess.volumes[k];
@@ -190,7 +190,7 @@ fn virial_is_minus_the_strain_derivative_of_the_cell_energies() {
         for r in &mut s.r {
             r[a] = LO[a] + (1.0 + e) * (r[a] - LO[a]);
         }
-        let f = Frame::new(&s, &VDW, LO, len).unwrap();
+        let f = CellFrame::new(&s, &VDW, LO, len).unwrap();
         f.thermo.iter().map(|st| st.energy).sum::<f64>()
     };
     let h = 1e-6;
@@ -206,7 +206,7 @@ fn virial_is_minus_the_strain_derivative_of_the_cell_energies() {
 fn a_cell_outside_the_relation_is_an_error_naming_its_tag() {
     let (mut c, _) = disordered(30, 16);
     c.m[4] = -1.0;
-    match Frame::new(&c, &VDW, LO, LEN) {
+    match CellFrame::new(&c, &VDW, LO, LEN) {
         Err(ModelError::State { tag, .. }) => assert_eq!(tag, 5),
         other => panic!("expected a state error, got {other:?}"),
     }
@@ -219,10 +219,10 @@ fn a_cell_outside_the_relation_is_an_error_naming_its_tag() {
 fn a_cell_below_the_noise_models_heat_capacity_stops_the_step() {
     let (mut c, _) = disordered(30, 18);
     c.m[6] = 0.6;
-    c.s[6] = vdw_entropy(WATER_C, 0.6, Frame::new(&c, &VDW, LO, LEN).unwrap().tess.volumes[6], 1.2);
+    c.s[6] = vdw_entropy(WATER_C, 0.6, CellFrame::new(&c, &VDW, LO, LEN).unwrap().tess.volumes[6], 1.2);
     for (kb, fails) in [(1.0, true), (0.0, false)] {
         let model = FiniteVolume { energy: VDW, transport: CellTransport { kb, ..TR }, dissipation: CellDissipation::Hydrodynamic, seed: 3 };
-        let f0 = Frame::new(&c, &VDW, LO, LEN).unwrap();
+        let f0 = CellFrame::new(&c, &VDW, LO, LEN).unwrap();
         match model.step(&mut c.clone(), &f0, LO, LEN, 1e-3, 0) {
             Err(ModelError::State { tag, err }) if fails => assert!(tag == 7 && err.what.contains("C <= k_B"), "{tag}: {err}"),
             Ok(()) if !fails => {}
@@ -238,7 +238,7 @@ fn a_cell_below_the_noise_models_heat_capacity_stops_the_step() {
 #[test]
 fn noise_covariance_gives_the_irreversible_drift_eq_10() {
     let (c, _) = disordered(16, 17);
-    let f = Frame::new(&c, &VDW, LO, LEN).unwrap();
+    let f = CellFrame::new(&c, &VDW, LO, LEN).unwrap();
     let drift = f.irreversible(&c, &TR);
     let (worst, samples) = eq_10_deviation(&f, &drift, |step| f.noise(&c, &CellTransport { kb: 0.5, ..TR }, 3, step, 0.01), 0.5, 0.01);
     eprintln!("eq 10 over {samples} realisations: largest deviation {worst:.2} standard errors ({} components)", 4 * c.len());
@@ -252,7 +252,7 @@ fn noise_covariance_gives_the_irreversible_drift_eq_10() {
 #[test]
 fn voronoi_dpd_conserves_and_its_noise_covariance_gives_eq_89() {
     let (c, _) = disordered(16, 18);
-    let f = Frame::new(&c, &VDW, LO, LEN).unwrap();
+    let f = CellFrame::new(&c, &VDW, LO, LEN).unwrap();
     let (gamma, kappa) = (0.8, 1.3);
     let r = f.irreversible_dpd(&c, gamma, kappa, 0.0);
     let dp = sum3(&r.p);
@@ -276,7 +276,7 @@ fn voronoi_dpd_conserves_and_its_noise_covariance_gives_eq_89() {
     let mut s = c.clone();
     let (m0, p0) = (c.m.iter().sum::<f64>(), sum3(&c.p));
     for step in 0..10 {
-        let f0 = Frame::new(&s, &VDW, LO, LEN).unwrap();
+        let f0 = CellFrame::new(&s, &VDW, LO, LEN).unwrap();
         model.step(&mut s, &f0, LO, LEN, 0.01, step).unwrap();
     }
     let p = sum3(&s.p);
@@ -287,7 +287,7 @@ fn voronoi_dpd_conserves_and_its_noise_covariance_gives_eq_89() {
 /// Largest |z| over cells and components of sum_l <dP~_mu dS~_l>/(2 k_B dt) and
 /// T_mu sum_l <dS~_mu dS~_l>/(2 k_B dt) against the drift (eq 10), over 4000 realisations
 /// `noise(step)`; panics beyond 5 standard errors.
-fn eq_10_deviation(f: &Frame, drift: &Rates, noise: impl Fn(u64) -> (Vec<[f64; 3]>, Vec<f64>), kb: f64, dt: f64) -> (f64, u64) {
+fn eq_10_deviation(f: &CellFrame, drift: &Rates, noise: impl Fn(u64) -> (Vec<[f64; 3]>, Vec<f64>), kb: f64, dt: f64) -> (f64, u64) {
     let samples = 4000;
     let n = f.v.len();
     let mut sum = vec![[0.0f64; 4]; n];

@@ -7,7 +7,7 @@ pub mod finite_volume;
 pub mod run;
 pub mod tessellation;
 
-pub use finite_volume::{Cells, CellDissipation, FiniteVolume, Frame, ModelError, Rates, CellTransport};
+pub use finite_volume::{Cells, CellDissipation, FiniteVolume, CellFrame, ModelError, Rates, CellTransport};
 pub use run::VoronoiFv;
 pub use tessellation::{Face, Tessellation, TessellationError};
 

@@ -5,7 +5,7 @@
 //! so thermo's pe + ke is the model's energy (eq 64) and press its pressure. One rank
 //! only (docs/models/voronoi.md, plan for ranks).
 
-use super::finite_volume::{same_bits, Cells, FiniteVolume, Frame, ModelError};
+use super::finite_volume::{same_bits, Cells, FiniteVolume, CellFrame, ModelError};
 use crate::error::StepError;
 use crate::settings::Settings;
 use crate::system::System;
@@ -29,7 +29,7 @@ struct Refreshed {
     cells: Cells,
     lo: [f64; 3],
     len: [f64; 3],
-    frame: Frame,
+    frame: CellFrame,
 }
 
 impl<E: CellEnergy> VoronoiFv<E> {
@@ -57,7 +57,7 @@ impl<E: CellEnergy> VoronoiFv<E> {
     fn refresh(&self, sys: &mut System) -> Result<(), ModelError> {
         let (cells, order) = Self::gather(sys);
         let (lo, len) = (sys.domain.lo, sys.domain.len());
-        let frame = Frame::new(&cells, &self.model.energy, lo, len)?;
+        let frame = CellFrame::new(&cells, &self.model.energy, lo, len)?;
         let virial = frame.virial();
         for (k, &i) in order.iter().enumerate() {
             sys.store.u[i] = frame.thermo[k].energy;
@@ -71,10 +71,10 @@ impl<E: CellEnergy> VoronoiFv<E> {
 
     /// The frame of `cells` in the box [lo, lo + len): the last refresh's if it saw the
     /// same bits, else a new tessellation.
-    fn frame(&self, cells: &Cells, lo: [f64; 3], len: [f64; 3]) -> Result<Frame, ModelError> {
+    fn frame(&self, cells: &Cells, lo: [f64; 3], len: [f64; 3]) -> Result<CellFrame, ModelError> {
         match self.last.take() {
             Some(r) if r.cells.same_bits(cells) && same_bits(&r.lo, &lo) && same_bits(&r.len, &len) => Ok(r.frame),
-            _ => Frame::new(cells, &self.model.energy, lo, len),
+            _ => CellFrame::new(cells, &self.model.energy, lo, len),
         }
     }
 
