@@ -1,7 +1,7 @@
 //! The state fixes accumulate over a run and restart files keep, by fix ID: the energy a
 //! `fix heat/reservoir` has put in, the `fix nph` barostat.
 
-use crate::passes::barostat::NphState;
+use crate::passes::barostat::state::NphState;
 
 /// One fix's accumulated state.
 #[derive(Clone, Debug, PartialEq)]
