@@ -282,7 +282,7 @@ fn pairwise(cmd: &Command, p: &Pairwise, fixes: &[Fix], settings: Settings, kb: 
 /// The dynamics of an eDPD scene: pair edpd, fix mvv/edpd and any fix edpd/source.
 fn edpd(cmd: &Command, p: &PairEdpd, fixes: &[Fix], settings: Settings, kb: f64) -> Result<Box<dyn Physics>, ScriptError> {
     let err = |m: String| ScriptError::at(cmd, m);
-    let coeff = p.table().map_err(err)?;
+    let coeff = TypeTable::new(p.ntypes, p.table().map_err(err)?).ok_or_else(|| err("pair edpd has no coefficients (pair_coeff)".into()))?;
     let mut lambda = None;
     let mut sources = Vec::new();
     for f in fixes {
@@ -301,7 +301,7 @@ fn edpd(cmd: &Command, p: &PairEdpd, fixes: &[Fix], settings: Settings, kb: f64)
         }
     }
     let lambda = lambda.ok_or_else(|| err("pair edpd integrates with fix mvv/edpd".into()))?;
-    Ok(Box::new(Edpd { coeff, ntypes: p.ntypes, seed: p.seed, kb, lambda, sources, settings }))
+    Ok(Box::new(Edpd { coeff, seed: p.seed, kb, lambda, sources, settings }))
 }
 
 /// `pair_style table` or `multi/lucy` alone (integrated by fix nve), or a table overlaid

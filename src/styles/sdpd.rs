@@ -6,7 +6,7 @@ use crate::styles::fix::eos::{each_eos, EosModel};
 use crate::styles::fix::{Fix, FixStyle};
 use crate::styles::pair::sdpd::PairSdpd;
 use crate::styles::pair::sdpd_taitwater::PairTaitwater;
-use gendpde_integrators::{FixedEntropy, Physics, RebuildPolicy, Sdpd, SdpdParams, SdpdTaitwater, Settings, Species};
+use gendpde_integrators::{FixedEntropy, Physics, RebuildPolicy, Sdpd, SdpdParams, SdpdTaitwater, Settings, Species, TypeTable};
 use gendpde_io::{Command, ScriptError};
 use gendpde_potentials::{CubicSpline, Linear, Lucy, Quadratic, Tait, WeightKind};
 
@@ -63,8 +63,7 @@ pub fn build_taitwater(cmd: &Command, pair: &PairTaitwater, fixes: &[Fix], setti
     }
     Ok(Box::new(SdpdTaitwater {
         eos: water.iter().map(|w| Tait::new(w.rho0, w.c0)).collect(),
-        kernel: cut.iter().map(|&h| Lucy::new(h)).collect(),
-        ntypes: pair.ntypes,
+        kernel: TypeTable::new(pair.ntypes, cut.iter().map(|&h| Lucy::new(h)).collect()).ok_or_else(|| err("pair sdpd/taitwater/isothermal has no coefficients (pair_coeff)"))?,
         kbt: kb * pair.temperature,
         viscosity: pair.viscosity,
         seed: pair.seed,
