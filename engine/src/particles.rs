@@ -548,11 +548,6 @@ impl Particles {
 
 /// Forward and reverse exchanges: records of the fields named by a `Fields` set.
 impl Particles {
-    /// Values per particle of the exchanged fields `fields`.
-    pub fn comm_width(&self, fields: Fields) -> usize {
-        FIELDS.iter().filter(|f| !f.comm.is_empty() && fields.contains(f.comm) && self.allocates(f.gate)).map(|f| f.width).sum()
-    }
-
     /// Appends `fields` of the particles `idx` (a message of `idx.len()` records stored
     /// field by field), the positions shifted by `shift` (dimension, length) when given:
     /// the positions lead the message.

@@ -21,10 +21,9 @@ pub struct SweepPairs {
     /// Whether each particle (owned or ghost) is in a pair of colour c; one entry per
     /// colour.
     pub members: Vec<Vec<bool>>,
-    /// Scratch of [`SweepPairs::within`]: the selected pairs are its first `selected`
-    /// (the rest is left from earlier colours, so the scratch is filled only as it grows).
+    /// Scratch of [`SweepPairs::within_displaced`]: the selected pairs lead it (the rest
+    /// is left from earlier colours, so the scratch is filled only as it grows).
     active: Vec<[u32; 2]>,
-    selected: usize,
     /// Scratch of [`SweepPairs::within_displaced`]: r_i - r_j and |r_i - r_j|^2 of each
     /// selected pair.
     displacement: Vec<[f64; 4]>,
@@ -43,27 +42,15 @@ impl SweepPairs {
 
     /// The pairs of colour c closer than `rc` and farther than 1e-10, in order,
     /// selected without a branch per pair (about half the list lies in the skin, a test
-    /// the processor could not predict).
-    pub fn within(&mut self, c: usize, store: &Particles, rc: f64) -> &[[u32; 2]] {
-        self.select::<false>(c, store, rc);
-        self.active()
-    }
-
-    /// [`SweepPairs::within`] with each pair's r_i - r_j and |r_i - r_j|^2 as the
-    /// selection computed them (`[x, y, z, r^2]`), for a sweep that would compute them
+    /// the processor could not predict), with each pair's r_i - r_j and |r_i - r_j|^2 as
+    /// the selection computed them (`[x, y, z, r^2]`), for a sweep that would compute them
     /// again.
     pub fn within_displaced(&mut self, c: usize, store: &Particles, rc: f64) -> (&[[u32; 2]], &[[f64; 4]]) {
-        self.select::<true>(c, store, rc);
-        (self.active(), &self.displacement[..self.selected])
-    }
-
-    #[inline(always)]
-    fn select<const DISPLACED: bool>(&mut self, c: usize, store: &Particles, rc: f64) {
         let range = self.colour_start[c]..self.colour_start[c + 1];
         if self.active.len() < range.len() {
             self.active.resize(range.len(), [0; 2]);
         }
-        if DISPLACED && self.displacement.len() < range.len() {
+        if self.displacement.len() < range.len() {
             self.displacement.resize(range.len(), [0.0; 4]);
         }
         let mut m = 0;
@@ -71,17 +58,10 @@ impl SweepPairs {
             let d = sub(store.r[i as usize], store.r[j as usize]);
             let r2 = dot(d, d);
             self.active[m] = [i, j];
-            if DISPLACED {
-                self.displacement[m] = [d[0], d[1], d[2], r2];
-            }
+            self.displacement[m] = [d[0], d[1], d[2], r2];
             m += (r2 < rc * rc && r2 >= 1e-20) as usize;
         }
-        self.selected = m;
-    }
-
-    /// The pairs the last selection kept.
-    fn active(&self) -> &[[u32; 2]] {
-        &self.active[..self.selected]
+        (&self.active[..m], &self.displacement[..m])
     }
 }
 

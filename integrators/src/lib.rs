@@ -23,7 +23,7 @@ pub use models::sdpd::taitwater::SdpdTaitwater;
 pub use passes::barostat::{Couple, Nph, NphState};
 pub use passes::heat::HeatModel;
 pub use passes::isentropic::FixedEntropy;
-pub use passes::noise::NoiseForm;
+pub use passes::noise::{isothermal_gamma, isothermal_sigma, NoiseForm};
 pub use passes::pair_tables::PairTables;
 pub use passes::species::Species;
 pub use physics::{Physics, SetupError};

@@ -117,13 +117,6 @@ mod sse2 {
     }
 }
 
-/// Uniform in the open interval (0, 1) from 64 random bits (53 used).
-#[inline(always)]
-fn open_unit(hi: u32, lo: u32) -> f64 {
-    let x = (((hi as u64) << 32) | lo as u64) >> 11;
-    (x as f64 + 0.5) * (1.0 / (1u64 << 53) as f64)
-}
-
 /// Two independent standard normal numbers for the key, by the ziggurat method
 /// (Marsaglia and Tsang 2000, Doornik's 128-layer variant): one Philox block feeds both
 /// draws; the rare draws that fall outside the rectangles take further blocks of the
@@ -266,13 +259,6 @@ impl Ziggurat {
             }
         }
     }
-}
-
-/// Two uniforms in (0, 1) for the key (the other two outputs of the block are unused).
-#[inline(always)]
-pub fn uniform4(seed: u64, step: u64, a: u64, b: u64, stream: u32) -> [f64; 2] {
-    let o = philox4x32(counter(step, a, b, stream), key_of(seed));
-    [open_unit(o[0], o[1]), open_unit(o[2], o[3])]
 }
 
 #[cfg(test)]

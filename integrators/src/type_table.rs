@@ -16,14 +16,6 @@ impl<T> TypeTable<T> {
         (n > 0 && values.len() == n * n).then_some(Self { n, values })
     }
 
-    /// One value for every pair of types.
-    pub fn uniform(n: usize, value: T) -> Self
-    where
-        T: Clone,
-    {
-        Self { n, values: vec![value; n * n] }
-    }
-
     /// The value of types `ti`, `tj` (1-based, as the particles' `kind`).
     #[inline(always)]
     pub fn get(&self, ti: u32, tj: u32) -> &T {

@@ -51,11 +51,6 @@ impl PartitionVolume {
         Self { r3: r * r * r }
     }
 
-    /// R~ = R_cut / f_cut.
-    pub fn r_tilde(&self) -> f64 {
-        self.r3.cbrt()
-    }
-
     /// k = (2 pi/15) R~^3 n^b (eq 2); dk/dn^b = (2 pi/15) R~^3 (eq 26).
     #[inline]
     pub fn k(&self, nb: f64) -> f64 {

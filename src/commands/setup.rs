@@ -55,12 +55,8 @@ pub fn boundary(a: &mut Args) -> Result<(), ScriptError> {
 /// and its rate).
 pub fn atom_style(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     sim.atom_style = match a.word("an atom style")? {
-        "atomic" => AtomStyle::Atomic,
-        "dpd" | "gendpde" => AtomStyle::Dpd,
-        "mdpd" => AtomStyle::Mdpd,
-        "edpd" => AtomStyle::Edpd,
-        "sph" => AtomStyle::Sph,
-        s => return Err(a.err(format!("unknown atom style '{s}'; known: atomic, dpd, gendpde, mdpd, edpd, sph"))),
+        "gendpde" => AtomStyle::Dpd,
+        s => AtomStyle::from_name(s).ok_or_else(|| a.err(format!("unknown atom style '{s}'; known: atomic, dpd, gendpde, mdpd, edpd, sph")))?,
     };
     a.done()
 }

@@ -22,10 +22,12 @@
 //! (LAMMPS: a per-rank Marsaglia stream).
 
 use crate::error::StepError;
+use crate::passes::verlet;
 use crate::physics::{Physics, SetupError};
 use crate::rng::{normal_pair, stream};
 use crate::settings::Settings;
 use crate::system::System;
+use crate::type_table::TypeTable;
 use gendpde_engine::{dot, sub, Fields, Particles, Vec3};
 use std::sync::Arc;
 
@@ -90,9 +92,8 @@ impl HeatSource {
 
 /// An eDPD scene: `pair edpd` integrated by `fix mvv/edpd`.
 pub struct Edpd {
-    /// Coefficients by type pair, `ntypes * ntypes`, row-major over 0-based types.
-    pub coeff: Vec<EdpdCoeff>,
-    pub ntypes: usize,
+    /// Coefficients by type pair.
+    pub coeff: TypeTable<EdpdCoeff>,
     pub seed: u64,
     pub kb: f64,
     /// `fix mvv/edpd LAMBDA`.
@@ -120,7 +121,7 @@ impl Edpd {
         s.edpd_flux[..n].fill(0.0);
         for &[i, j] in pairs {
             let (i, j) = (i as usize, j as usize);
-            let c = &self.coeff[(s.kind[i] as usize - 1) * self.ntypes + s.kind[j] as usize - 1];
+            let c = self.coeff.get(s.kind[i], s.kind[j]);
             let d = sub(s.r[i], s.r[j]);
             let r2 = dot(d, d);
             if r2 >= c.rc * c.rc {
@@ -194,7 +195,7 @@ impl Physics for Edpd {
     }
 
     fn cutoff(&self) -> f64 {
-        self.coeff.iter().map(|c| c.rc.max(c.rc_t)).fold(0.0, f64::max)
+        self.coeff.max_of(|c| c.rc.max(c.rc_t))
     }
 
     /// As LAMMPS's set-up: forces and the pair flux, without the sources (fix
@@ -213,28 +214,16 @@ impl Physics for Edpd {
     /// sources; then v = vest + dt/2 f/m, T = T_est + dt/2 Q/C_V.
     fn step(&self, sys: &mut System) -> Result<(), StepError> {
         let (dt, lambda) = (self.settings.dt, self.lambda);
-        let s = &mut sys.store;
-        for i in 0..s.nlocal {
+        let drifted = verlet::mvv_first_half(sys, dt, lambda, |s, i| {
             let dt_t = 0.5 * dt / s.edpd_cv[i];
-            for c in 0..3 {
-                s.vest[i][c] = s.p[i][c] + 0.5 * dt * s.f[i][c];
-                s.r[i][c] += dt * s.vest[i][c] / s.mass[i];
-                s.p[i][c] += lambda * dt * s.f[i][c];
-            }
             s.vest_temp[i] = s.edpd_temp[i] + dt_t * s.edpd_flux[i];
             s.edpd_temp[i] += 2.0 * lambda * dt_t * s.edpd_flux[i];
-        }
-        self.relist(sys, crate::passes::verlet::finite_positions(sys))?;
+        });
+        self.relist(sys, drifted)?;
         sys.comm.forward(&mut sys.store, Fields::MOMENTUM | Fields::EDPD);
         self.forces(sys, sys.clock.step + 1);
         self.add_sources(sys);
-        let s = &mut sys.store;
-        for i in 0..s.nlocal {
-            for c in 0..3 {
-                s.p[i][c] = s.vest[i][c] + 0.5 * dt * s.f[i][c];
-            }
-            s.edpd_temp[i] = s.vest_temp[i] + 0.5 * dt / s.edpd_cv[i] * s.edpd_flux[i];
-        }
+        verlet::mvv_second_half(sys, dt, |s, i| s.edpd_temp[i] = s.vest_temp[i] + 0.5 * dt / s.edpd_cv[i] * s.edpd_flux[i]);
         let state = Self::check_temperatures(sys);
         sys.comm.forward(&mut sys.store, Fields::MOMENTUM | Fields::EDPD);
         sys.settle(state)

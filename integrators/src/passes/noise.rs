@@ -10,6 +10,21 @@
 
 use crate::passes::heat::Temps;
 
+/// The noise amplitude of friction `gamma` at temperature `temperature` by the
+/// fluctuation-dissipation relation of Espanol and Warren (Europhys. Lett. 30, 191
+/// (1995)), sigma^2 = 2 gamma k_B T: sigma = sqrt(2 k_B T gamma).
+#[inline(always)]
+pub fn isothermal_sigma(kb: f64, temperature: f64, gamma: f64) -> f64 {
+    (2.0 * kb * temperature * gamma).sqrt()
+}
+
+/// The friction of noise amplitude `sigma` at temperature `temperature` by the same
+/// relation (Espanol and Warren 1995, sigma^2 = 2 gamma k_B T): gamma = sigma^2 / (2 k_B T).
+#[inline(always)]
+pub fn isothermal_gamma(kb: f64, temperature: f64, sigma: f64) -> f64 {
+    sigma * sigma / (2.0 * kb * temperature)
+}
+
 /// A friction/noise law of one pair.
 pub trait Noise: Copy + Send + Sync {
     /// Whether the law reads 1/tau (the store then keeps it up to date).

@@ -6,7 +6,7 @@ use super::type_pairs::TypePairs;
 use super::{Pair, RunInputs};
 use crate::base::args::Args;
 use crate::styles::fix::{FixStyle, SourceSpec};
-use gendpde_integrators::{Edpd, EdpdCoeff, HeatSource, Physics, SourceShape};
+use gendpde_integrators::{Edpd, EdpdCoeff, HeatSource, Physics, SourceShape, TypeTable};
 use gendpde_io::{Command, ScriptError};
 use std::any::Any;
 
@@ -107,7 +107,7 @@ impl Pair for PairEdpd {
 
     /// pair edpd, fix mvv/edpd and any fix edpd/source.
     fn build(&self, run: &RunInputs) -> Result<Box<dyn Physics>, String> {
-        let coeff = self.table()?;
+        let coeff = TypeTable::new(self.coeff.ntypes(), self.table()?).ok_or("pair edpd has no coefficients (pair_coeff)")?;
         let lambda = run.one("mvv/edpd", |s| if let FixStyle::MvvEdpd { lambda } = s { Some(*lambda) } else { None })?;
         let sources = run.fixes.iter().filter_map(|f| match &f.style {
             FixStyle::EdpdSource { shape, value, mask } => {
@@ -122,7 +122,7 @@ impl Pair for PairEdpd {
         });
         let sources = sources.collect();
         let (_, lambda) = lambda.ok_or("pair edpd integrates with fix mvv/edpd")?;
-        Ok(Box::new(Edpd { coeff, ntypes: self.coeff.ntypes(), seed: self.seed, kb: run.kb, lambda, sources, settings: run.settings() }))
+        Ok(Box::new(Edpd { coeff, seed: self.seed, kb: run.kb, lambda, sources, settings: run.settings() }))
     }
 
     fn as_any(&self) -> &dyn Any {

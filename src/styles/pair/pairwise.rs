@@ -309,11 +309,11 @@ impl Pairwise {
             table(ntypes, coeff.collect()).map(|coeff| DpdExt { coeff, start, stop })
         };
         let (force, sweep) = match self.kind {
-            Kind::Dpd { temperature } => (PairForce::Dpd(table(ntypes, c.iter().map(|c| DpdCoeff::isothermal(c.a, c.rc, c.gamma, kb * temperature)).collect())?), None),
+            Kind::Dpd { temperature } => (PairForce::Dpd(table(ntypes, c.iter().map(|c| DpdCoeff::isothermal(c.a, c.rc, c.gamma, kb, temperature)).collect())?), None),
             Kind::DpdExt { temperature } => (PairForce::DpdExt(ext(temperature, temperature)?), None),
             Kind::DpdTstat { start, stop } | Kind::DpdExtTstat { start, stop } => (PairForce::DpdExt(ext(start, stop)?), None),
             // velocity Verlet (pair_dpd_fdt.cpp without fix shardlow)
-            Kind::DpdFdt { temperature } if !shardlow => (PairForce::Dpd(table(ntypes, c.iter().map(|c| DpdCoeff::from_sigma(c.a, c.rc, c.sigma, kb * temperature)).collect())?), None),
+            Kind::DpdFdt { temperature } if !shardlow => (PairForce::Dpd(table(ntypes, c.iter().map(|c| DpdCoeff::from_sigma(c.a, c.rc, c.sigma, kb, temperature)).collect())?), None),
             Kind::DpdFdtEnergy if !shardlow => {
                 let coeff = c.iter().map(|c| DpdEnergyCoeff { a0: c.a, rc: c.rc, sigma: c.sigma, kappa: c.kappa });
                 (PairForce::DpdEnergy(table(ntypes, coeff.collect())?), None)
@@ -325,7 +325,7 @@ impl Pairwise {
                     return Err("pair mdpd needs 'pair_coeff * * mdpd/rhosum H'".into());
                 }
                 let h = self.rhosum.complete(ntypes).map_err(|ij| unset(ij, "pair mdpd/rhosum "))?;
-                let coeff = c.iter().zip(h).map(|(c, h)| MdpdCoeff::isothermal(c.a, c.b, c.rc, c.rd, c.gamma, kb * temperature, Lucy::new(h)));
+                let coeff = c.iter().zip(h).map(|(c, h)| MdpdCoeff::isothermal(c.a, c.b, c.rc, c.rd, c.gamma, kb, temperature, Lucy::new(h)));
                 (PairForce::Mdpd(table(ntypes, coeff.collect())?), None)
             }
         };

@@ -5,7 +5,7 @@ use super::type_pairs::TypePairs;
 use super::{Pair, RunInputs};
 use crate::base::args::Args;
 use crate::styles::fix::FixStyle;
-use gendpde_integrators::{Physics, SdpdTaitwater};
+use gendpde_integrators::{Physics, SdpdTaitwater, TypeTable};
 use gendpde_io::{Command, ScriptError};
 use gendpde_potentials::{Lucy, Tait};
 use std::any::Any;
@@ -115,8 +115,7 @@ impl Pair for PairTaitwater {
         }
         Ok(Box::new(SdpdTaitwater {
             eos: water.iter().map(|w| Tait::new(w.rho0, w.c0)).collect(),
-            kernel: cut.iter().map(|&h| Lucy::new(h)).collect(),
-            ntypes: self.cut.ntypes(),
+            kernel: TypeTable::new(self.cut.ntypes(), cut.iter().map(|&h| Lucy::new(h)).collect()).ok_or("pair sdpd/taitwater/isothermal has no coefficients (pair_coeff)")?,
             kbt: run.kb * self.temperature,
             viscosity: self.viscosity,
             seed: self.seed,

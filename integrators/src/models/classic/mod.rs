@@ -38,7 +38,7 @@ mod sums;
 use crate::passes::barostat::{Nph, NphState};
 use crate::error::{lowest, StepError};
 use crate::passes::heat::{Original, Temps};
-use crate::passes::noise::Harmonic;
+use crate::passes::noise::{isothermal_gamma, isothermal_sigma, Harmonic};
 use crate::passes::pair_update::{pair_update, PairDrive, PairState};
 use crate::physics::{Physics, SetupError};
 use crate::rng::{stream, Normals, LANES};
@@ -70,16 +70,18 @@ impl DpdCoeff {
         Self { a0, rc, gamma, sigma, inv_rc: 1.0 / rc }
     }
 
-    /// Friction `gamma` at k_B T = `kbt`, the noise from the fluctuation-dissipation
-    /// relation sigma^2 = 2 gamma k_B T (Espanol and Warren 1995; `pair dpd`).
-    pub fn isothermal(a0: f64, rc: f64, gamma: f64, kbt: f64) -> Self {
-        Self::new(a0, rc, gamma, (2.0 * kbt * gamma).sqrt())
+    /// `pair dpd T`: friction `gamma` and the noise of the fluctuation-dissipation
+    /// relation at temperature `temperature` (Espanol and Warren 1995, sigma^2 = 2 gamma
+    /// k_B T; [`isothermal_sigma`]).
+    pub fn isothermal(a0: f64, rc: f64, gamma: f64, kb: f64, temperature: f64) -> Self {
+        Self::new(a0, rc, gamma, isothermal_sigma(kb, temperature, gamma))
     }
 
-    /// Noise `sigma` at k_B T = `kbt`, the friction gamma = sigma^2 / (2 k_B T) (`pair
-    /// dpd/fdt` integrated by velocity Verlet, pair_dpd_fdt.cpp).
-    pub fn from_sigma(a0: f64, rc: f64, sigma: f64, kbt: f64) -> Self {
-        Self::new(a0, rc, sigma * sigma / (2.0 * kbt), sigma)
+    /// `pair dpd/fdt T` integrated by velocity Verlet: noise `sigma` and the friction of
+    /// the fluctuation-dissipation relation at temperature `temperature` (Espanol and
+    /// Warren 1995, gamma = sigma^2 / (2 k_B T); [`isothermal_gamma`]).
+    pub fn from_sigma(a0: f64, rc: f64, sigma: f64, kb: f64, temperature: f64) -> Self {
+        Self::new(a0, rc, isothermal_gamma(kb, temperature, sigma), sigma)
     }
 }
 
@@ -138,9 +140,12 @@ pub struct MdpdCoeff {
 }
 
 impl MdpdCoeff {
-    /// Friction `gamma` at k_B T = `kbt`, the noise sigma = sqrt(2 gamma k_B T).
-    pub fn isothermal(a: f64, b: f64, rc: f64, rd: f64, gamma: f64, kbt: f64, kernel: Lucy) -> Self {
-        Self { a, b, rc, rd, gamma, sigma: (2.0 * kbt * gamma).sqrt(), kernel }
+    /// `pair mdpd T`: friction `gamma` and the noise of the fluctuation-dissipation
+    /// relation at temperature `temperature` (Espanol and Warren 1995, sigma^2 = 2 gamma
+    /// k_B T; [`isothermal_sigma`]).
+    #[allow(clippy::too_many_arguments)]
+    pub fn isothermal(a: f64, b: f64, rc: f64, rd: f64, gamma: f64, kb: f64, temperature: f64, kernel: Lucy) -> Self {
+        Self { a, b, rc, rd, gamma, sigma: isothermal_sigma(kb, temperature, gamma), kernel }
     }
 }
 
@@ -372,14 +377,14 @@ impl ClassicDpd {
                     let inv_r = 1.0 / r;
                     let (xi, xi_x) = noise(s, i, j, stream::FORCE);
                     let w_par = pow(c.s_par);
-                    let sigma_par = (2.0 * kb * t * c.gamma_par).sqrt();
+                    let sigma_par = isothermal_sigma(kb, t, c.gamma_par);
                     let force = c.a0 * w - c.gamma_par * w_par * w_par * dot(d, dv) * inv_r + sigma_par * w_par * xi * inv_sqrt_dt;
                     let mut terms = Terms::conservative(force, 0.25 * c.a0 * c.rc * w * w);
                     if perp {
                         // P x = x - e (e.x): the perpendicular friction on v_ij and noise on xi_vec
                         let w_perp = pow(c.s_perp);
                         let (xi_y, xi_z) = noise(s, i, j, stream::FORCE_PERP);
-                        let sigma_perp = (2.0 * kb * t * c.gamma_perp).sqrt();
+                        let sigma_perp = isothermal_sigma(kb, t, c.gamma_perp);
                         let (g, n) = (c.gamma_perp * w_perp * w_perp, sigma_perp * w_perp * inv_sqrt_dt);
                         let (e_ij, xi_v) = ([d[0] * inv_r, d[1] * inv_r, d[2] * inv_r], [xi_x, xi_y, xi_z]);
                         let (ev, exi) = (dot(e_ij, dv), dot(e_ij, xi_v));
@@ -726,24 +731,10 @@ impl Physics for ClassicDpd {
             (Integration::Nve, Some(b)) => self.barostat_step(sys, b)?,
             (Integration::Nve, None) => self.verlet(sys, None)?,
             (Integration::Mvv { lambda }, _) => {
-                // vest = v + dt/2 f/m; r += dt vest; v += lambda dt f/m (the estimate the
-                // dissipative force reads); after the forces: v = vest + dt/2 f/m
-                // (vest travels with a particle that changes rank)
-                let s = &mut sys.store;
-                for i in 0..s.nlocal {
-                    for c in 0..3 {
-                        s.vest[i][c] = s.p[i][c] + 0.5 * dt * s.f[i][c];
-                        s.r[i][c] += dt * s.vest[i][c] / s.mass[i];
-                        s.p[i][c] += lambda * dt * s.f[i][c];
-                    }
-                }
-                self.after_drift(sys, verlet::finite_positions(sys))?;
-                let s = &mut sys.store;
-                for i in 0..s.nlocal {
-                    for c in 0..3 {
-                        s.p[i][c] = s.vest[i][c] + 0.5 * dt * s.f[i][c];
-                    }
-                }
+                // fix mvv/dpd: the estimate v + lambda dt f/m is what the dissipative force reads
+                let drifted = verlet::mvv_first_half(sys, dt, lambda, |_, _| {});
+                self.after_drift(sys, drifted)?;
+                verlet::mvv_second_half(sys, dt, |_, _| {});
             }
         }
         sys.comm.forward(&mut sys.store, ends);
@@ -763,5 +754,29 @@ avx2_fn! {
     /// [`ClassicDpd::forces`] likewise.
     fn built_forces(dpd: &ClassicDpd, sys: &mut System, step: u64) {
         dpd.forces_any(sys, step)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The fluctuation-dissipation constructors give the bits of sqrt(2 k_B T gamma) and
+    /// sigma^2 / (2 k_B T) written out, and recover each other.
+    #[test]
+    fn isothermal_coefficients_follow_the_fluctuation_dissipation_relation() {
+        for (kb, t, gamma, sigma) in [(1.0, 1.0, 4.5, 3.0), (1.380649e-23, 300.0, 0.7, 1.3e-10), (0.0019872, 1.7, 12.0, 0.2)] {
+            let d = DpdCoeff::isothermal(25.0, 1.0, gamma, kb, t);
+            assert_eq!(d.sigma.to_bits(), (2.0 * kb * t * gamma).sqrt().to_bits());
+            assert_eq!((d.a0, d.rc, d.gamma), (25.0, 1.0, gamma));
+            let f = DpdCoeff::from_sigma(25.0, 1.0, sigma, kb, t);
+            assert_eq!(f.gamma.to_bits(), (sigma * sigma / (2.0 * kb * t)).to_bits());
+            assert_eq!(f.sigma, sigma);
+            let back = DpdCoeff::isothermal(25.0, 1.0, f.gamma, kb, t).sigma;
+            assert!((back - sigma).abs() <= 1e-15 * sigma, "{back} {sigma}");
+            let m = MdpdCoeff::isothermal(-40.0, 25.0, 1.0, 0.75, gamma, kb, t, Lucy::new(0.75));
+            assert_eq!(m.sigma.to_bits(), d.sigma.to_bits());
+            assert_eq!((m.a, m.b, m.rc, m.rd, m.gamma), (-40.0, 25.0, 1.0, 0.75, gamma));
+        }
     }
 }

@@ -20,10 +20,12 @@
 //! rank, the number of ranks and the number of owned atoms); 3D only.
 
 use crate::error::StepError;
+use crate::passes::verlet;
 use crate::physics::{Physics, SetupError};
 use crate::rng::Normals;
 use crate::settings::Settings;
 use crate::system::System;
+use crate::type_table::TypeTable;
 use gendpde_engine::{dot, sub, Fields};
 use gendpde_potentials::{Lucy, Tait, Weight};
 
@@ -34,9 +36,8 @@ const WIENER_STREAM: u32 = 8;
 pub struct SdpdTaitwater {
     /// Tait water of each type (`pair_coeff I J RHO0 C0 H` sets it for the types I).
     pub eos: Vec<Tait>,
-    /// The Lucy kernel of each type pair, `ntypes * ntypes`, row-major over 0-based types.
-    pub kernel: Vec<Lucy>,
-    pub ntypes: usize,
+    /// The Lucy kernel of each type pair.
+    pub kernel: TypeTable<Lucy>,
     /// k_B T of the noise.
     pub kbt: f64,
     /// Dynamic viscosity mu.
@@ -67,7 +68,7 @@ impl SdpdTaitwater {
         for &[i, j] in pairs {
             let (i, j) = (i as usize, j as usize);
             let (ti, tj) = (s.kind[i] as usize - 1, s.kind[j] as usize - 1);
-            let kernel = &self.kernel[ti * self.ntypes + tj];
+            let kernel = self.kernel.get(s.kind[i], s.kind[j]);
             let d = sub(s.r[i], s.r[j]);
             let r2 = dot(d, d);
             let h = kernel.cutoff();
@@ -123,7 +124,7 @@ impl Physics for SdpdTaitwater {
     }
 
     fn cutoff(&self) -> f64 {
-        self.kernel.iter().map(Lucy::cutoff).fold(0.0, f64::max)
+        self.kernel.max_of(Lucy::cutoff)
     }
 
     /// As LAMMPS's set-up: the forces and drho/dt with the estimates equal to v.
@@ -142,25 +143,12 @@ impl Physics for SdpdTaitwater {
     /// The half-step momentum waits in `vest` while `p` holds the estimate.
     fn step(&self, sys: &mut System) -> Result<(), StepError> {
         let dt = self.settings.dt;
-        let s = &mut sys.store;
-        for i in 0..s.nlocal {
-            s.rho[i] += 0.5 * dt * s.drho[i];
-            for c in 0..3 {
-                s.vest[i][c] = s.p[i][c] + 0.5 * dt * s.f[i][c];
-                s.p[i][c] += dt * s.f[i][c];
-                s.r[i][c] += dt * s.vest[i][c] / s.mass[i];
-            }
-        }
-        self.relist(sys, crate::passes::verlet::finite_positions(sys))?;
+        // lambda = 1: 1.0 * dt is dt, so p += dt f as fix sph writes it
+        let drifted = verlet::mvv_first_half(sys, dt, 1.0, |s, i| s.rho[i] += 0.5 * dt * s.drho[i]);
+        self.relist(sys, drifted)?;
         sys.comm.forward(&mut sys.store, Fields::MOMENTUM | Fields::RHO);
         self.forces(sys, sys.clock.step + 1);
-        let s = &mut sys.store;
-        for i in 0..s.nlocal {
-            for c in 0..3 {
-                s.p[i][c] = s.vest[i][c] + 0.5 * dt * s.f[i][c];
-            }
-            s.rho[i] += 0.5 * dt * s.drho[i];
-        }
+        verlet::mvv_second_half(sys, dt, |s, i| s.rho[i] += 0.5 * dt * s.drho[i]);
         let state = Self::check_densities(sys);
         sys.comm.forward(&mut sys.store, Fields::MOMENTUM | Fields::RHO);
         sys.settle(state)
