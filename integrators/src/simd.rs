@@ -2,7 +2,7 @@
 
 /// Whether the hot loops run their AVX2 builds: the processor has AVX2 and the
 /// environment does not set `GENDPDE_NO_AVX2` (which runs the baseline builds, to check
-/// that both give the same bits, as tests/guarantees.rs does). Decided once per process.
+/// that both give the same bits, as tests/it/guarantees/guarantees.rs does). Decided once per process.
 pub fn avx2() -> bool {
     static AVX2: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
     *AVX2.get_or_init(|| {

@@ -14,7 +14,7 @@
 //! larger root, the one of Table 2), and lambda = 45 C_V k_B T/(2 pi gamma R^3)
 //! + 2 pi kappa R^5 c^2/(315 T^2) (113), solved for kappa with C_V of eq 108.
 //!
-//! Where the printed tables differ from these equations (tests/lth.rs checks every entry):
+//! Where the printed tables differ from these equations (tests/it/styles/lth.rs checks every entry):
 //! - C_V0*: Tables 1 and 9 print Cbar_V/(N k_B) = C~_V0 m/k_B (eq 111, 12.51 and 8.56,
 //!   [`LthParams::cv_macro`]), not C_V of eq 108 (11.008 and 7.063). Their kappa* values
 //!   also follow from eq 113 with that C_V ([`LthDissipation::kappa_macro`]): with eq 108,

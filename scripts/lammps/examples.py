@@ -278,9 +278,9 @@ NOTES = {
         "after the script's `reset_timestep 0` the second run redrew the noise of the first run's",
         "steps for the same pairs, which their positions remembered; the random virial lowered",
         "Press. The key now runs on through a reset (Clock::noise_shift, kept in restarts;",
-        "tests/guarantees.rs `reset_timestep_leaves_the_trajectory_alone`), and Press agrees.",
+        "tests/it/guarantees/guarantees.rs `reset_timestep_leaves_the_trajectory_alone`), and Press agrees.",
         "At step 0 with the noise separated out, Press, its diagonal and the energies agree with",
-        "LAMMPS to 1e-14 (tests/edpd.rs).",
+        "LAMMPS to 1e-14 (tests/it/styles/edpd.rs).",
     ],
     "multi-lucy": [
         "LAMMPS's `table.multibody` is missing upstream (an absent Git LFS blob): both programs",

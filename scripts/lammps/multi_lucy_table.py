@@ -57,7 +57,7 @@ def write(path, n, rho_hi, rho_star, e_star, f_star, b):
 
 
 def parity_files(outdir):
-    """The inputs of tests/multi_lucy.rs (in.multi-lucy-parity): data.multi-lucy (atom_style
+    """The inputs of tests/it/styles/multi_lucy.rs (in.multi-lucy-parity): data.multi-lucy (atom_style
     dpd, metal, N = 1000 on a 10^3 lattice of spacing 6 A with every site moved by
     uniform(-1.5, 1.5) A, types 1 and 2 alternating, v ~ N(0, kT/m) for m = 100 g/mol at
     300 K) and multi-lucy.table with three sections of e(rho) and f = de/drho: ML_RSQ
@@ -85,7 +85,7 @@ def parity_files(outdir):
         ("ML_FP", 250, "R", 0.0005, 0.025, " FP 0.002 0.0", lambda r: (1e-4 * math.exp(-r / 0.005), -0.02 * math.exp(-r / 0.005))),
     ]
     with open(f"{outdir}/multi-lucy.table", "w") as out:
-        out.write("# pair multi/lucy sections for tests/multi_lucy.rs (scripts/lammps/multi_lucy_table.py --parity)\n")
+        out.write("# pair multi/lucy sections for tests/it/styles/multi_lucy.rs (scripts/lammps/multi_lucy_table.py --parity)\n")
         for key, n, spacing, lo, hi, fp, ef in sections:
             out.write(f"\n{key}\nN {n} {spacing} {lo} {hi}{fp}\n\n")
             for i in range(n):

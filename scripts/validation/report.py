@@ -12,9 +12,9 @@ HEAD = """# Validation against the papers
 Each scene of the 2019 GenDPDE paper, the argon (LTh) paper and the 2021 heat-flow paper
 has an input script in `examples/`, a driver in `scripts/validation/` that runs it and
 draws the figure beside the paper's reference (theory curves, the EOS, the values the
-paper quotes), and a reduced variant in the test suite (`tests/vdw_equilibrium.rs`,
-`tests/scenes.rs`, `tests/energy_conservation.rs`, `tests/integrators_alt.rs`,
-`tests/lth.rs`, `tests/heat_only.rs`, `tests/heat_flow.rs`). The drivers store their numbers in
+paper quotes), and a reduced variant in the test suite (`tests/it/styles/vdw_equilibrium.rs`,
+`tests/it/styles/scenes.rs`, `tests/it/styles/energy_conservation.rs`, `tests/it/styles/integrators_alt.rs`,
+`tests/it/styles/lth.rs`, `tests/it/styles/heat_only.rs`, `tests/it/styles/heat_flow.rs`). The drivers store their numbers in
 `docs/validation/results.json` and their figures in `docs/validation/*.png`;
 `python3 scripts/validation/report.py` writes this page from them, and a driver's `--plot`
 redraws its figure from them without running (drift, pressure, heat_flow, flash, vapour_liquid).
@@ -388,7 +388,7 @@ eq 92 (previous section) reproduces the engine's pressure at rc = 3, 4, 5 for th
 and for vdW, so the whole departure is the equilibrium of the model's configurational
 weight at finite rc, and for vdW, whose pi/n^2 is convex too, it has the opposite sign
 (-9 % at rc = 3), set by the correlation hole of n_i. The test suite shows the LJ term directly
-(tests/scenes.rs): the particle EOS averaged over the particles' own states accounts for
+(tests/it/styles/scenes.rs): the particle EOS averaged over the particles' own states accounts for
 most of the excess at T = 1.5, rho = 0.5, and at T = 3, where pi(n)/n^2 is nearly
 linear, the virial is within 2 % of the EOS.
 """
@@ -762,7 +762,7 @@ errors over {eq_seeds} seeds:
 
 {eq_text}
 
-Tests (tests/sdpd.rs): momentum to 4e-17, energy O(dt^2) (ratios 4.05, 4.01 for dt 0.02,
+Tests (tests/it/styles/sdpd.rs): momentum to 4e-17, energy O(dt^2) (ratios 4.05, 4.01 for dt 0.02,
 0.01, 0.005), K + U of the irreversible stages to round-off, dS >= 0 at kB = 0, remnant
 force 2.1 (eq 96) against 5e-16 (eq 99) at uniform pressure; at equilibrium (C_V = 15,
 kB = 1, no pressure, dt = 0.01, 1000 sampled steps) T_kin/<theta> = 1.020 +- 0.006

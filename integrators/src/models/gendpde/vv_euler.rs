@@ -17,7 +17,7 @@
 //! 5. p_i += dt/2 (F^C_i + F^D_i), with F^D from step 4.
 //!
 //! The double sum of eq 21 (the Ito term) removes the kinetic energy the noise adds at
-//! O(dt) per step. Measured (tests/integrators_alt.rs): without friction and noise the
+//! O(dt) per step. Measured (tests/it/styles/integrators_alt.rs): without friction and noise the
 //! error of K + sum u is bounded and O(dt) (the work is taken at the velocities of t);
 //! with them the mean drift per time unit is O(dt^2). The prediction of v(t+dt) matters:
 //! with the momenta after step 3 alone (all the noise, half the deterministic kick) the
