@@ -53,7 +53,7 @@ pub fn worst_energy_error(it: &mut Interpreter, steps: u64) -> f64 {
     let e0 = gendpde::Observables::measure(sys).energy();
     let mut worst: f64 = 0.0;
     for _ in 0..steps {
-        physics.step(sys).unwrap();
+        physics.advance(sys).unwrap();
         worst = worst.max(((gendpde::Observables::measure(sys).energy() - e0) / e0).abs());
     }
     worst
