@@ -8,7 +8,6 @@ use crate::base::args::Args;
 use crate::styles::fix::{FixStyle, SourceSpec};
 use gendpde_integrators::{Edpd, EdpdCoeff, HeatSource, Physics, SourceShape, TypeTable};
 use gendpde_io::{Command, ScriptError};
-use std::any::Any;
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct PairEdpd {
@@ -123,9 +122,5 @@ impl Pair for PairEdpd {
         let sources = sources.collect();
         let (_, lambda) = lambda.ok_or("pair edpd integrates with fix mvv/edpd")?;
         Ok(Box::new(Edpd { coeff, seed: self.seed, kb: run.kb, lambda, sources, settings: run.settings() }))
-    }
-
-    fn as_any(&self) -> &dyn Any {
-        self
     }
 }

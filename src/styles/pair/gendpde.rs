@@ -11,7 +11,6 @@ use gendpde_integrators::{Dissipation, FixedEntropy, GenDpde, HeatModel, Motion,
 use gendpde_io::{Command, ScriptError};
 use gendpde_potentials::volume::PartitionVolume;
 use gendpde_potentials::{CubicSpline, FixedDensity, Linear, Lucy, Quadratic, Weight, WeightKind};
-use std::any::Any;
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct PairGendpde {
@@ -171,10 +170,6 @@ impl Pair for PairGendpde {
             return Ok(with_weight(v, self, scheme));
         }
         Ok(each_eos!(eos, e => with_weight(vec![e.clone()], self, scheme)))
-    }
-
-    fn as_any(&self) -> &dyn Any {
-        self
     }
 }
 

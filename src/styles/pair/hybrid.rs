@@ -12,7 +12,6 @@ use crate::base::args::Args;
 use crate::styles::fix::FixStyle;
 use gendpde_integrators::Physics;
 use gendpde_io::{Command, ScriptError};
-use std::any::Any;
 
 /// The sub-styles of a hybrid/overlay line.
 #[derive(Clone, Debug, PartialEq)]
@@ -129,9 +128,5 @@ impl Pair for Overlay {
             (None, Some((_, p))) => p.build(run),
             (None, None) => Err("pair_style hybrid/overlay has no sub-styles".into()),
         }
-    }
-
-    fn as_any(&self) -> &dyn Any {
-        self
     }
 }

@@ -24,7 +24,7 @@ use gendpde_io::{Command, PairCoeffs, ScriptError};
 use std::any::Any;
 
 /// What the program asks of a pair style, besides building its dynamics.
-pub trait Pair: std::fmt::Debug {
+pub trait Pair: AsAny + std::fmt::Debug {
     /// The style's name, as `pair_style` gives it.
     fn name(&self) -> &str;
     /// `pair_coeff I J args...` for this style.
@@ -52,7 +52,18 @@ pub trait Pair: std::fmt::Debug {
     fn data_section(&self, _ntypes: usize, _ij: bool) -> Result<Option<PairCoeffs>, String> {
         Ok(None)
     }
+}
+
+/// A style as `Any`, so that [`Pair::keep_coefficients`] can tell whether the style in
+/// force is of its own type.
+pub trait AsAny {
     fn as_any(&self) -> &dyn Any;
+}
+
+impl<T: Any> AsAny for T {
+    fn as_any(&self) -> &dyn Any {
+        self
+    }
 }
 
 /// Parses the words after `pair_style NAME` into the style.

@@ -28,7 +28,6 @@ use crate::styles::fix::FixStyle;
 use gendpde_integrators::{ClassicDpd, DpdCoeff, DpdEnergyCoeff, DpdExt, DpdExtCoeff, Integration, MdpdCoeff, NoiseForm, PairForce, Physics, ShardlowCoeff, ShardlowDpd, TypeTable};
 use gendpde_io::{Command, PairCoeffs, ScriptError};
 use gendpde_potentials::Lucy;
-use std::any::Any;
 
 #[derive(Clone, Debug, PartialEq)]
 pub enum Kind {
@@ -257,10 +256,6 @@ impl Pair for Pairwise {
 
     fn build(&self, run: &RunInputs) -> Result<Box<dyn Physics>, String> {
         self.dynamics(run).map(|d| Box::new(d) as Box<dyn Physics>)
-    }
-
-    fn as_any(&self) -> &dyn Any {
-        self
     }
 }
 

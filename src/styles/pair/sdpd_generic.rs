@@ -10,7 +10,6 @@ use crate::styles::fix::FixStyle;
 use gendpde_integrators::{FixedEntropy, Physics, Sdpd, SdpdParams, Settings, Species};
 use gendpde_io::{Command, ScriptError};
 use gendpde_potentials::{CubicSpline, Linear, Lucy, Quadratic, WeightKind};
-use std::any::Any;
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct PairSdpd {
@@ -106,10 +105,6 @@ impl Pair for PairSdpd {
             return Ok(with_weight(v, self, params, settings));
         }
         Ok(each_eos!(eos, e => with_weight(vec![e.clone()], self, params, settings)))
-    }
-
-    fn as_any(&self) -> &dyn Any {
-        self
     }
 }
 

@@ -8,7 +8,6 @@ use crate::styles::fix::FixStyle;
 use gendpde_integrators::{Physics, SdpdTaitwater, TypeTable};
 use gendpde_io::{Command, ScriptError};
 use gendpde_potentials::{Lucy, Tait};
-use std::any::Any;
 
 /// Tait water of one type: reference density and sound speed.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -122,9 +121,5 @@ impl Pair for PairTaitwater {
             mvv2e: run.mvv2e,
             settings: run.settings(),
         }))
-    }
-
-    fn as_any(&self) -> &dyn Any {
-        self
     }
 }

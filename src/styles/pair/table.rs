@@ -10,7 +10,6 @@ use crate::base::args::Args;
 use crate::styles::fix::FixStyle;
 use gendpde_integrators::{ClassicDpd, Integration, PairForce, PairTables, Physics};
 use gendpde_io::{Command, ScriptError};
-use std::any::Any;
 use gendpde_potentials::pair_table::{FileTable, PairTable, TableStyle};
 
 type Types = std::ops::RangeInclusive<usize>;
@@ -138,10 +137,6 @@ impl Pair for TablePair {
         let (force, tables) = if self.multi_lucy { (PairForce::MultiLucy(tables), None) } else { (PairForce::Off, Some(tables)) };
         let settings = run.settings();
         Ok(Box::new(ClassicDpd { force, tables, shardlow: None, integration: Integration::Nve, cv: None, energy: false, barostat: None, kb: run.kb, seed: 1, settings }))
-    }
-
-    fn as_any(&self) -> &dyn Any {
-        self
     }
 }
 

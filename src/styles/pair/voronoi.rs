@@ -11,7 +11,6 @@ use gendpde_integrators::models::voronoi::{CellDissipation, CellTransport, Finit
 use gendpde_integrators::Physics;
 use gendpde_io::{Command, ScriptError};
 use gendpde_potentials::{IdealCell, VdwCell};
-use std::any::Any;
 
 /// The cell relation E(M, S, V) in the paper's reduced units (eqs 160-162).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -112,9 +111,5 @@ impl Pair for PairVoronoi {
             CellRelation::Vdw { c } => Box::new(VoronoiFv::new(FiniteVolume { energy: VdwCell { c }, transport, dissipation, seed }, settings)),
             CellRelation::Ideal { c } => Box::new(VoronoiFv::new(FiniteVolume { energy: IdealCell { c }, transport, dissipation, seed }, settings)),
         })
-    }
-
-    fn as_any(&self) -> &dyn Any {
-        self
     }
 }
