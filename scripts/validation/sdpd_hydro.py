@@ -227,7 +227,7 @@ def lucy(h):
 
 
 def discrete_factors(pos, box, h, args):
-    """The linearised irreversible operators of integrators/src/sdpd.rs on one configuration
+    """The linearised irreversible operators of integrators/src/models/sdpd/generic.rs on one configuration
     (kB 0): the initial decay rates of v_x = sin(k z) and of theta = T + e sin(k x) at fixed
     positions, over their continuum values eta k^2/rho and kappa k^2/(n c_v)."""
     from scipy.spatial import cKDTree

@@ -2,7 +2,7 @@
 //!
 //! temp = sum p^2/m / (3N - 3) k_B; tint = mean theta; press = the virial pressure of
 //! the conservative force (eq 52; dissipative and random forces are not included; for
-//! Voronoi cells (sum 3 p V + sum P^2/M) / 3 V_T, integrators/src/voronoi/), in
+//! Voronoi cells (sum 3 p V + sum P^2/M) / 3 V_T, integrators/src/models/voronoi/), in
 //! LAMMPS's pressure unit (bar in metal, atm in real); density = mass / volume (g/cm^3 in
 //! metal and real); tpcpu, spcpu = simulated time and steps per CPU second since the
 //! previous thermo line of the run;

@@ -58,7 +58,7 @@ impl Rdf {
     }
 
     /// The rows (r, g, coord) at the current positions, on every rank. The grid's cells
-    /// must be at least `reach` = Rc + skin wide ([`System::min_cell`]) and no particle
+    /// must be at least `reach` = Rc + skin wide (`sys.lists.min_cell`) and no particle
     /// may have moved more than skin/2 since the last list build.
     pub fn rows(&self, sys: &System, rc: f64, reach: f64) -> Result<Vec<[f64; COLUMNS]>, String> {
         let grid = sys.grid.as_ref().ok_or_else(|| format!("compute {}: no cell grid (the run is not set up)", self.id))?;

@@ -3,7 +3,7 @@
 //! cells' masses change (hydrodynamic and DPD dissipation), the energy error second order
 //! in dt without noise, no stale tessellation after a change between steps, thermo press
 //! against the vdW EOS, the refusal of a second rank, and errors for bad input. The model's own invariants are tested in
-//! integrators/src/voronoi/.
+//! integrators/src/models/voronoi/.
 
 use crate::common;
 

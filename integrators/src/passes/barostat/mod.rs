@@ -42,7 +42,7 @@ pub enum Couple {
 /// The settings of a `fix nph` (after `fix_modify`).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Nph {
-    /// The fix ID (the key of its state, [`System::barostat`]).
+    /// The fix ID (the key of its state, [`crate::FixState`]).
     pub id: String,
     pub p_start: [f64; 3],
     pub p_stop: [f64; 3],
