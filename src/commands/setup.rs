@@ -354,7 +354,7 @@ pub fn neighbor(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
 /// `neigh_modify every N delay N check yes|no [once no]`: the list rebuild rules.
 pub fn neigh_modify(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     if a.remaining() == 0 {
-        return Err(a.err("missing argument: expected every, delay, check or once"));
+        return Err(a.err(format!("missing argument: expected {NEIGH_KEYWORDS}")));
     }
     while a.remaining() > 0 {
         match a.word("a keyword")? {
@@ -366,11 +366,34 @@ pub fn neigh_modify(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
                     return Err(a.err("once yes is not supported: lists must follow the particles"));
                 }
             }
-            k => return Err(a.err(format!("unknown keyword '{k}'; known: every, delay, check, once"))),
+            // LAMMPS's bounds of its neighbour pages; gendpde's lists grow as needed, so
+            // they bound nothing but are checked as LAMMPS's Neighbor::init checks them
+            k @ ("one" | "page") => {
+                let n = a.u64(if k == "one" { "the neighbours of one atom" } else { "the neighbour page size" })?;
+                if n == 0 {
+                    return Err(a.err(format!("neigh_modify {k} must be positive")));
+                }
+                sim.neigh_pages[usize::from(k == "page")] = n;
+            }
+            // the bin size sets LAMMPS's speed, not its lists; gendpde sizes its cells itself
+            "binsize" => {
+                a.non_negative("the bin size")?;
+            }
+            k @ ("exclude" | "include" | "cluster" | "collection/type" | "collection/interval") => {
+                return Err(a.err(format!("keyword {k} is not supported: every pair within the cutoff interacts")));
+            }
+            k => return Err(a.err(format!("unknown keyword '{k}'; known: {NEIGH_KEYWORDS}"))),
         }
+    }
+    let [one, page] = sim.neigh_pages;
+    if page < 10 * one {
+        return Err(a.err("Neighbor page size must be >= 10x the one atom setting"));
     }
     Ok(())
 }
+
+/// The keywords of `neigh_modify`.
+const NEIGH_KEYWORDS: &str = "every, delay, check, once, one, page, binsize";
 
 /// `reset_timestep N`: positions and lists stay; the build step follows the clock, the
 /// noise does not (its key runs on, so no stretch of it repeats).

@@ -38,6 +38,8 @@ pub struct Sim {
     pub dt: f64,
     pub skin: f64,
     pub rebuild: RebuildPolicy,
+    /// `neigh_modify one` and `page` (LAMMPS's defaults 2000 and 100000).
+    pub neigh_pages: [u64; 2],
     /// Total energy at the first setup, for `edrift`.
     pub energy0: Option<f64>,
     /// Largest tag handed out.
@@ -81,6 +83,7 @@ impl Sim {
             dt: 0.005,
             skin: 0.3,
             rebuild: RebuildPolicy::default(),
+            neigh_pages: [2000, 100000],
             energy0: None,
             max_tag: 0,
             procs: [None; 3],

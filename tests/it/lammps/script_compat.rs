@@ -507,6 +507,26 @@ fn messages_name_the_line_once() {
     }
 }
 
+/// `neigh_modify one`, `page` and `binsize` as LAMMPS takes them: the bounds of its
+/// neighbour pages bound nothing in gendpde's growing lists (the trajectory is LAMMPS's),
+/// and page < 10 one is refused with LAMMPS's words; `exclude` is refused.
+#[test]
+fn neigh_modify_pages_and_bins_run_as_in_lammps() {
+    let script = TEMP.replace("neigh_modify every 1 delay 0 check no", "neigh_modify every 1 delay 0 check no one 100 page 1000 binsize 0.5").replace("run 50", "run 20");
+    let ((_, g), (_, l)) = both("neigh-pages", &script);
+    let worst = compare_blocks(&last_block(&g), &last_block(&l), 1e-9);
+    eprintln!("neigh_modify one/page/binsize: agree with LAMMPS to {worst:.1e}");
+    let head = "units lj\natom_style dpd\n";
+    for (line, expected) in [
+        ("neigh_modify one 100 page 500", "ERROR: in.x:3: neigh_modify: Neighbor page size must be >= 10x the one atom setting"),
+        ("neigh_modify page 5", "ERROR: in.x:3: neigh_modify: Neighbor page size must be >= 10x the one atom setting"),
+        ("neigh_modify one 0", "ERROR: in.x:3: neigh_modify: neigh_modify one must be positive"),
+        ("neigh_modify exclude type 1 1", "ERROR: in.x:3: neigh_modify: keyword exclude is not supported"),
+    ] {
+        expect_error("neigh-pages-bad", &format!("{head}{line}\n"), expected);
+    }
+}
+
 /// `pair_style` before `read_data` and a region in lattice units without a lattice
 /// (LAMMPS's default lattice of spacing 1) run as in LAMMPS.
 #[test]
