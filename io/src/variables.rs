@@ -25,6 +25,8 @@ enum Var {
     /// An expression with one value per particle (per-particle names `x`, `vx`, `mass`,
     /// `type`, `id`, ... are resolved for each particle).
     Atom(String),
+    /// A number set by the `variable` command (LAMMPS's internal style), as written.
+    Internal(String),
 }
 
 impl Var {
@@ -35,6 +37,7 @@ impl Var {
             Var::Equal(_) => "equal",
             Var::Str(_) => "string",
             Var::Atom(_) => "atom",
+            Var::Internal(_) => "internal",
         }
     }
 }
@@ -86,6 +89,20 @@ impl Variables {
                     _ if style == "equal" => Var::Equal(value.clone()),
                     _ if style == "atom" => Var::Atom(value.clone()),
                     _ => Var::Str(value.clone()),
+                }
+            }
+            "internal" => {
+                let [value] = rest else {
+                    return Err(err(format!("Illegal variable command: expected 3 arguments but found {}", cmd.args.len())));
+                };
+                if !value.parse::<f64>().is_ok_and(f64::is_finite) {
+                    return Err(err(format!("Expected floating point parameter instead of '{value}'")));
+                }
+                match existing.map(Var::style) {
+                    Some(old) if old != "internal" => {
+                        return Err(err(format!("cannot redefine {old}-style variable '{name}' as internal-style")))
+                    }
+                    _ => Var::Internal(value.clone()),
                 }
             }
             "delete" | "index" => {
@@ -162,7 +179,7 @@ impl Variables {
                 current.to_string()
             }),
             Some(Var::Str(s)) => Ok(s.clone()),
-            Some(Var::Equal(_)) => expr::variable(self, name, resolve, 0, 0, &expr::Memo::default())
+            Some(Var::Equal(_) | Var::Internal(_)) => expr::variable(self, name, resolve, 0, 0, &expr::Memo::default())
                 .map(|x| format_g(x, 15))
                 .map_err(|e| format!("variable '{name}': {e}")),
             Some(Var::Atom(_)) => Err(format!(
@@ -171,7 +188,7 @@ impl Variables {
         }
     }
 
-    /// The style of a variable (`index`, `loop`, `equal`, `string`, `atom`).
+    /// The style of a variable (`index`, `loop`, `equal`, `string`, `atom`, `internal`).
     pub fn style(&self, name: &str) -> Option<&'static str> {
         self.vars.get(name).map(Var::style)
     }
@@ -192,7 +209,7 @@ impl Variables {
 impl VariableLookup for Variables {
     fn expression(&self, name: &str) -> Option<&str> {
         match self.vars.get(name) {
-            Some(Var::Equal(text)) => Some(text),
+            Some(Var::Equal(text) | Var::Internal(text)) => Some(text),
             _ => None,
         }
     }
@@ -209,7 +226,7 @@ struct AtomScope<'a>(&'a Variables);
 impl VariableLookup for AtomScope<'_> {
     fn expression(&self, name: &str) -> Option<&str> {
         match self.0.vars.get(name) {
-            Some(Var::Equal(text) | Var::Atom(text)) => Some(text),
+            Some(Var::Equal(text) | Var::Atom(text) | Var::Internal(text)) => Some(text),
             _ => None,
         }
     }
@@ -300,6 +317,25 @@ mod tests {
         vars.define(&cmd("variable e equal v_a+1")).unwrap();
         assert!(vars.value("e", &none).unwrap_err().contains("atom-style"));
         assert!(vars.define(&cmd("variable k atom x")).is_err(), "equal redefined as atom");
+    }
+
+    /// LAMMPS's internal style: a number, read as an equal-style variable is, redefined
+    /// only as internal; a non-number is refused with LAMMPS's words.
+    #[test]
+    fn internal_variables_hold_a_number() {
+        let mut vars = Variables::new();
+        vars.define(&cmd("variable a internal 1.5")).unwrap();
+        vars.define(&cmd("variable e equal v_a*2")).unwrap();
+        assert_eq!(vars.style("a"), Some("internal"));
+        assert_eq!(val(&vars, "a"), "1.5");
+        assert_eq!(val(&vars, "e"), "3");
+        vars.define(&cmd("variable a internal -2e-3")).unwrap();
+        assert_eq!(val(&vars, "e"), "-0.004");
+        let e = vars.define(&cmd("variable a internal x")).unwrap_err().to_string();
+        assert!(e.contains("Expected floating point parameter instead of 'x'"), "{e}");
+        assert!(vars.define(&cmd("variable a internal 1 2")).is_err(), "two values");
+        assert!(vars.define(&cmd("variable e internal 1")).is_err(), "equal redefined as internal");
+        assert!(vars.define(&cmd("variable a equal 1")).is_err(), "internal redefined as equal");
     }
 
     #[test]

@@ -527,6 +527,21 @@ fn neigh_modify_pages_and_bins_run_as_in_lammps() {
     }
 }
 
+/// `variable NAME internal VALUE` (LAMMPS's internal style) reads as a number in
+/// expressions and thermo, as in LAMMPS.
+#[test]
+fn internal_variables_match_lammps() {
+    let script = TEMP
+        .replace("variable t equal temp\n", "variable t equal temp\nvariable a internal 1.5\nvariable a internal 2.25\nvariable b equal v_a*temp\n")
+        .replace("pxx pzz v_t", "pxx pzz v_t v_a v_b")
+        .replace("run 50", "run 20");
+    let ((_, g), (_, l)) = both("internal", &script);
+    let (g, l) = (last_block(&g), last_block(&l));
+    assert!(g.column_index("v_b").is_some(), "v_b printed");
+    let worst = compare_blocks(&g, &l, 1e-9);
+    eprintln!("internal variables: agree with LAMMPS to {worst:.1e}");
+}
+
 /// `pair_style` before `read_data` and a region in lattice units without a lattice
 /// (LAMMPS's default lattice of spacing 1) run as in LAMMPS.
 #[test]
