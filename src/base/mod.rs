@@ -8,6 +8,7 @@ pub mod groups;
 pub mod lattice;
 pub mod memory;
 pub mod park;
+pub mod particle_keywords;
 pub mod region;
 pub mod script;
 pub mod signals;

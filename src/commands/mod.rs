@@ -73,7 +73,7 @@ impl Interpreter {
     pub fn dynamics(&mut self) -> Result<Box<dyn Physics>, AppError> {
         let cmd = Command { name: "run".into(), args: vec![], loc: Location { file: "<api>".into(), line: 0 } };
         let step = self.sim.system.as_ref().map_or(0, |s| s.clock.step);
-        run::prepare(&mut self.sim, &self.outputs.averages, &cmd, run::RunPart { nsteps: 0, ramp: [step, step], continues: false, summary: true })
+        run::prepare(&mut self.sim, &self.outputs.rdfs(), &cmd, run::RunPart { nsteps: 0, ramp: [step, step], continues: false, summary: true })
     }
 
     /// The system built by the script.
@@ -180,7 +180,7 @@ impl Interpreter {
             }
             "pair_style" => styles::pair_style(sim, a)?,
             "pair_coeff" => styles::pair_coeff(sim, a)?,
-            "fix" => styles::fix(sim, outputs, a)?,
+            "fix" => styles::fix(sim, outputs, &self.vars, a)?,
             "unfix" => styles::unfix(sim, outputs, a)?,
             "fix_modify" => styles::fix_modify(sim, a)?,
             "compute" => styles::compute(sim, a)?,

@@ -9,7 +9,7 @@ use crate::output::console::Output;
 use crate::output::dump::{group_all, Dump, PerAtomInputs, TextDump, WriteDump};
 use crate::output::h5md::H5mdDump;
 use crate::output::thermo::{heading, ThermoConfig};
-use crate::styles::compute::{Compute, ComputeStyle};
+use crate::styles::compute::{self, Compute};
 use gendpde_io::{ScriptError, Variables};
 use std::path::Path;
 
@@ -51,7 +51,7 @@ pub fn thermo_style(thermo: &mut ThermoConfig, vars: &Variables, a: &mut Args) -
 }
 
 /// `thermo_modify norm yes|no | format float F | flush yes|no | temp ID`.
-pub fn thermo_modify(thermo: &mut ThermoConfig, computes: &[Compute], a: &mut Args) -> Result<(), ScriptError> {
+pub fn thermo_modify(thermo: &mut ThermoConfig, computes: &[Box<dyn Compute>], a: &mut Args) -> Result<(), ScriptError> {
     if a.remaining() == 0 {
         return Err(a.err("missing argument: expected norm, format, flush or temp"));
     }
@@ -60,8 +60,8 @@ pub fn thermo_modify(thermo: &mut ThermoConfig, computes: &[Compute], a: &mut Ar
             "norm" => thermo.norm = a.yes_no("norm")?,
             "temp" => {
                 let id = a.word("a compute ID")?;
-                match computes.iter().find(|c| c.id == id) {
-                    Some(Compute { style: ComputeStyle::Temp { .. }, .. }) => thermo.temp = Some(id.to_string()),
+                match compute::find(computes, id) {
+                    Some(c) if c.style().starts_with("temp") => thermo.temp = Some(id.to_string()),
                     Some(_) => return Err(a.err(format!("compute {id} does not compute a temperature (compute temp)"))),
                     None => return Err(a.err(format!("no compute with ID '{id}'"))),
                 }

@@ -7,7 +7,6 @@ use crate::base::signals;
 use crate::base::script::{AppError, Mode};
 use crate::base::units::Units;
 use crate::model::sim::Sim;
-use crate::output::ave_time::AveTime;
 use crate::output::console::Output;
 use crate::output::restart;
 use crate::output::schedule::{Frame, RunOutput, Span};
@@ -107,7 +106,7 @@ pub struct RunPart {
 
 /// Builds the dynamics of the current styles and sets the system up for it (lists,
 /// densities, forces) for a run of `part.nsteps`; errors name `cmd`.
-pub fn prepare(sim: &mut Sim, averages: &[AveTime], cmd: &Command, part: RunPart) -> Result<Box<dyn Physics>, AppError> {
+pub fn prepare(sim: &mut Sim, rdfs: &[String], cmd: &Command, part: RunPart) -> Result<Box<dyn Physics>, AppError> {
     let err = |m: String| AppError::Script(ScriptError::at(cmd, m));
     let inputs = RunInputs { fixes: &sim.fixes, dt: sim.dt, skin: sim.skin, rebuild: sim.rebuild.clone(), kb: sim.units.kb, mvv2e: sim.units.mvv2e, ntypes: sim.ntypes };
     let physics = build_physics(cmd, sim.pair.as_deref(), &inputs)?;
@@ -119,7 +118,7 @@ pub fn prepare(sim: &mut Sim, averages: &[AveTime], cmd: &Command, part: RunPart
     // the cells must reach the pairs that the computes read by fix ave/time count
     sys.lists.min_cell = 0.0;
     sys.lists.cutoff = physics.cutoff();
-    for rdf in sim.rdfs.iter().filter(|r| averages.iter().any(|f| f.computes().any(|c| c == r.id))) {
+    for rdf in sim.rdfs.iter().filter(|r| rdfs.contains(&r.id)) {
         let rc = rdf.cutoff_for(sys.lists.cutoff);
         rdf.check_reach(sys, rc + sim.skin).map_err(err)?;
         sys.lists.min_cell = sys.lists.min_cell.max(rc + sim.skin);
@@ -177,7 +176,7 @@ pub fn prepare(sim: &mut Sim, averages: &[AveTime], cmd: &Command, part: RunPart
 pub fn run(sim: &mut Sim, outputs: &mut Outputs, out: &mut Output, vars: &Variables, mode: Mode, cmd: &Command, part: RunPart) -> Result<(), AppError> {
     let nsteps = part.nsteps;
     let err = |m: String| AppError::Script(ScriptError::at(cmd, m));
-    let physics = prepare(sim, &outputs.averages, cmd, part)?;
+    let physics = prepare(sim, &outputs.rdfs(), cmd, part)?;
     if mode == Mode::Check {
         return Ok(());
     }
@@ -326,16 +325,26 @@ fn interrupted(sim: &Sim, outputs: &mut Outputs, signal: usize, cmd: &Command) -
 }
 
 /// Writes the outputs due at the current step, in the order of [`Outputs::all`], with
-/// the progress bar hidden.
-fn write_due(sim: &Sim, outputs: &mut Outputs, out: &mut Output, vars: &Variables, run: Span, clock: Instant, progress: &ProgressBar) -> Result<(), String> {
-    let sys = sys_of(sim);
-    let due = |o: &dyn RunOutput| o.next_step(sys.clock.step, run).is_some_and(|next| next <= sys.clock.step);
+/// the progress bar hidden; what the output fixes publish is in `sim` before thermo and
+/// the dumps read it.
+fn write_due(sim: &mut Sim, outputs: &mut Outputs, out: &mut Output, vars: &Variables, run: Span, clock: Instant, progress: &ProgressBar) -> Result<(), String> {
+    let step = sys_of(sim).clock.step;
+    let due = |o: &dyn RunOutput| o.next_step(step, run).is_some_and(|next| next <= step);
     if !outputs.all().any(|o| due(o)) {
         return Ok(());
     }
     let thermo = outputs.thermo.clone();
-    let mut frame = Frame { sim, sys, vars, thermo: &thermo, out, run, cpu: clock.elapsed().as_secs_f64() };
-    for o in outputs.all().filter(|o| due(&**o)) {
+    let cpu = clock.elapsed().as_secs_f64();
+    for f in outputs.fixes.iter_mut().filter(|f| due(&***f)) {
+        let mut frame = Frame { sim, sys: sys_of(sim), vars, thermo: &thermo, out, run, cpu };
+        progress.suspend(|| f.write(&mut frame))?;
+        if let Some(values) = f.published() {
+            sim.fix_values.insert(f.id().to_string(), values.clone());
+        }
+    }
+    let mut frame = Frame { sim, sys: sys_of(sim), vars, thermo: &thermo, out, run, cpu };
+    let fixes = outputs.fixes.len();
+    for o in outputs.all().skip(fixes).filter(|o| due(&**o)) {
         progress.suspend(|| o.write(&mut frame))?;
     }
     frame.out.take_error().map_or(Ok(()), Err)

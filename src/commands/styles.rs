@@ -4,14 +4,13 @@
 use crate::base::args::Args;
 use crate::base::script::echo;
 use crate::model::sim::Sim;
-use crate::output::ave_chunk::AveChunk;
-use crate::output::ave_time::AveTime;
+use crate::output::fix::{self as output_fix, OutputFixContext};
 use crate::output::Outputs;
-use crate::styles::compute::{self, ComputeStyle, Definition};
+use crate::styles::compute::{self, ComputeContext, Definition};
 use crate::styles::fix::{parse_fix_in, FixStyle};
 use crate::styles::pair::parse_pair_style;
 use gendpde_integrators::{FixRecord, Nph, NphState};
-use gendpde_io::ScriptError;
+use gendpde_io::{ScriptError, Variables};
 
 /// `pair_style STYLE args...` (before or after the box, as LAMMPS). The style in force
 /// named again keeps its coefficients (see `Pair::keep_coefficients`); the restart's
@@ -40,40 +39,35 @@ pub fn pair_coeff(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
 }
 
 /// `fix ID GROUP STYLE args...`: a style fix (redefining an ID of the same style replaces
-/// it) or a `fix ave/time` or `fix ave/chunk` output (into `outputs`).
-pub fn fix(sim: &mut Sim, outputs: &mut Outputs, a: &mut Args) -> Result<(), ScriptError> {
+/// it) or an output fix (`output::fix`, into `outputs`; redefining one replaces it).
+pub fn fix(sim: &mut Sim, outputs: &mut Outputs, vars: &Variables, a: &mut Args) -> Result<(), ScriptError> {
     let cmd = a.command();
-    let style = cmd.args.get(2).map(String::as_str);
-    if let Some(style @ ("ave/time" | "ave/chunk")) = style {
+    let style = cmd.args.get(2).map(String::as_str).unwrap_or("");
+    if output_fix::is_output_fix(style) {
         let id = a.word("a fix ID")?.to_string();
         let group = a.word("a group")?;
         a.word("a fix style")?;
-        let other_style = match style {
-            "ave/time" => outputs.chunk_averages.iter().any(|f| f.id == id),
-            _ => outputs.averages.iter().any(|f| f.id == id),
-        };
+        let other_style = outputs.fix(&id).is_some_and(|f| f.style() != style);
         if other_style || sim.fixes.iter().any(|f| f.id == id) {
             return Err(a.err(format!("fix ID '{id}' is in use by another style (unfix it first)")));
         }
         let step = sim.system.as_ref().map_or(0, |s| s.clock.step);
-        if style == "ave/chunk" {
-            let fix = AveChunk::parse(id, group, a, &sim.groups, &sim.chunks, &sim.computes, step)?;
-            outputs.chunk_averages.retain(|f| f.id != fix.id);
-            outputs.chunk_averages.push(fix);
-        } else if group != "all" {
-            return Err(a.err(format!("group '{group}': fix ave/time acts on group all")));
-        } else {
-            let fix = AveTime::parse(id, a, &sim.rdfs, step)?;
-            outputs.averages.retain(|f| f.id != fix.id);
-            outputs.averages.push(fix);
-        }
+        let context = OutputFixContext { id, group, sim, vars, step };
+        let fix = output_fix::parse(style, a, &context)?;
+        let id = fix.id().to_string();
+        match fix.published() {
+            Some(values) => sim.fix_values.insert(id.clone(), values.clone()),
+            None => sim.fix_values.remove(&id),
+        };
+        outputs.fixes.retain(|f| f.id() != id);
+        outputs.fixes.push(fix);
         return Ok(());
     }
     let mut fix = parse_fix_in(cmd, sim.units.kb, &sim.groups, &sim.regions)?;
     if let FixStyle::Nph { nph, fixedpoint } = &mut fix.style {
         define_barostat(sim, nph, *fixedpoint).map_err(|e| a.err(e))?;
     }
-    if outputs.has_fix(&fix.id) {
+    if outputs.fix(&fix.id).is_some() {
         return Err(a.err(format!("fix ID '{}' is in use by another style (unfix it first)", fix.id)));
     }
     match sim.fixes.iter_mut().find(|f| f.id == fix.id) {
@@ -117,8 +111,8 @@ pub fn fix_modify(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
         match k {
             "temp" => {
                 let cid = a.word("a compute temp ID")?;
-                let c = sim.computes.iter().find(|c| c.id == cid).ok_or_else(|| a.err(format!("Could not find fix_modify temperature ID {cid}")))?;
-                let ComputeStyle::Temp { mask, extra_dof } = c.style else {
+                let c = compute::find(&sim.computes, cid).ok_or_else(|| a.err(format!("Could not find fix_modify temperature ID {cid}")))?;
+                let Some((mask, extra_dof)) = c.temp_group() else {
                     return Err(a.err(format!("Fix_modify temperature ID {cid} does not compute temperature")));
                 };
                 (nph.temp_mask, nph.extra_dof) = (mask, extra_dof);
@@ -135,36 +129,43 @@ pub fn fix_modify(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     Ok(())
 }
 
-/// `unfix ID`: a style fix, a fix ave/time or a fix ave/chunk.
+/// `unfix ID`: a style fix or an output fix.
 pub fn unfix(sim: &mut Sim, outputs: &mut Outputs, a: &mut Args) -> Result<(), ScriptError> {
     let id = a.word("a fix ID")?;
     a.done()?;
-    if !sim.fixes.iter().any(|f| f.id == id) && !outputs.has_fix(id) {
+    if !sim.fixes.iter().any(|f| f.id == id) && outputs.fix(id).is_none() {
         return Err(a.err(format!("no fix with ID '{id}'")));
     }
     sim.fixes.retain(|f| f.id != id);
     if let Some(sys) = &mut sim.system {
         sys.fixes.remove(id);
     }
-    outputs.averages.retain(|f| f.id != id);
-    outputs.chunk_averages.retain(|f| f.id != id);
+    outputs.fixes.retain(|f| f.id() != id);
+    sim.fix_values.remove(id);
     Ok(())
 }
 
 /// `compute ID GROUP STYLE args...` (redefining an ID replaces it).
 pub fn compute(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
-    let def = compute::parse(a, &sim.groups, &sim.computes, sim.lattice_spacing(), sim.system.as_ref(), sim.max_tag)?;
-    sim.computes.retain(|c| c.id != def.id());
+    let context = ComputeContext {
+        id: String::new(),
+        group: "",
+        groups: &sim.groups,
+        computes: &sim.computes,
+        regions: &sim.regions,
+        ntypes: sim.ntypes,
+        spacing: sim.lattice_spacing(),
+        system: sim.system.as_ref(),
+        max_tag: sim.max_tag,
+    };
+    let def = compute::parse(a, context)?;
+    sim.computes.retain(|c| c.id() != def.id());
     sim.rdfs.retain(|r| r.id != def.id());
     sim.chunks.retain(|r| r.id != def.id());
-    sim.msds.retain(|r| r.id != def.id());
-    sim.reduces.retain(|r| r.id != def.id());
     match def {
-        Definition::Value(c) => sim.computes.push(c),
+        Definition::Compute(c) => sim.computes.push(c),
         Definition::Rdf(r) => sim.rdfs.push(r),
         Definition::Chunk(c) => sim.chunks.push(c),
-        Definition::Msd(m) => sim.msds.push(m),
-        Definition::Reduce(r) => sim.reduces.push(r),
     }
     Ok(())
 }

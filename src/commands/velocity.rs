@@ -10,7 +10,7 @@ use crate::base::park::{Park, MAX_SEED};
 use crate::model::per_atom;
 use crate::model::sim::Sim;
 use crate::output::thermo::ThermoConfig;
-use crate::styles::compute::{ComputeStyle, Kinetic};
+use crate::styles::compute::{self, temp::group_temperature};
 use gendpde_engine::{exact_sums, Vec3};
 use gendpde_integrators::System;
 use gendpde_io::{ScriptError, Variables};
@@ -119,10 +119,11 @@ fn options(sim: &Sim, a: &mut Args) -> Result<Options, ScriptError> {
             "rot" => o.rot = a.yes_no("rot")?,
             "temp" => {
                 let id = a.word("a compute ID")?;
-                let c = sim.computes.iter().find(|c| c.id == id).ok_or_else(|| a.err(format!("no compute with ID '{id}'")))?;
-                match c.style {
-                    ComputeStyle::Temp { mask, extra_dof } => o.temp = Some((mask, extra_dof)),
-                    _ => return Err(a.err(format!("compute {id} does not compute a temperature"))),
+                let c = compute::find(&sim.computes, id).ok_or_else(|| a.err(format!("no compute with ID '{id}'")))?;
+                match c.temp_group() {
+                    Some(group) => o.temp = Some(group),
+                    None if c.style().starts_with("temp") => return Err(a.err(format!("compute {id} is {}: velocity temp takes a compute temp", c.style()))),
+                    None => return Err(a.err(format!("compute {id} does not compute a temperature"))),
                 }
             }
             "bias" => {
@@ -368,7 +369,7 @@ fn solve(i: [[f64; 3]; 3], l: Vec3) -> Option<Vec3> {
 /// Scales the group's velocities by sqrt(T / T_now), T_now from the compute temp of group
 /// bit `tmask` with 3N - `extra_dof` degrees of freedom (LAMMPS refuses T_now = 0).
 fn rescale(sys: &mut System, members: &[usize], tmask: u32, extra_dof: f64, kb: f64, t: f64) -> Result<(), String> {
-    let now = Kinetic::measure(sys, tmask).temperature(kb, extra_dof);
+    let now = group_temperature(sys, tmask, extra_dof).value(kb);
     if now == 0.0 {
         return Err("cannot rescale a temperature of 0 (no kinetic energy or no degrees of freedom)".into());
     }

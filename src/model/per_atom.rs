@@ -1,8 +1,11 @@
 //! Atom-style variables (LAMMPS `variable NAME atom EXPR`): the expression evaluated for
 //! each owned particle, with LAMMPS's per-atom names `id type mass x y z vx vy vz fx fy
 //! fz` read from that particle and every other name (thermo keywords, `v_name` of
-//! equal-style variables) global.
+//! equal-style variables) global; and the inputs computes read ([`evaluate`]).
 
+use crate::base::particle_keywords::Keyword;
+use crate::model::sim::Sim;
+use crate::styles::compute::{self, Eval};
 use gendpde_integrators::System;
 use gendpde_io::Variables;
 
@@ -50,4 +53,26 @@ pub fn atom_variable(vars: &Variables, name: &str, sys: &System, mvv2e: f64, glo
         Some(style) => Err(format!("variable '{name}' is {style}-style, not atom-style")),
         None => Err(format!("unknown variable '{name}'")),
     }
+}
+
+/// Runs `f` with the [`Eval`] the computes of `sim` read: its per-atom inputs are the
+/// particle keywords, `c_ID`/`c_ID[k]` of per-atom computes and `v_name` of atom-style
+/// variables; `global` resolves the names of the variables that are not per-particle.
+pub fn evaluate<R>(sim: &Sim, sys: &System, vars: &Variables, global: &dyn Fn(&str) -> Option<f64>, f: impl FnOnce(&Eval) -> R) -> R {
+    let input = |name: &str| input(sim, sys, vars, global, name);
+    f(&Eval { sys, units: &sim.units, pair_energy: sim.pe_is_pair(), input: &input })
+}
+
+/// The per-atom values of `name` by owned particle: a particle keyword (x, vx, fx, ...),
+/// `c_ID` or `c_ID[k]` of a per-atom compute, `v_name` of an atom-style variable.
+pub fn input(sim: &Sim, sys: &System, vars: &Variables, global: &dyn Fn(&str) -> Option<f64>, name: &str) -> Result<Vec<f64>, String> {
+    if let Some(v) = name.strip_prefix("v_") {
+        return atom_variable(vars, v, sys, sim.units.mvv2e, global);
+    }
+    if name.starts_with("c_") {
+        return evaluate(sim, sys, vars, global, |e| compute::per_atom(&sim.computes, e, name)).unwrap_or_else(|| Err(format!("{name}: no per-atom compute of that ID (or no such column)")));
+    }
+    let keyword = Keyword::find(name).ok_or_else(|| format!("unknown per-atom input '{name}'"))?;
+    let reader = keyword.reader(&sys.store)?;
+    Ok((0..sys.store.nlocal).map(|i| reader.get(sys, i)).collect())
 }

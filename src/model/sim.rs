@@ -5,8 +5,6 @@ use crate::base::lattice::Lattice;
 use crate::base::region::Region;
 use crate::base::units::Units;
 use crate::styles::compute::chunk::ChunkAtom;
-use crate::styles::compute::msd::Msd;
-use crate::styles::compute::reduce::Reduce;
 use crate::styles::compute::rdf::Rdf;
 use crate::styles::compute::Compute;
 use crate::styles::fix::{Fix, FixStyle};
@@ -20,6 +18,17 @@ use std::collections::HashMap;
 const RESERVOIR_STATE: &str = "heat/reservoir/";
 /// Restart state name prefix of a `fix nph` barostat.
 const NPH_STATE: &str = "nph/";
+
+/// The global values a fix publishes, read as `f_ID` (the scalar) and `f_ID[k]`: each
+/// value with whether it is extensive (divided by N under `thermo_modify norm yes`).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct FixValues {
+    pub scalar: Option<(f64, bool)>,
+    pub vector: Vec<(f64, bool)>,
+    /// The values change only on multiples of this step (LAMMPS's global_freq: thermo
+    /// reads them only then).
+    pub freq: u64,
+}
 
 /// Everything the commands of a script have defined so far.
 pub struct Sim {
@@ -50,18 +59,17 @@ pub struct Sim {
     pub atom_style: AtomStyle,
     /// The `pair_style` and `pair_coeff` commands in force, as text (for restarts).
     pub pair_text: Vec<String>,
-    /// `compute` definitions (thermo `c_ID[k]`).
-    pub computes: Vec<Compute>,
+    /// `compute` definitions but rdf and chunk/atom (thermo `c_ID`, `c_ID[k]`, dump `c_ID`).
+    pub computes: Vec<Box<dyn Compute>>,
     /// `compute ID all rdf` definitions.
     pub rdfs: Vec<Rdf>,
     /// `compute ID GROUP chunk/atom` definitions.
     pub chunks: Vec<ChunkAtom>,
-    /// `compute ID GROUP msd` definitions (thermo `c_ID[k]`).
-    pub msds: Vec<Msd>,
-    /// `compute ID GROUP reduce` definitions (thermo `c_ID`, `c_ID[k]`).
-    pub reduces: Vec<Reduce>,
     /// Group names by bit (an empty name is a free slot).
     pub groups: Vec<String>,
+    /// The global values of the output fixes (`output::fix`) by fix ID, as of their
+    /// last block.
+    pub fix_values: HashMap<String, FixValues>,
     /// State of fixes read from a restart, taken by the fixes as they are defined.
     pub restored_state: Vec<(String, Vec<f64>)>,
 }
@@ -92,9 +100,8 @@ impl Sim {
             computes: Vec::new(),
             rdfs: Vec::new(),
             chunks: Vec::new(),
-            msds: Vec::new(),
-            reduces: Vec::new(),
             groups: Vec::new(),
+            fix_values: HashMap::new(),
             restored_state: Vec::new(),
         }
     }

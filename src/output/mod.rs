@@ -1,21 +1,19 @@
 //! Output: the screen and log ([`console`]), and what runs and commands write: thermo,
 //! text and H5MD dumps, fix ave/time and ave/chunk, checkpoints and restart files.
 
-pub mod ave_chunk;
-pub mod ave_time;
 pub mod checkpoint;
 pub mod console;
 pub mod dump;
+pub mod fix;
 pub mod h5md;
 pub mod restart;
 pub mod schedule;
 pub mod thermo;
 pub mod thermo_settings;
 
-use self::ave_chunk::AveChunk;
-use self::ave_time::AveTime;
 use self::checkpoint::Checkpoint;
 use self::dump::Dump;
+use self::fix::OutputFix;
 use self::schedule::RunOutput;
 use self::thermo::ThermoConfig;
 
@@ -26,27 +24,31 @@ pub struct Outputs {
     pub thermo: ThermoConfig,
     /// `dump ID GROUP custom|atom|xyz|h5md ...`.
     pub dumps: Vec<Box<dyn Dump>>,
-    /// `fix ID all ave/time`.
-    pub averages: Vec<AveTime>,
-    /// `fix ID GROUP ave/chunk`.
-    pub chunk_averages: Vec<AveChunk>,
+    /// The output fixes (ave/time, ave/chunk, print, ...).
+    pub fixes: Vec<Box<dyn OutputFix>>,
     /// `checkpoint N FILE`.
     pub checkpoint: Option<Checkpoint>,
 }
 
 impl Outputs {
-    /// Whether a fix ave/time or ave/chunk has ID `id`.
-    pub fn has_fix(&self, id: &str) -> bool {
-        self.averages.iter().any(|f| f.id == id) || self.chunk_averages.iter().any(|f| f.id == id)
+    /// The output fix with ID `id`.
+    pub fn fix(&self, id: &str) -> Option<&dyn OutputFix> {
+        self.fixes.iter().find(|f| f.id() == id).map(|f| f.as_ref())
     }
 
-    /// All of them in the order a run writes them at one step: thermo, the dumps, the
-    /// fixes ave/time, the fixes ave/chunk, the checkpoint.
+    /// The IDs of the compute rdf the output fixes read.
+    pub fn rdfs(&self) -> Vec<String> {
+        self.fixes.iter().flat_map(|f| f.rdfs()).map(String::from).collect()
+    }
+
+    /// All of them in the order a run writes them at one step: the output fixes (which
+    /// LAMMPS runs before its output), thermo, the dumps, the checkpoint.
     pub fn all(&mut self) -> impl Iterator<Item = &mut dyn RunOutput> {
-        std::iter::once(&mut self.thermo as &mut dyn RunOutput)
+        self.fixes
+            .iter_mut()
+            .map(|f| f.as_mut() as &mut dyn RunOutput)
+            .chain(std::iter::once(&mut self.thermo as &mut dyn RunOutput))
             .chain(self.dumps.iter_mut().map(|d| d.as_mut() as &mut dyn RunOutput))
-            .chain(self.averages.iter_mut().map(|f| f as &mut dyn RunOutput))
-            .chain(self.chunk_averages.iter_mut().map(|f| f as &mut dyn RunOutput))
             .chain(self.checkpoint.iter_mut().map(|c| c as &mut dyn RunOutput))
     }
 }

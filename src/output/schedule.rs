@@ -62,12 +62,23 @@ impl Sampling {
                 "Nevery {nevery}, Nrepeat {nrepeat}, Nfreq {nfreq}: all must be positive, Nfreq a multiple of Nevery and (Nrepeat - 1) Nevery < Nfreq"
             )));
         }
-        let end = (step / nfreq) * nfreq + nfreq;
-        let mut next = if end - nfreq == step && nrepeat == 1 { step } else { end - (nrepeat - 1) * nevery };
-        if next < step {
-            next += nfreq;
+        let mut sampling = Self { nevery, nrepeat, nfreq, samples: 0, next: 0 };
+        sampling.start_at(step, 0);
+        Ok(sampling)
+    }
+
+    /// Schedules the first sample after `step` for a first block ending at or after
+    /// `start` (LAMMPS's nextvalid with its `start` keyword).
+    pub fn start_at(&mut self, step: u64, start: u64) {
+        let (nevery, nrepeat, nfreq) = (self.nevery, self.nrepeat, self.nfreq);
+        let mut end = (step / nfreq) * nfreq + nfreq;
+        while end < start {
+            end += nfreq;
         }
-        Ok(Self { nevery, nrepeat, nfreq, samples: 0, next })
+        self.next = if end - nfreq == step && nrepeat == 1 { step } else { end - (nrepeat - 1) * nevery };
+        if self.next < step {
+            self.next += nfreq;
+        }
     }
 
     /// Counts the sample taken at `step` (the due one, else an error naming `fix`) and

@@ -20,7 +20,8 @@ use crate::model::sim::Sim;
 use crate::output::schedule::{Frame, RunOutput, Span};
 pub use crate::output::thermo_settings::ThermoConfig;
 use crate::output::thermo_settings::Mark;
-use crate::styles::compute::{self, ComputeStyle, Kinetic, Totals};
+use crate::model::per_atom;
+use crate::styles::compute::{self, Temperature};
 use crate::styles::fix::FixStyle;
 use gendpde_engine::exact_sums;
 use gendpde_integrators::{FixRecord, NphState, System};
@@ -54,6 +55,10 @@ pub fn values(config: &ThermoConfig, f: &Frame) -> Result<Vec<f64>, String> {
     let resolve = |name: &str| ctx.keyword(name);
     let mut values = Vec::with_capacity(config.keywords.len());
     for k in &config.keywords {
+        let published = compute::reference(k).filter(|r| r.0 == 'f').and_then(|r| f.sim.fix_values.get(r.1).map(|v| (r.1, v.freq)));
+        if let Some((id, freq)) = published.filter(|(_, freq)| *freq > 0 && f.sys.clock.step % freq != 0) {
+            return Err(format!("thermo keyword {k}: Thermo fix {id} not computed at compatible time (its values change every {freq} steps)"));
+        }
         let v = match ctx.keyword(k) {
             Some(v) => v,
             None => gendpde_io::evaluate(k, f.vars, &resolve).map_err(|e| format!("thermo keyword {k}: {e}"))?,
@@ -124,14 +129,16 @@ impl Observables {
         self.ke + self.u + self.epair
     }
 
-    /// The kinetic sums of all particles.
-    pub fn kinetic(&self) -> Kinetic {
-        Kinetic { count: self.atoms, mv2_diag: self.mv2_diag }
+    /// The kinetic sums of all particles, LAMMPS's thermo_temp: dof = 3N - 3 (the
+    /// off-diagonal terms are not measured).
+    pub fn kinetic(&self) -> Temperature {
+        let [xx, yy, zz] = self.mv2_diag;
+        Temperature { dof: 3.0 * self.atoms - 3.0, tensor: [xx, yy, zz, 0.0, 0.0, 0.0] }
     }
 
     /// LAMMPS's temperature of group all: dof = 3N - 3.
     pub fn temperature(&self, kb: f64) -> f64 {
-        self.kinetic().temperature(kb, 3.0)
+        self.kinetic().value(kb)
     }
 
     pub fn pressure(&self) -> f64 {
@@ -139,13 +146,13 @@ impl Observables {
     }
 
     /// The pressure with the kinetic part of `k` (LAMMPS: that of the thermo temperature).
-    pub fn pressure_with(&self, k: &Kinetic) -> f64 {
+    pub fn pressure_with(&self, k: &Temperature) -> f64 {
         (k.mv2() + self.virial_diag.iter().sum::<f64>()) / (3.0 * self.volume)
     }
 
     /// Diagonal component `a` of the pressure tensor (LAMMPS's pxx, pyy, pzz).
-    pub fn pressure_component(&self, k: &Kinetic, a: usize) -> f64 {
-        (k.mv2_diag[a] + self.virial_diag[a]) / self.volume
+    pub fn pressure_component(&self, k: &Temperature, a: usize) -> f64 {
+        (k.tensor[a] + self.virial_diag[a]) / self.volume
     }
 }
 
@@ -156,9 +163,8 @@ pub struct ThermoContext<'a> {
     /// The script's variables (atom-style inputs of compute reduce).
     vars: &'a Variables,
     obs: Observables,
-    /// Kinetic sums of the thermo temperature's group, and its extra dof.
-    kinetic: Kinetic,
-    extra_dof: f64,
+    /// Kinetic sums of the thermo temperature (thermo_modify temp).
+    kinetic: Temperature,
     norm: bool,
     /// The previous thermo line of this run (None at its first).
     last: Option<Mark>,
@@ -171,13 +177,10 @@ impl<'a> ThermoContext<'a> {
     /// steps and `cpu` seconds of the run.
     pub fn new(sim: &'a Sim, sys: &'a System, config: &ThermoConfig, vars: &'a Variables, elapsed: u64, cpu: f64) -> Self {
         let obs = Observables::measure(sys);
-        let temp = config.temp.as_deref().and_then(|id| sim.computes.iter().find(|c| c.id == id));
-        let (kinetic, extra_dof) = match temp.map(|c| c.style) {
-            Some(ComputeStyle::Temp { mask, extra_dof }) => (Kinetic::measure(sys, mask), extra_dof),
-            _ => (obs.kinetic(), 3.0),
-        };
+        let temp = config.temp.as_deref().and_then(|id| compute::find(&sim.computes, id));
+        let kinetic = temp.and_then(|c| per_atom::evaluate(sim, sys, vars, &|_| None, |e| c.temperature(e))).unwrap_or_else(|| obs.kinetic());
         let last = config.last.filter(|_| elapsed > 0);
-        Self { sim, sys, vars, obs, kinetic, extra_dof, norm: config.norm, last, elapsed, cpu }
+        Self { sim, sys, vars, obs, kinetic, norm: config.norm, last, elapsed, cpu }
     }
 
     /// Value of a built-in keyword; None if the name is not one.
@@ -198,7 +201,7 @@ impl<'a> ThermoContext<'a> {
             "tpcpu" => self.rate(|m| self.sys.clock.time - m.time),
             "spcpu" => self.rate(|m| (self.sys.clock.step - m.step) as f64),
             "atoms" => o.atoms,
-            "temp" => self.kinetic.temperature(self.sim.units.kb, self.extra_dof),
+            "temp" => self.kinetic.value(self.sim.units.kb),
             "tint" => if o.atoms > 0.0 { o.theta / o.atoms } else { 0.0 },
             "nmean" => if o.atoms > 0.0 { o.n / o.atoms } else { 0.0 },
             "press" => press * units.nktv2p,
@@ -246,8 +249,18 @@ impl<'a> ThermoContext<'a> {
         if self.sim.pe_is_pair() { self.obs.epair } else { self.obs.u }
     }
 
-    /// `c_ID[k]` of a compute (`styles::compute`) or `f_ID` of a `fix heat/reservoir`.
+    /// `c_ID` or `c_ID[k]` of a compute (`styles::compute`), `f_ID` or `f_ID[k]` of an
+    /// output fix (`output::fix`), `f_ID` of a `fix heat/reservoir` or `fix nph`.
     fn compute(&self, name: &str) -> Option<f64> {
+        if let Some(('f', id, index)) = compute::reference(name) {
+            if let Some(values) = self.sim.fix_values.get(id) {
+                let (v, extensive) = match index {
+                    None => values.scalar?,
+                    Some(k) => *values.vector.get(k.checked_sub(1)?)?,
+                };
+                return Some(if extensive && self.norm && self.obs.atoms > 0.0 { v / self.obs.atoms } else { v });
+            }
+        }
         if let Some(id) = name.strip_prefix("f_") {
             if let Some(st) = self.sys.fixes.barostat(id) {
                 let e = self.barostat_energy(st);
@@ -255,14 +268,9 @@ impl<'a> ThermoContext<'a> {
             }
             return self.reservoir_heat(id);
         }
-        let o = &self.obs;
-        let totals = Totals { kb: self.sim.units.kb, atoms: o.atoms, u: o.u, u_cond: o.u_cond, inv_theta: o.inv_theta };
         let (sim, sys) = (self.sim, self.sys);
-        compute::value(&sim.computes, sys, &totals, name).or_else(|| compute::msd_value(&sim.msds, sys, name)).or_else(|| {
-            let variable = |v: &str| crate::model::per_atom::atom_variable(self.vars, v, sys, sim.units.mvv2e, &|n| self.keyword(n)).ok();
-            let (v, extensive) = compute::reduce_value(&sim.reduces, &sim.computes, sys, sim.units.mvv2e, sim.pe_is_pair(), &variable, name)?;
-            Some(if extensive && self.norm && o.atoms > 0.0 { v / o.atoms } else { v })
-        })
+        let (v, extensive) = per_atom::evaluate(sim, sys, self.vars, &|n| self.keyword(n), |e| compute::global(&sim.computes, e, name))?.ok()?;
+        Some(if extensive && self.norm && self.obs.atoms > 0.0 { v / self.obs.atoms } else { v })
     }
 
     /// The energy of the `fix nph` barostat in state `st` (LAMMPS's `ecouple`: never per

@@ -1,174 +1,207 @@
-//! Compute styles: `compute ID all dpd`, `compute ID GROUP tint` and `compute ID GROUP
-//! temp`, global values read in thermo output as `c_ID` or `c_ID[k]`, `compute ID all rdf` ([`rdf`], read by
-//! fix ave/time) and `compute ID GROUP chunk/atom` ([`chunk`], read by fix ave/chunk).
+//! Compute styles, one unit each: a [`Compute`] says what it produces ([`Shape`]: a global
+//! scalar, a global vector, per-atom values) and evaluates them on request ([`Eval`]).
+//! Thermo, variables and fix ave/time read `c_ID` (the scalar) and `c_ID[k]` (vector
+//! element k); dumps, compute reduce, fix ave/chunk and fix ave/atom read per-atom `c_ID`
+//! (a per-atom vector) and `c_ID[k]` (column k of a per-atom array). Two styles keep their
+//! own lists because their consumers read more than values: `compute rdf` ([`rdf`], a global
+//! array read by fix ave/time) and `compute chunk/atom` ([`chunk`], read by fix ave/chunk).
+//!
+//! Adding a style: a file with its type implementing [`Compute`] and one line in
+//! [`COMPUTE_STYLES`].
 
 pub mod chunk;
 pub mod com;
+pub mod coord_atom;
+pub mod count_type;
+pub mod dpd;
+pub mod gyration;
 pub mod msd;
+pub mod property_atom;
 pub mod rdf;
 pub mod reduce;
+pub mod temp;
 
 use self::chunk::ChunkAtom;
-use self::msd::Msd;
-use self::reduce::Reduce;
 use self::rdf::Rdf;
 use crate::base::args::Args;
-use gendpde_engine::exact_sums;
+use crate::base::region::Region;
+use crate::base::units::Units;
+use crate::styles::pair::AsAny;
 use gendpde_integrators::System;
 use gendpde_io::ScriptError;
+use std::collections::HashMap;
 
-/// A defined compute.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Compute {
-    pub id: String,
-    pub style: ComputeStyle,
+/// What a compute produces (LAMMPS's scalar_flag, size_vector, peratom_flag and
+/// size_peratom_cols, extscalar/extvector).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Shape {
+    pub scalar: bool,
+    /// Length of the global vector (0: none).
+    pub vector: usize,
+    /// Per-atom values: None, Some(0) a per-atom vector, Some(n) an array of n columns.
+    pub per_atom: Option<usize>,
+    /// Whether the global values are extensive (divided by N with `thermo_modify norm yes`).
+    pub extensive: bool,
 }
 
+/// What a compute reads when it is evaluated. Every rank evaluates the same computes
+/// (the global values are collective).
+pub struct Eval<'a> {
+    pub sys: &'a System,
+    pub units: &'a Units,
+    /// pe is the pair energy (LAMMPS's pairwise styles), else the internal energy u.
+    pub pair_energy: bool,
+    /// The per-atom values, by owned particle, of an input of compute reduce: a particle
+    /// keyword (x, vx, fx, ...), `c_ID`, `c_ID[k]` or `v_name` of an atom-style variable.
+    pub input: &'a dyn Fn(&str) -> Result<Vec<f64>, String>,
+}
+
+/// The kinetic sums of a temperature compute: its degrees of freedom and the tensor
+/// sum m v_a v_b (xx, yy, zz, xy, xz, yz) in energy units, LAMMPS's compute temp vector.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum ComputeStyle {
-    /// LAMMPS's compute dpd (group all): sum uCond, sum uMech, 0, N / sum(1/theta), N.
-    Dpd,
-    /// Over a group (bit `mask`, `u32::MAX` for all): mean theta, mean u, count.
-    Tint { mask: u32 },
-    /// LAMMPS's compute temp of a group: sum m v^2 / (dof k_B) with dof = 3 N_group -
-    /// `extra_dof` (3 unless `compute_modify ID extra/dof`).
-    Temp { mask: u32, extra_dof: f64 },
-    /// LAMMPS's compute com: the group's centre of mass from unwrapped positions.
-    Com { mask: u32 },
-    /// LAMMPS's compute ke/atom: m v^2 / 2 (0 outside the group).
-    KeAtom { mask: u32 },
-    /// LAMMPS's compute pe/atom: half the energy of each pair a particle is in (pairwise
-    /// styles), or its internal energy u (GenDPDE, whose pe is the sum of u); 0 outside
-    /// the group.
-    PeAtom { mask: u32 },
-    /// LAMMPS DPD-MESO's compute edpd/temp/atom: the eDPD temperature T (0 outside the
-    /// group).
-    EdpdTempAtom { mask: u32 },
+pub struct Temperature {
+    pub dof: f64,
+    pub tensor: [f64; 6],
 }
 
-/// The kinetic sums of a group: its count and the diagonal of sum p p^T / m.
-#[derive(Clone, Copy, Debug)]
-pub struct Kinetic {
-    pub count: f64,
-    pub mv2_diag: [f64; 3],
-}
-
-impl Kinetic {
-    /// Sums over the particles of group bit `mask` on all ranks (collective).
-    pub fn measure(sys: &System, mask: u32) -> Self {
-        let s = &sys.store;
-        let rows = (0..s.nlocal).filter(|&i| s.in_group(i, mask)).map(|i| {
-            let (p, m) = (s.p[i], s.mass[i]);
-            [1.0, p[0] * p[0] / m, p[1] * p[1] / m, p[2] * p[2] / m]
-        });
-        let [count, xx, yy, zz] = exact_sums(sys.comm.transport(), rows);
-        Self { count, mv2_diag: [xx, yy, zz] }
-    }
-
+impl Temperature {
+    /// Twice the kinetic energy of the counted components (the trace).
     pub fn mv2(&self) -> f64 {
-        self.mv2_diag.iter().sum()
+        self.tensor[0] + self.tensor[1] + self.tensor[2]
     }
 
-    /// LAMMPS's temperature with dof = 3 N - `extra_dof` (zero without degrees of freedom).
-    pub fn temperature(&self, kb: f64, extra_dof: f64) -> f64 {
-        let dof = 3.0 * self.count - extra_dof;
-        if dof > 0.0 { self.mv2() / (dof * kb) } else { 0.0 }
+    /// LAMMPS's temperature: mv2 / (dof k_B), zero without degrees of freedom.
+    pub fn value(&self, kb: f64) -> f64 {
+        if self.dof > 0.0 { self.mv2() / (self.dof * kb) } else { 0.0 }
     }
 }
 
-/// What a `compute` command defines.
-pub enum Definition {
-    Value(Compute),
-    Rdf(Rdf),
-    Chunk(ChunkAtom),
-    Msd(Msd),
-    Reduce(Reduce),
-}
-
-impl Definition {
-    pub fn id(&self) -> &str {
-        match self {
-            Self::Value(c) => &c.id,
-            Self::Rdf(r) => &r.id,
-            Self::Chunk(c) => &c.id,
-            Self::Msd(m) => &m.id,
-            Self::Reduce(r) => &r.id,
-        }
+/// A compute style.
+pub trait Compute: AsAny + std::fmt::Debug {
+    fn id(&self) -> &str;
+    /// LAMMPS's style name.
+    fn style(&self) -> &'static str;
+    fn shape(&self) -> Shape;
+    /// The global scalar (collective).
+    fn scalar(&self, _e: &Eval) -> Result<f64, String> {
+        Err(format!("compute {} ({}) has no global scalar", self.id(), self.style()))
+    }
+    /// The global vector (collective).
+    fn vector(&self, _e: &Eval) -> Result<Vec<f64>, String> {
+        Err(format!("compute {} ({}) has no global vector", self.id(), self.style()))
+    }
+    /// Per-atom column `col` (0 of a per-atom vector, 1.. of an array) by owned particle,
+    /// 0 outside the group (collective: neighbour computes swap ghosts).
+    fn per_atom(&self, _e: &Eval, _col: usize) -> Result<Vec<f64>, String> {
+        Err(format!("compute {} ({}) has no per-atom values", self.id(), self.style()))
+    }
+    /// A temperature compute's kinetic sums (thermo_modify temp, the pressure).
+    fn temperature(&self, _e: &Eval) -> Option<Temperature> {
+        None
+    }
+    /// Group bit mask and extra dof of a compute temp of a group (fix_modify temp of fix
+    /// nph reads them).
+    fn temp_group(&self) -> Option<(u32, f64)> {
+        None
+    }
+    /// One `compute_modify` keyword (`key` read); false if the style has no such keyword.
+    fn modify(&mut self, _key: &str, _a: &mut Args) -> Result<bool, ScriptError> {
+        Ok(false)
     }
 }
 
 /// What a compute style's parser reads besides its own words: the group names by bit,
 /// the lattice spacings (LAMMPS's default lattice has spacing 1), the particles so far
-/// (compute msd records their positions) and the computes defined so far (compute
-/// reduce reads them).
+/// (compute msd records their positions), the regions and the computes defined so far
+/// (compute reduce reads them).
 pub struct ComputeContext<'a> {
     pub id: String,
     pub group: &'a str,
     pub groups: &'a [String],
-    pub computes: &'a [Compute],
+    pub computes: &'a [Box<dyn Compute>],
+    pub regions: &'a HashMap<String, Region>,
+    pub ntypes: usize,
     pub spacing: gendpde_engine::Vec3,
     pub system: Option<&'a System>,
     pub max_tag: u64,
 }
 
 impl ComputeContext<'_> {
-    fn mask(&self, a: &Args) -> Result<u32, ScriptError> {
+    pub fn mask(&self, a: &Args) -> Result<u32, ScriptError> {
         crate::base::groups::mask(self.groups, self.group, a)
     }
 
-    /// A global or per-atom value compute of style `style` (no more words).
-    fn value(&self, a: &mut Args, style: ComputeStyle) -> Result<Definition, ScriptError> {
-        a.done()?;
-        Ok(Definition::Value(Compute { id: self.id.clone(), style }))
+    /// The system, for a compute that reads the particles when it is defined.
+    pub fn system(&self, a: &Args, style: &str) -> Result<&System, ScriptError> {
+        self.system.ok_or_else(|| a.err(format!("compute {style} before the box exists (create_box, read_data or read_restart)")))
+    }
+
+    /// A region by ID (LAMMPS: "Region ID for compute STYLE does not exist").
+    pub fn region(&self, a: &mut Args, style: &str) -> Result<Region, ScriptError> {
+        let id = a.word("a region ID")?;
+        self.regions.get(id).cloned().ok_or_else(|| a.err(format!("Region {id} for compute {style} does not exist")))
+    }
+}
+
+/// What a `compute` command defines.
+pub enum Definition {
+    Compute(Box<dyn Compute>),
+    Rdf(Rdf),
+    Chunk(ChunkAtom),
+}
+
+impl Definition {
+    pub fn id(&self) -> &str {
+        match self {
+            Self::Compute(c) => c.id(),
+            Self::Rdf(r) => &r.id,
+            Self::Chunk(c) => &c.id,
+        }
     }
 }
 
 /// Parses the words after `compute ID GROUP NAME`.
 type ParseCompute = fn(a: &mut Args, c: &ComputeContext) -> Result<Definition, ScriptError>;
 
+fn unit(c: impl Compute + 'static) -> Result<Definition, ScriptError> {
+    Ok(Definition::Compute(Box::new(c)))
+}
+
 /// Every compute style, with its parser.
 pub const COMPUTE_STYLES: &[(&str, ParseCompute)] = &[
-    ("dpd", |a, c| match c.group {
-        "all" => c.value(a, ComputeStyle::Dpd),
-        group => Err(a.err(format!("compute dpd on group '{group}': only group all is supported"))),
-    }),
-    ("tint", |a, c| c.value(a, ComputeStyle::Tint { mask: c.mask(a)? })),
-    ("temp", |a, c| c.value(a, ComputeStyle::Temp { mask: c.mask(a)?, extra_dof: 3.0 })),
-    ("com", |a, c| c.value(a, ComputeStyle::Com { mask: c.mask(a)? })),
-    ("ke/atom", |a, c| c.value(a, ComputeStyle::KeAtom { mask: c.mask(a)? })),
-    ("pe/atom", |a, c| {
-        // LAMMPS's keywords select energy terms; gendpde's pair (or internal) energy is all of pe
-        while let Some(k) = a.peek() {
-            match k {
-                "pair" | "bond" | "angle" | "dihedral" | "improper" | "kspace" | "fix" => a.word("a keyword")?,
-                k => return Err(a.err(format!("unknown keyword '{k}'; known: pair, bond, angle, dihedral, improper, kspace, fix"))),
-            };
-        }
-        c.value(a, ComputeStyle::PeAtom { mask: c.mask(a)? })
-    }),
-    ("reduce", |a, c| {
-        let per_atom = |cid: &str| c.computes.iter().find(|k| k.id == cid).map(Compute::is_per_atom);
-        Ok(Definition::Reduce(Reduce::parse(c.id.clone(), c.mask(a)?, a, per_atom)?))
-    }),
+    ("dpd", |a, c| unit(dpd::Dpd::parse(a, c)?)),
+    ("dpd/atom", |a, c| unit(dpd::DpdAtom::parse(a, c)?)),
+    ("tint", |a, c| unit(dpd::Tint::parse(a, c)?)),
+    ("temp", |a, c| unit(temp::Temp::parse(a, c, "temp")?)),
+    ("temp/partial", |a, c| unit(temp::Temp::parse(a, c, "temp/partial")?)),
+    ("temp/com", |a, c| unit(temp::Temp::parse(a, c, "temp/com")?)),
+    ("temp/region", |a, c| unit(temp::Temp::parse(a, c, "temp/region")?)),
+    ("com", |a, c| unit(com::Com::parse(a, c)?)),
+    ("gyration", |a, c| unit(gyration::Gyration::parse(a, c)?)),
+    ("count/type", |a, c| unit(count_type::CountType::parse(a, c)?)),
+    ("ke/atom", |a, c| unit(property_atom::PropertyAtom::single(a, c, "ke/atom")?)),
+    ("pe/atom", |a, c| unit(property_atom::PropertyAtom::single(a, c, "pe/atom")?)),
+    ("edpd/temp/atom", |a, c| unit(property_atom::PropertyAtom::single(a, c, "edpd/temp/atom")?)),
+    ("property/atom", |a, c| unit(property_atom::PropertyAtom::parse(a, c)?)),
+    ("reduce", |a, c| unit(reduce::Reduce::parse(a, c, false)?)),
+    ("reduce/region", |a, c| unit(reduce::Reduce::parse(a, c, true)?)),
+    ("msd", |a, c| unit(msd::Msd::parse(a, c, "msd")?)),
+    ("vacf", |a, c| unit(msd::Msd::parse(a, c, "vacf")?)),
+    ("coord/atom", |a, c| unit(coord_atom::CoordAtom::parse(a, c)?)),
     ("rdf", |a, c| match c.group {
         "all" => Ok(Definition::Rdf(Rdf::parse(c.id.clone(), a)?)),
         group => Err(a.err(format!("compute rdf on group {group}: only group all is supported"))),
     }),
     ("chunk/atom", |a, c| Ok(Definition::Chunk(ChunkAtom::parse(c.id.clone(), c.mask(a)?, a, c.spacing)?))),
-    ("msd", |a, c| {
-        let sys = c.system.ok_or_else(|| a.err("compute msd before the box exists (create_box, read_data or read_restart)"))?;
-        Ok(Definition::Msd(Msd::parse(c.id.clone(), c.mask(a)?, a, sys, c.max_tag)?))
-    }),
-    ("edpd/temp/atom", |a, c| c.value(a, ComputeStyle::EdpdTempAtom { mask: c.mask(a)? })),
 ];
 
 /// `compute ID GROUP STYLE args...` with what the parsers read besides the words
-/// ([`ComputeContext`], whose `id` and `group` are read here).
-pub fn parse(a: &mut Args, groups: &[String], computes: &[Compute], spacing: gendpde_engine::Vec3, system: Option<&System>, max_tag: u64) -> Result<Definition, ScriptError> {
-    let id = a.word("a compute ID")?.to_string();
+/// ([`ComputeContext`] without its `id` and `group`, which are read here).
+pub fn parse(a: &mut Args, mut c: ComputeContext) -> Result<Definition, ScriptError> {
+    c.id = a.word("a compute ID")?.to_string();
     let group = a.word("a group")?;
+    let c = ComputeContext { group, ..c };
     let name = a.word("a compute style")?;
-    let c = ComputeContext { id, group, groups, computes, spacing, system, max_tag };
     match COMPUTE_STYLES.iter().find(|(n, _)| *n == name) {
         Some((_, parse)) => parse(a, &c),
         None => {
@@ -178,121 +211,87 @@ pub fn parse(a: &mut Args, groups: &[String], computes: &[Compute], spacing: gen
     }
 }
 
-impl Compute {
-    /// Whether it has per-atom values (ke/atom, pe/atom) and no global ones.
-    pub fn is_per_atom(&self) -> bool {
-        matches!(self.style, ComputeStyle::KeAtom { .. } | ComputeStyle::PeAtom { .. } | ComputeStyle::EdpdTempAtom { .. })
-    }
-
-    /// The value of particle `i` of a per-atom compute (ke/atom, pe/atom, edpd/temp/atom; 0 outside its
-    /// group), None for global computes. `mvv2e` converts m v^2 to energy; `pair_energy`:
-    /// pe is the pair energy (pairwise styles), else the internal energy u.
-    pub fn per_atom(&self, sys: &System, i: usize, mvv2e: f64, pair_energy: bool) -> Option<f64> {
-        let s = &sys.store;
-        let (mask, pe) = match self.style {
-            ComputeStyle::KeAtom { mask } => (mask, false),
-            ComputeStyle::PeAtom { mask } => (mask, true),
-            ComputeStyle::EdpdTempAtom { mask } => return Some(if s.in_group(i, mask) { s.edpd_temp.get(i).copied().unwrap_or(0.0) } else { 0.0 }),
-            _ => return None,
-        };
-        Some(match (s.in_group(i, mask), pe) {
-            (false, _) => 0.0,
-            (true, false) => 0.5 * mvv2e * s.p[i].iter().map(|p| p * p).sum::<f64>() / s.mass[i],
-            (true, true) if pair_energy => s.epair.get(i).copied().unwrap_or(0.0),
-            (true, true) => s.u[i],
-        })
-    }
-}
-
-/// The global sums a thermo line needs from the whole system (`output::thermo`).
-pub struct Totals {
-    /// Boltzmann's constant of the units.
-    pub kb: f64,
-    pub atoms: f64,
-    pub u: f64,
-    pub u_cond: f64,
-    pub inv_theta: f64,
-}
-
-/// Value of `c_ID` (= `c_ID[1]`) or `c_ID[k]`; None if `name` is no such reference.
-/// Collective: every rank must evaluate the same names.
-pub fn value(computes: &[Compute], sys: &System, totals: &Totals, name: &str) -> Option<f64> {
-    let rest = name.strip_prefix("c_")?;
-    let (id, k) = match rest.strip_suffix(']').and_then(|r| r.split_once('[')) {
-        Some((id, k)) => (id, k.parse::<usize>().ok()?),
-        None => (rest, 1),
+/// A reference `c_ID`, `c_ID[k]` (k from 1), `f_ID[k]` or `v_NAME[k]` split into its kind
+/// ('c', 'f', 'v'), ID and index (None: no brackets). `[*]` gives index 0.
+pub fn reference(name: &str) -> Option<(char, &str, Option<usize>)> {
+    let kind = match name.get(..2)? {
+        "c_" => 'c',
+        "f_" => 'f',
+        "v_" => 'v',
+        _ => return None,
     };
-    let c = computes.iter().find(|c| c.id == id)?;
-    match c.style {
-        ComputeStyle::Dpd => Some(match k {
-            1 => totals.u_cond,
-            2 => totals.u - totals.u_cond,
-            3 => 0.0,
-            4 => totals.atoms / totals.inv_theta,
-            5 => totals.atoms,
-            _ => return None,
-        }),
-        ComputeStyle::Tint { mask } => {
-            if !(1..=3).contains(&k) {
-                return None;
-            }
-            let s = &sys.store;
-            let rows = (0..s.nlocal).filter(|&i| s.in_group(i, mask)).map(|i| [1.0, s.theta[i], s.u[i]]);
-            let [count, theta, u] = exact_sums(sys.comm.transport(), rows);
-            let mean = |x: f64| if count > 0.0 { x / count } else { 0.0 };
-            Some([mean(theta), mean(u), count][k - 1])
-        }
-        // the scalar only (LAMMPS's vector, the kinetic energy tensor, is not provided)
-        ComputeStyle::Temp { mask, extra_dof } => (rest == id).then(|| Kinetic::measure(sys, mask).temperature(totals.kb, extra_dof)),
-        // the vector only, as LAMMPS
-        ComputeStyle::Com { mask } => (rest != id && (1..=3).contains(&k)).then(|| com::centre_of_mass(sys, mask)[k - 1]),
-        // per-atom values only (compute reduce)
-        ComputeStyle::KeAtom { .. } | ComputeStyle::PeAtom { .. } | ComputeStyle::EdpdTempAtom { .. } => None,
+    let rest = &name[2..];
+    match rest.strip_suffix(']').and_then(|r| r.split_once('[')) {
+        Some((id, "*")) => Some((kind, id, Some(0))),
+        Some((id, k)) => Some((kind, id, Some(k.parse::<usize>().ok().filter(|&k| k > 0)?))),
+        None => Some((kind, rest, None)),
     }
 }
 
-/// `c_ID[k]` (k = 1..4) of a compute msd; None if `name` is no such reference.
-/// Collective.
-pub fn msd_value(msds: &[Msd], sys: &System, name: &str) -> Option<f64> {
-    let (id, k) = name.strip_prefix("c_")?.strip_suffix(']')?.split_once('[')?;
-    let k = k.parse::<usize>().ok().filter(|k| (1..=4).contains(k))?;
-    Some(msds.iter().find(|m| m.id == id)?.vector(sys)[k - 1])
+/// Finds compute `id`.
+pub fn find<'a>(computes: &'a [Box<dyn Compute>], id: &str) -> Option<&'a dyn Compute> {
+    computes.iter().find(|c| c.id() == id).map(|c| c.as_ref())
 }
 
-/// `c_ID` or `c_ID[k]` of a compute reduce and whether it is extensive (divided by the
-/// particle count with `thermo_modify norm yes`); None if `name` is no such reference.
-/// Collective; `mvv2e` and `pair_energy` as for [`Compute::per_atom`].
-/// `variable(name)` gives the values of an atom-style variable per owned particle (None:
-/// no such variable, or its evaluation fails).
-pub fn reduce_value(reduces: &[Reduce], computes: &[Compute], sys: &System, mvv2e: f64, pair_energy: bool, variable: &dyn Fn(&str) -> Option<Vec<f64>>, name: &str) -> Option<(f64, bool)> {
-    let (r, k) = reduces.iter().find_map(|r| Some((r, r.index(name)?)))?;
-    if let Some(v) = r.variable_input(k) {
-        let values = variable(v)?;
-        return Some((r.value(k, sys, |i| values[i]), r.extensive()));
-    }
-    // None if the per-atom compute was redefined as another style
-    let compute = match r.compute_input(k) {
-        Some(cid) => Some(computes.iter().find(|c| c.id == cid && c.is_per_atom())?),
-        None => None,
+/// Global value `c_ID` (the scalar) or `c_ID[k]` (vector element k), and whether it is
+/// extensive; None if `name` names no such value. Collective.
+pub fn global(computes: &[Box<dyn Compute>], e: &Eval, name: &str) -> Option<Result<(f64, bool), String>> {
+    let ('c', id, index) = reference(name)? else { return None };
+    let c = find(computes, id)?;
+    let shape = c.shape();
+    let value = match index {
+        None if shape.scalar => c.scalar(e),
+        Some(k) if (1..=shape.vector).contains(&k) => c.vector(e).map(|v| v[k - 1]),
+        _ => return None,
     };
-    let per_atom = |i| compute.and_then(|c| c.per_atom(sys, i, mvv2e, pair_energy)).unwrap_or(0.0);
-    Some((r.value(k, sys, per_atom), r.extensive()))
+    Some(value.map(|v| (v, shape.extensive)))
 }
 
-/// `compute_modify ID extra/dof N` (or `extra N`) of a compute temp.
-pub fn modify(computes: &mut [Compute], a: &mut Args) -> Result<(), ScriptError> {
+/// Per-atom values `c_ID` (a per-atom vector) or `c_ID[k]` (column k of a per-atom array)
+/// by owned particle; None if `name` names no such values. Collective.
+pub fn per_atom(computes: &[Box<dyn Compute>], e: &Eval, name: &str) -> Option<Result<Vec<f64>, String>> {
+    let ('c', id, index) = reference(name)? else { return None };
+    let c = find(computes, id)?;
+    match (c.shape().per_atom?, index) {
+        (0, None) => Some(c.per_atom(e, 0)),
+        (n, Some(k)) if (1..=n).contains(&k) => Some(c.per_atom(e, k)),
+        _ => None,
+    }
+}
+
+/// Checks that `name` (`c_ID` or `c_ID[k]`) names per-atom values of a compute so far, for
+/// the input of `what` (e.g. "compute reduce"), with LAMMPS's messages.
+pub fn check_per_atom(computes: &[Box<dyn Compute>], name: &str, what: &str) -> Result<(), String> {
+    let Some(('c', id, index)) = reference(name) else { return Err(format!("{name}: expected c_ID or c_ID[k]")) };
+    let c = find(computes, id).ok_or_else(|| format!("Compute ID {id} for {} does not exist", what.to_lowercase()))?;
+    match (c.shape().per_atom, index) {
+        (None, _) => Err(format!("{what} compute {id} does not calculate per-atom values")),
+        (Some(0), None) => Ok(()),
+        (Some(0), Some(_)) => Err(format!("{what} compute {id} does not calculate a per-atom array")),
+        (Some(_), None) => Err(format!("{what} compute {id} does not calculate a per-atom vector")),
+        (Some(n), Some(k)) if k > n || k == 0 => Err(format!("{what} compute {id} array is accessed out-of-range")),
+        _ => Ok(()),
+    }
+}
+
+/// `compute_modify ID KEYWORD VALUE ...`: LAMMPS's extra/dof (extra) and dynamic/dof
+/// (dynamic) of temperature computes.
+pub fn modify(computes: &mut [Box<dyn Compute>], a: &mut Args) -> Result<(), ScriptError> {
     let id = a.word("a compute ID")?;
-    let c = computes.iter_mut().find(|c| c.id == id).ok_or_else(|| a.err(format!("no compute with ID '{id}'")))?;
-    let ComputeStyle::Temp { extra_dof, .. } = &mut c.style else {
-        return Err(a.err(format!("compute {id}: compute_modify applies to compute temp only")));
-    };
+    let c = computes.iter_mut().find(|c| c.id() == id).ok_or_else(|| a.err(format!("Could not find compute_modify ID {id}")))?;
     if a.remaining() == 0 {
-        return Err(a.err("missing argument: expected extra/dof"));
+        return Err(a.err("Illegal compute_modify command: expected a keyword (extra/dof, dynamic/dof)"));
     }
     while a.remaining() > 0 {
-        match a.word("a keyword")? {
-            "extra/dof" | "extra" => *extra_dof = a.f64("the extra degrees of freedom")?,
-            k => return Err(a.err(format!("unknown keyword '{k}'; known: extra/dof"))),
+        let key = a.word("a keyword")?;
+        if c.modify(key, a)? {
+            continue;
+        }
+        // LAMMPS takes both for every compute; only temperatures read them
+        match key {
+            "extra/dof" | "extra" => drop(a.f64("the extra degrees of freedom")?),
+            "dynamic/dof" | "dynamic" => drop(a.yes_no("dynamic/dof")?),
+            _ => return Err(a.err(format!("Compute {id} {} does not support compute_modify {key} command", c.style()))),
         }
     }
     Ok(())

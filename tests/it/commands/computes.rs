@@ -244,8 +244,8 @@ fn reduce_errors_name_the_line() {
     for (line, expected) in [
         ("compute r all reduce total c_ke", "in.x:6: compute: mode 'total': expected sum, sumsq, sumabs, min, max, ave, avesq or aveabs"),
         ("compute r all reduce sum", "in.x:6: compute: missing argument: expected inputs (x, y, z, vx, vy, vz, fx, fy, fz, c_ID, v_name)"),
-        ("compute r all reduce sum c_nope", "in.x:6: compute: input 'c_nope': no per-atom compute with ID 'nope' (ke/atom, pe/atom)"),
-        ("compute r all reduce sum c_t", "in.x:6: compute: input 'c_t': compute t has no per-atom values (ke/atom, pe/atom)"),
+        ("compute r all reduce sum c_nope", "in.x:6: compute: Compute ID nope for compute reduce does not exist"),
+        ("compute r all reduce sum c_t", "in.x:6: compute: Compute reduce compute t does not calculate per-atom values"),
         ("compute r all reduce sum mass", "in.x:6: compute: input 'mass': expected x, y, z, vx, vy, vz, fx, fy, fz, c_ID of a per-atom compute or v_name of an atom-style variable"),
         ("compute r all reduce max c_ke replace 1 2", "in.x:6: compute: keyword replace is not supported"),
         ("compute p all pe/atom angle kspace charge", "in.x:6: compute: unknown keyword 'charge'; known: pair, bond, angle, dihedral, improper, kspace, fix"),

@@ -218,9 +218,9 @@ fn compute_temp_errors_name_the_line() {
         ("thermo_modify temp d", "in.x:5: thermo_modify: compute d does not compute a temperature (compute temp)"),
         ("compute t nogroup temp", "in.x:5: compute: no group"),
         ("compute t all temp extra", "in.x:5: compute: unexpected argument 'extra'"),
-        ("compute_modify d extra/dof 0", "in.x:5: compute_modify: compute d: compute_modify applies to compute temp only"),
+        ("compute_modify d extra/dof 0 foo 1", "in.x:5: compute_modify: Compute d dpd does not support compute_modify foo command"),
         ("compute t all temp\ncompute_modify t extra/dof", "in.x:6: compute_modify: missing argument: expected the extra degrees of freedom"),
-        ("compute t all temp\ncompute_modify t dynamic/dof yes", "in.x:6: compute_modify: unknown keyword 'dynamic/dof'; known: extra/dof"),
+        ("compute t all temp\ncompute_modify t dynamic/dof maybe", "in.x:6: compute_modify: expected yes or no for dynamic/dof, got 'maybe'"),
     ] {
         expect_error("temp-errors", &format!("{head}{line}\n"), expected);
     }

@@ -12,14 +12,14 @@ use crate::base::groups;
 use crate::base::units::Units;
 use crate::model::per_atom;
 use crate::output::thermo::ThermoContext;
+use super::blocks::Blocks;
+use super::{OutputFix, OutputFixContext};
 use crate::output::schedule::{write_on_rank0, Frame, RunOutput, Sampling, Span};
-use crate::model::sim::Sim;
 use crate::styles::compute::chunk::ChunkAtom;
-use crate::styles::compute::Compute;
+use crate::styles::compute;
 use gendpde_engine::exact_column_sums;
 use gendpde_integrators::System;
 use gendpde_io::ScriptError;
-use std::collections::VecDeque;
 use std::fs::File;
 use std::io::{BufWriter, Write};
 
@@ -31,26 +31,23 @@ enum Value {
     Temp,
     Velocity(usize),
     Force(usize),
-    /// Per-atom compute `c_ID` (the ID is the value's name, without `c_`).
-    PerAtom,
-    /// `v_name`: the atom-style variable of this index among [`AveChunk::variables`].
-    Variable(usize),
+    /// `c_ID`, `c_ID[k]` of a per-atom compute or `v_name` of an atom-style variable: the
+    /// input of this index among [`AveChunk::variables`].
+    PerAtom(usize),
 }
 
 impl Value {
-    /// Its term for particle `i` of `sys`: 1, m, m v^2, v_k, f_k or the variable's value
-    /// (`variables`: each variable's values per owned particle).
+    /// Its term for particle `i` of `sys`: 1, m, m v^2, v_k, f_k or the per-atom input's
+    /// value (`variables`: each input's values per owned particle).
     fn term(self, sys: &System, i: usize, variables: &[Vec<f64>]) -> f64 {
         let s = &sys.store;
         match self {
-            Self::Variable(k) => variables[k][i],
+            Self::PerAtom(k) => variables[k][i],
             Self::DensityNumber => 1.0,
             Self::DensityMass => s.mass[i],
             Self::Temp => s.p[i].iter().map(|p| p * p).sum::<f64>() / s.mass[i],
             Self::Velocity(k) => s.p[i][k] / s.mass[i],
             Self::Force(k) => s.f[i][k],
-            // read through its compute (`sample`)
-            Self::PerAtom => 0.0,
         }
     }
 }
@@ -63,19 +60,11 @@ enum Norm {
     None,
 }
 
-/// How blocks combine (LAMMPS's ave one|running|window M).
-#[derive(Clone, Copy, Debug, PartialEq)]
-enum Ave {
-    One,
-    Running,
-    Window(usize),
-}
-
 /// A block's counts and values, one row per chunk (`1 + nvalues` columns: count first).
 type Block = Vec<f64>;
 
 pub struct AveChunk {
-    pub id: String,
+    id: String,
     group: String,
     mask: u32,
     chunk: String,
@@ -86,7 +75,7 @@ pub struct AveChunk {
     /// The atom-style variables of `v_name` values.
     variables: Vec<String>,
     norm: Norm,
-    ave: Ave,
+    blocks: Blocks,
     adof: f64,
     cdof: f64,
     file: Option<String>,
@@ -98,21 +87,15 @@ pub struct AveChunk {
     nchunk: usize,
     /// Sums of the samples of the current block.
     many: Block,
-    /// Sum of the blocks so far (ave running) or of the last M (ave window).
-    total: Block,
-    /// The last M blocks (ave window).
-    window: VecDeque<Block>,
-    /// Blocks so far (ave running).
-    running: u64,
 }
 
 impl AveChunk {
-    /// The words after `fix ID GROUP ave/chunk`; `chunks` are the chunk/atom computes
-    /// defined so far, `step` the current step.
-    /// `computes`: those defined so far (a `c_ID` value names a per-atom one).
-    pub fn parse(id: String, group: &str, a: &mut Args, group_names: &[String], chunks: &[ChunkAtom], computes: &[Compute], step: u64) -> Result<Self, ScriptError> {
-        let mask = groups::mask(group_names, group, a)?;
-        let sampling = Sampling::parse(a, step)?;
+    /// The words after `fix ID GROUP ave/chunk` (the chunk/atom and per-atom computes
+    /// defined so far are the context's).
+    pub fn parse(a: &mut Args, c: &OutputFixContext) -> Result<Self, ScriptError> {
+        let (id, group, chunks, computes) = (c.id.clone(), c.group, &c.sim.chunks, &c.sim.computes);
+        let mask = groups::mask(&c.sim.groups, group, a)?;
+        let sampling = Sampling::parse(a, c.step)?;
         let chunk = a.word("a compute chunk/atom ID")?.to_string();
         if !chunks.iter().any(|c| c.id == chunk) {
             return Err(a.err(format!("no compute chunk/atom with ID '{chunk}'")));
@@ -125,10 +108,9 @@ impl AveChunk {
                 "temp" => Value::Temp,
                 "vx" | "vy" | "vz" => Value::Velocity(usize::from(w.as_bytes()[1] - b'x')),
                 "fx" | "fy" | "fz" => Value::Force(usize::from(w.as_bytes()[1] - b'x')),
-                _ if w.strip_prefix("c_").is_some_and(|c| computes.iter().any(|x| x.id == c && x.is_per_atom())) => Value::PerAtom,
-                _ if w.len() > 2 && w.starts_with("v_") => {
-                    variables.push(w[2..].to_string());
-                    Value::Variable(variables.len() - 1)
+                _ if (w.starts_with("c_") && compute::check_per_atom(computes, w, "Fix ave/chunk").is_ok()) || (w.len() > 2 && w.starts_with("v_")) => {
+                    variables.push(w.to_string());
+                    Value::PerAtom(variables.len() - 1)
                 }
                 _ if w.starts_with("c_") || w.starts_with("f_") => {
                     return Err(a.err(format!("value '{w}': not a per-atom compute (per-atom fixes are not supported); values: density/number, density/mass, temp, vx, vy, vz, fx, fy, fz, c_ID, v_name")));
@@ -142,7 +124,7 @@ impl AveChunk {
         if values.is_empty() {
             return Err(a.err(format!("expected values (density/number, density/mass, temp, vx, vy, vz, fx, fy, fz), got {}", a.peek().map_or("nothing".into(), |w| format!("'{w}'")))));
         }
-        let (mut norm, mut ave, mut adof, mut cdof) = (Norm::All, Ave::One, 3.0, 0.0);
+        let (mut norm, mut ave, mut adof, mut cdof) = (Norm::All, Blocks::default(), 3.0, 0.0);
         let (mut file, mut format, mut titles) = (None, " %g".to_string(), [None, None, None]);
         while a.remaining() > 0 {
             match a.word("a keyword")? {
@@ -154,17 +136,7 @@ impl AveChunk {
                         n => return Err(a.err(format!("expected norm all, sample or none, got '{n}'"))),
                     }
                 }
-                "ave" => {
-                    ave = match a.word("one, running or window")? {
-                        "one" => Ave::One,
-                        "running" => Ave::Running,
-                        "window" => match a.u64("the number of blocks M")? {
-                            0 => return Err(a.err("ave window M: M must be positive")),
-                            m => Ave::Window(usize::try_from(m).map_err(|_| a.err(format!("ave window {m}: too many blocks")))?),
-                        },
-                        m => return Err(a.err(format!("expected ave one, running or window, got '{m}'"))),
-                    }
-                }
+                "ave" => ave = Blocks::parse(a)?,
                 "adof" => adof = a.f64("the degrees of freedom per particle")?,
                 "cdof" => cdof = a.f64("the degrees of freedom per chunk")?,
                 "file" => file = Some(a.word("a file name")?.to_string()),
@@ -176,41 +148,21 @@ impl AveChunk {
                 k => return Err(a.err(format!("unknown keyword '{k}'; known: norm, ave, adof, cdof, file, format, title1, title2, title3"))),
             }
         }
-        let (many, total, window) = (Vec::new(), Vec::new(), VecDeque::new());
-        Ok(Self { id, group: group.to_string(), mask, chunk, sampling, names, values, variables, norm, ave, adof, cdof, file, format, titles, out: None, nchunk: 0, many, total, window, running: 0 })
+        Ok(Self { id, group: group.to_string(), mask, chunk, sampling, names, values, variables, norm, blocks: ave, adof, cdof, file, format, titles, out: None, nchunk: 0, many: Vec::new() })
     }
 
     /// The sums of one sample: count and values per chunk (exact over the ranks).
-    fn sample(&self, chunk: &ChunkAtom, sim: &Sim, sys: &System, variables: &[Vec<f64>]) -> Result<Block, String> {
+    fn sample(&self, chunk: &ChunkAtom, sys: &System, variables: &[Vec<f64>]) -> Result<Block, String> {
         let (d, s) = (&sys.domain, &sys.store);
-        // the per-atom computes of c_ID values, by value
-        let computes = self
-            .names
-            .iter()
-            .zip(&self.values)
-            .map(|(name, v)| match v {
-                Value::PerAtom => {
-                    let id = name.strip_prefix("c_").unwrap_or(name);
-                    sim.computes.iter().find(|c| c.id == id && c.is_per_atom()).map(Some).ok_or_else(|| format!("fix {} ave/chunk: per-atom compute '{id}' no longer exists", self.id))
-                }
-                _ => Ok(None),
-            })
-            .collect::<Result<Vec<_>, String>>()?;
-        let (mvv2e, pair_energy) = (sim.units.mvv2e, sim.pe_is_pair());
-        let term = |j: usize, v: Value, i: usize| match computes[j] {
-            Some(c) => c.per_atom(sys, i, mvv2e, pair_energy).unwrap_or(0.0),
-            None => v.term(sys, i, variables),
-        };
         let bins = chunk.bins(d)?;
         if bins.nchunk() != self.nchunk {
             return Err(format!("fix {} ave/chunk: the box changed the number of chunks within a block ({} to {})", self.id, self.nchunk, bins.nchunk()));
         }
         let ncol = 1 + self.values.len();
         let members = (0..s.nlocal).filter(|&i| s.in_group(i, self.mask) && s.in_group(i, chunk.mask));
-        let term = &term;
         let terms = members.flat_map(|i| {
             let row = chunk.chunk(&bins, d, s.r[i]) * ncol;
-            std::iter::once((row, 1.0)).chain(self.values.iter().enumerate().map(move |(j, v)| (row + 1 + j, term(j, *v, i))))
+            std::iter::once((row, 1.0)).chain(self.values.iter().enumerate().map(move |(j, v)| (row + 1 + j, v.term(sys, i, variables))))
         });
         Ok(exact_column_sums(sys.comm.transport(), self.nchunk * ncol, terms))
     }
@@ -267,29 +219,6 @@ impl AveChunk {
         block
     }
 
-    /// Combines a block with the earlier ones (ave running or window, added and
-    /// subtracted in LAMMPS's order): the sum to print and the number of blocks in it.
-    fn combine(&mut self, block: Block) -> (Block, f64) {
-        if self.ave == Ave::One {
-            return (block, 1.0);
-        }
-        if self.total.len() != block.len() {
-            (self.total, self.running) = (vec![0.0; block.len()], 0);
-            self.window.clear();
-        }
-        self.total.iter_mut().zip(&block).for_each(|(t, x)| *t += x);
-        self.running += 1;
-        if let Ave::Window(m) = self.ave {
-            self.window.push_back(block);
-            if self.window.len() > m {
-                let oldest = self.window.pop_front().expect("longer than m > 0");
-                self.total.iter_mut().zip(&oldest).for_each(|(t, x)| *t -= x);
-            }
-            return (self.total.clone(), self.window.len() as f64);
-        }
-        (self.total.clone(), self.running as f64)
-    }
-
     /// Opens the file (with LAMMPS's three heading lines) at the first block, then
     /// appends `step nchunk total-count` and a row per chunk, and flushes.
     fn write_block(&mut self, step: u64, coords: &[Vec<f64>], total: &[f64], norm: f64) -> std::io::Result<()> {
@@ -330,6 +259,15 @@ impl AveChunk {
     }
 }
 
+impl OutputFix for AveChunk {
+    fn id(&self) -> &str {
+        &self.id
+    }
+    fn style(&self) -> &'static str {
+        "ave/chunk"
+    }
+}
+
 impl RunOutput for AveChunk {
     /// The next sample (LAMMPS's nvalid).
     fn next_step(&self, _step: u64, _run: Span) -> Option<u64> {
@@ -350,16 +288,15 @@ impl RunOutput for AveChunk {
         let variables: Vec<Vec<f64>> = self
             .variables
             .iter()
-            .map(|v| per_atom::atom_variable(f.vars, v, sys, units.mvv2e, &|n| context.keyword(n)))
-            .collect::<Result<_, _>>()
-            .map_err(|e| format!("fix {} ave/chunk: v_: {e}", self.id))?;
-        let one = self.sample(chunk, f.sim, sys, &variables)?;
+            .map(|v| per_atom::input(f.sim, sys, f.vars, &|n| context.keyword(n), v).map_err(|e| format!("fix {} ave/chunk: {v}: {e}", self.id)))
+            .collect::<Result<_, _>>()?;
+        let one = self.sample(chunk, sys, &variables)?;
         self.add(&one, units, bins.volume);
         if !self.sampling.sample(sys.clock.step, &format!("{} ave/chunk", self.id))? {
             return Ok(());
         }
         let block = self.finish(units, bins.volume);
-        let (total, norm) = self.combine(block);
+        let (total, norm) = self.blocks.combine(block);
         let what = format!("fix {} ave/chunk: writing {}", self.id, self.file.as_deref().unwrap_or(""));
         write_on_rank0(sys, &what, || self.write_block(sys.clock.step, &bins.coords, &total, norm))
     }
