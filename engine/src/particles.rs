@@ -308,8 +308,9 @@ particle_fields! {
     octant: u32, "octant", gate NONE, comm NONE, stages MIGRATE | GHOST | RESTART;
     /// True where u is still to be derived from theta at the next setup (`set theta`).
     theta_given: bool, "theta_given", gate NONE, comm NONE, stages MIGRATE | RESTART;
-    /// Bit mask of the groups the particle belongs to (owned particles).
-    groups: u32, "groups", gate NONE, comm NONE, stages MIGRATE | RESTART;
+    /// Bit mask of the groups the particle belongs to (ghosts carry their owner's:
+    /// neighbour computes of a group read them).
+    groups: u32, "groups", gate NONE, comm NONE, stages MIGRATE | GHOST | RESTART;
     /// Periodic image counters of owned particles.
     image: [i32; 3], "image", gate NONE, comm NONE, stages MIGRATE | RESTART;
     /// Position at the last rebuild (owned particles), for the skin criterion.

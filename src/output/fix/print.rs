@@ -67,10 +67,9 @@ impl OutputFix for Print {
 }
 
 impl RunOutput for Print {
-    /// The multiples of N after the setup.
-    fn next_step(&self, step: u64, run: Span) -> Option<u64> {
-        let next = if step == run.first { step + 1 } else { step };
-        Some(next.next_multiple_of(self.every))
+    /// The multiples of N, the setup's step too (as LAMMPS).
+    fn next_step(&self, step: u64, _run: Span) -> Option<u64> {
+        Some(step.next_multiple_of(self.every))
     }
 
     fn write(&mut self, f: &mut Frame) -> Result<(), String> {

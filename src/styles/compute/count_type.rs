@@ -34,7 +34,7 @@ impl Compute for CountType {
         "count/type"
     }
     fn shape(&self) -> Shape {
-        Shape { vector: self.ntypes, extensive: true, ..Shape::default() }
+        Shape { vector: self.ntypes, ..Shape::default() }
     }
     fn vector(&self, e: &Eval) -> Result<Vec<f64>, String> {
         let s = &e.sys.store;

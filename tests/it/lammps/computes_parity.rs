@@ -1,0 +1,169 @@
+//! Computes and output fixes beside the reference LAMMPS (issue 38): temp/partial,
+//! temp/com, temp/region, gyration, count/type, vacf, msd, property/atom, reduce and
+//! reduce/region, coord/atom of a group, ke/atom; fix ave/time (scalar and vector modes,
+//! ave running, c_ID[*], f_ID in thermo), fix print; thermo_modify temp of a temp/partial.
+//! A deterministic pair dpd scene (gamma 0): every thermo value to round-off, the files
+//! to their printed digits, and the same on 1 and 3 ranks.
+
+use crate::common;
+use common::lammps::{expect_success, parse_thermo_blocks, run_gendpde, run_lammps};
+use common::{mpirun, tempdir};
+use std::path::{Path, PathBuf};
+
+/// Runs `script` as in.x in both codes, each in a fresh directory; returns both
+/// directories and standard outputs.
+fn both(name: &str, script: &str) -> ((PathBuf, String), (PathBuf, String)) {
+    let stage = |side: &str| {
+        let d = tempdir(&format!("{name}-{side}"));
+        std::fs::write(d.join("in.x"), script).unwrap();
+        d
+    };
+    let (dl, dg) = (stage("lammps"), stage("gendpde"));
+    let l = expect_success("LAMMPS", &run_lammps(&dl, "in.x", &[]));
+    let out = run_gendpde(&dg, "in.x", &[]);
+    assert!(out.status.success(), "gendpde failed:\n{}", String::from_utf8_lossy(&out.stderr));
+    ((dl, l), (dg, String::from_utf8_lossy(&out.stdout).into_owned()))
+}
+
+const SCENE: &str = "units lj
+comm_modify vel yes
+lattice fcc 3.0
+region box block 0 4 0 4 0 4
+create_box 2 box
+create_atoms 1 box
+region half block 0 2 INF INF INF INF
+set region half type 2
+mass * 1.0
+mass 2 2.0
+pair_style dpd 1.0 1.0 4928
+pair_coeff * * 25.0 0.0
+fix nve all nve
+velocity all create 1.0 87287 loop geom
+group one type 1
+group two type 2
+region slab block 1 3 INF INF INF INF
+compute tp all temp/partial 1 0 1
+compute tc two temp/com
+compute tr all temp/region slab
+compute g one gyration
+compute ct all count/type atom
+compute vacf two vacf
+compute m one msd com yes
+compute pa all property/atom vx xu
+compute r1 all reduce sum c_pa[1]
+compute r2 two reduce/region slab ave c_pa[2] vy
+compute co all coord/atom cutoff 0.9 group two
+compute rc all reduce max c_co
+compute rs all reduce sum c_co
+compute ke all ke/atom
+compute rke one reduce sum c_ke
+variable gx equal c_g[1]+c_g[4]
+fix at all ave/time 2 5 10 c_tp c_g v_gx c_ct[*] file ave.txt
+fix ar all ave/time 1 4 10 c_tc c_vacf[4] ave running
+fix av all ave/time 5 2 10 c_m mode vector file avec.txt
+fix pr all print 10 \"step $(step) tp $(c_tp:%.10f) f ${gx}\" file print.txt screen no
+thermo_style custom step temp c_tp c_tc c_tr c_g c_g[1] c_g[4] c_ct[1] c_ct[2] c_vacf[4] c_m[4] c_r1 c_r2[1] c_r2[2] c_rc c_rs c_rke f_at[1] f_at[2] f_at[3] f_ar[2] pxx press
+thermo_modify format float %.17g norm yes
+thermo 10
+run 30
+thermo_modify temp tp
+run 10
+";
+
+/// The numbers of a text file, line by line.
+fn numbers(path: &Path) -> Vec<Vec<f64>> {
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    text.lines().filter(|l| !l.starts_with('#')).map(|l| l.split_whitespace().filter_map(|w| w.parse().ok()).collect()).collect()
+}
+
+#[test]
+fn computes_and_output_fixes_match_lammps() {
+    let ((dl, l), (dg, g)) = both("computes", SCENE);
+    let (bl, bg) = (parse_thermo_blocks(&l, "Step"), parse_thermo_blocks(&g, "Step"));
+    assert_eq!(bl.len(), 2);
+    assert_eq!(bg.len(), 2);
+    let mut worst: f64 = 0.0;
+    for (tl, tg) in bl.iter().zip(&bg) {
+        assert_eq!(tl.header, tg.header);
+        assert_eq!(tl.rows.len(), tg.rows.len());
+        for (c, name) in tl.header.iter().enumerate() {
+            let scale = tl.rows.iter().map(|r| r[c].abs()).fold(0.0, f64::max).max(1e-300);
+            for (rl, rg) in tl.rows.iter().zip(&tg.rows) {
+                let d = (rl[c] - rg[c]).abs() / scale;
+                assert!(d < 1e-12, "{name} at step {}: gendpde {} LAMMPS {}", rl[0], rg[c], rl[c]);
+                worst = worst.max(d);
+            }
+        }
+    }
+    eprintln!("thermo: worst relative difference {worst:.2e}");
+    for file in ["ave.txt", "avec.txt", "print.txt"] {
+        let (nl, ng) = (numbers(&dl.join(file)), numbers(&dg.join(file)));
+        assert_eq!(nl.len(), ng.len(), "{file}: lines");
+        for (a, b) in nl.iter().zip(&ng) {
+            assert_eq!(a.len(), b.len(), "{file}: {a:?} vs {b:?}");
+            for (x, y) in a.iter().zip(b) {
+                assert!((x - y).abs() <= 1e-9 * x.abs().max(1e-6), "{file}: LAMMPS {a:?} gendpde {b:?}");
+            }
+        }
+    }
+    // the headings are LAMMPS's
+    for file in ["ave.txt", "avec.txt", "print.txt"] {
+        let heads = |d: &Path| std::fs::read_to_string(d.join(file)).unwrap().lines().filter(|l| l.starts_with('#')).map(String::from).collect::<Vec<_>>();
+        assert_eq!(heads(&dl), heads(&dg), "{file}");
+    }
+}
+
+#[cfg(feature = "mpi")]
+#[test]
+fn computes_and_output_fixes_do_not_depend_on_the_rank_count() {
+    let dir = tempdir("computes-ranks");
+    std::fs::write(dir.join("in.x"), SCENE).unwrap();
+    let mut first: Option<Vec<String>> = None;
+    for np in [1, 3] {
+        let out = mpirun(np, &dir, &["run", "in.x", "-log", "none"]);
+        assert!(out.status.success(), "{np} ranks: {}", String::from_utf8_lossy(&out.stderr));
+        let thermo: Vec<String> = parse_thermo_blocks(&String::from_utf8_lossy(&out.stdout), "Step").iter().flat_map(|b| b.rows.iter().map(|r| format!("{r:?}"))).collect();
+        let files = ["ave.txt", "avec.txt", "print.txt"].map(|f| std::fs::read_to_string(dir.join(f)).unwrap());
+        let all: Vec<String> = thermo.into_iter().chain(files).collect();
+        match &first {
+            None => first = Some(all),
+            Some(f) => assert!(*f == all, "{np} ranks differ from 1 rank"),
+        }
+    }
+}
+
+#[test]
+fn compute_and_output_fix_errors_name_the_line() {
+    let head = "units lj\nlattice fcc 3.0\nregion box block 0 3 0 3 0 3\ncreate_box 1 box\ncreate_atoms 1 box\nmass 1 1.0\nvariable a atom x\ncompute k all ke/atom\ncompute t all temp\n";
+    let stage = |script: &str| {
+        let dir = tempdir("compute-errors");
+        std::fs::write(dir.join("in.x"), script).unwrap();
+        dir
+    };
+    common::expect_errors(
+        head,
+        &[
+            ("compute p all temp/partial 1 2 0", "Illegal compute temp/partial command"),
+            ("compute p all temp/region nope", "Region nope for compute temp/region does not exist"),
+            ("compute p all count/type foo", "Invalid compute count/type keyword foo"),
+            ("compute p all coord/atom cutoff 2.0 group nope", "Group ID nope requested by compute coord/atom does not exist"),
+            ("compute p all property/atom foo", "Invalid keyword foo for compute property/atom command"),
+            ("compute r all reduce sum c_k[2]", "Compute reduce compute k does not calculate a per-atom array"),
+            ("compute p all property/atom x vx\ncompute r all reduce sum c_p", "Compute reduce compute p does not calculate a per-atom vector"),
+            ("compute p all property/atom x vx\ncompute r all reduce sum c_p[3]", "Compute reduce compute p array is accessed out-of-range"),
+            ("compute_modify t foo 1", "Compute t temp does not support compute_modify foo command"),
+            ("fix f all ave/time 1 1 1 c_nope", "Compute ID nope for fix ave/time does not exist"),
+            ("fix f all ave/time 1 1 1 v_nope", "Variable name nope for fix ave/time does not exist"),
+            ("fix f all ave/time 1 1 1 v_a", "Fix ave/time variable a is atom-style"),
+            ("fix f all ave/time 1 1 1 c_t[7]", "Fix ave/time compute does not calculate a vector"),
+            ("fix f all ave/time 1 1 1 c_k", "Fix ave/time compute does not calculate a scalar"),
+            ("fix f all ave/time 1 1 1 c_t off 2", "Invalid fix ave/time off column 2"),
+            ("fix f all ave/time 1 1 1 c_t mode array", "mode array (expected scalar or vector)"),
+            ("fix f all ave/time 2 1 3 c_t", "Nfreq a multiple of Nevery"),
+            ("fix f all print 0 hello", "Illegal fix print nevery value 0; must be > 0"),
+            ("fix f all print 10 hello title", "missing argument"),
+            ("pair_style dpd 1.0 1.0 1\npair_coeff * * 25 0\nfix nve all nve\nfix f all ave/time 10 1 10 c_t\nthermo_style custom step f_f\nthermo 5\nrun 10", "Thermo fix f not computed at compatible time"),
+        ],
+        stage,
+    );
+}
