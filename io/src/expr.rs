@@ -200,6 +200,10 @@ struct Parser<'a> {
     memo: &'a Memo,
 }
 
+/// LAMMPS's group functions whose arguments are IDs and keywords, not expressions (the
+/// resolver evaluates them).
+const GROUP_FUNCTIONS: [&str; 8] = ["count", "mass", "xcm", "vcm", "fcm", "bound", "gyration", "ke"];
+
 /// Binary operator levels, lowest precedence first.
 const LEVELS: [&[&str]; 7] = [
     &["||"],
@@ -251,6 +255,10 @@ impl Parser<'_> {
                 self.expect(")")?;
                 Ok(x)
             }
+            Some(Token::Ident(name)) if self.peek_op() == Some("(") && GROUP_FUNCTIONS.contains(&name.as_str()) => {
+                self.pos += 1;
+                self.group_function(&name)
+            }
             Some(Token::Ident(name)) if self.peek_op() == Some("(") => {
                 self.pos += 1;
                 let args = self.nested(Self::arguments)?;
@@ -271,6 +279,28 @@ impl Parser<'_> {
         }
         self.expect(")")?;
         Ok(args)
+    }
+
+    /// A group function's words up to its `)`, passed to `resolve` as `name(w1,w2,...)`.
+    fn group_function(&mut self, name: &str) -> Result<f64, String> {
+        let mut words = Vec::new();
+        loop {
+            match self.tokens.get(self.pos) {
+                Some(Token::Ident(w)) => words.push(w.clone()),
+                _ => return Err(format!("{name}(): expected a group ID, a dimension or a region ID")),
+            }
+            self.pos += 1;
+            match self.peek_op() {
+                Some(",") => self.pos += 1,
+                Some(")") => {
+                    self.pos += 1;
+                    break;
+                }
+                _ => return Err(format!("{name}(): expected ',' or ')'")),
+            }
+        }
+        let call = format!("{name}({})", words.join(","));
+        (self.resolve)(&call).ok_or_else(|| format!("group function {call}: no such group or region, or a wrong argument (or no box yet)"))
     }
 
     fn identifier(&self, name: &str) -> Result<f64, String> {

@@ -1,4 +1,5 @@
 //! The model: everything a script defined (box, particles, styles, run settings).
 
-pub mod sim;
+pub mod group_functions;
 pub mod per_atom;
+pub mod sim;

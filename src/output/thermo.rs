@@ -20,7 +20,7 @@ use crate::model::sim::Sim;
 use crate::output::schedule::{Frame, RunOutput, Span};
 pub use crate::output::thermo_settings::ThermoConfig;
 use crate::output::thermo_settings::Mark;
-use crate::model::per_atom;
+use crate::model::{group_functions, per_atom};
 use crate::styles::compute::{self, Temperature};
 use crate::styles::fix::FixStyle;
 use gendpde_engine::exact_sums;
@@ -232,6 +232,7 @@ impl<'a> ThermoContext<'a> {
             "pxtot" => o.momentum[0],
             "pytot" => o.momentum[1],
             "pztot" => o.momentum[2],
+            _ if name.ends_with(')') => return group_functions::value(self.sim, name),
             _ => return self.compute(name),
         })
     }

@@ -1,7 +1,9 @@
 //! Computes and output fixes beside the reference LAMMPS (issue 38): temp/partial,
 //! temp/com, temp/region, gyration, count/type, vacf, msd, property/atom, reduce and
 //! reduce/region, coord/atom of a group, ke/atom; fix ave/time (scalar and vector modes,
-//! ave running, c_ID[*], f_ID in thermo), fix print; thermo_modify temp of a temp/partial.
+//! ave running, c_ID[*], f_ID in thermo), fix print; thermo_modify temp of a temp/partial;
+//! the group functions of variables (count, mass, xcm, vcm, fcm, bound, gyration, ke, with
+//! and without a region).
 //! A deterministic pair dpd scene (gamma 0): every thermo value to round-off, the files
 //! to their printed digits, and the same on 1 and 3 ranks.
 
@@ -58,11 +60,21 @@ compute rs all reduce sum c_co
 compute ke all ke/atom
 compute rke one reduce sum c_ke
 variable gx equal c_g[1]+c_g[4]
+variable n equal count(two)
+variable nr equal count(two,slab)
+variable ms equal mass(two)
+variable xc equal xcm(one,x)
+variable vc equal vcm(two,y,slab)
+variable fc equal fcm(two,z)
+variable bx equal bound(two,xmax)
+variable bn equal bound(one,ymin,slab)
+variable gy equal gyration(one)
+variable k equal ke(two)
 fix at all ave/time 2 5 10 c_tp c_g v_gx c_ct[*] file ave.txt
 fix ar all ave/time 1 4 10 c_tc c_vacf[4] ave running
 fix av all ave/time 5 2 10 c_m mode vector file avec.txt
 fix pr all print 10 \"step $(step) tp $(c_tp:%.10f) f ${gx}\" file print.txt screen no
-thermo_style custom step temp c_tp c_tc c_tr c_g c_g[1] c_g[4] c_ct[1] c_ct[2] c_vacf[4] c_m[4] c_r1 c_r2[1] c_r2[2] c_rc c_rs c_rke f_at[1] f_at[2] f_at[3] f_ar[2] pxx press
+thermo_style custom step temp c_tp c_tc c_tr c_g c_g[1] c_g[4] c_ct[1] c_ct[2] c_vacf[4] c_m[4] c_r1 c_r2[1] c_r2[2] c_rc c_rs c_rke f_at[1] f_at[2] f_at[3] f_ar[2] pxx press v_n v_nr v_ms v_xc v_vc v_fc v_bx v_bn v_gy v_k
 thermo_modify format float %.17g norm yes
 thermo 10
 run 30
