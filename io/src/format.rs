@@ -16,6 +16,23 @@ pub fn format_g(x: f64, precision: usize) -> String {
     spec.render(x)
 }
 
+/// Formats `x` as LAMMPS's `fmt::print("{}", x)`: the shortest digits that read back to
+/// `x`, in fixed notation for decimal exponents -4 to 15 (no trailing `.0`), else as
+/// `1.5e-05` or `1e+16`.
+pub fn format_shortest(x: f64) -> String {
+    if !x.is_finite() || x == 0.0 {
+        return if x == 0.0 { if x.is_sign_negative() { "-0".into() } else { "0".into() } } else { format!("{x}") };
+    }
+    let e = format!("{x:e}");
+    let (mantissa, exp) = e.split_once('e').expect("{:e} has an exponent");
+    let exp: i32 = exp.parse().expect("an integer exponent");
+    if (-4..16).contains(&exp) {
+        format!("{x}")
+    } else {
+        format!("{mantissa}e{}{:02}", if exp < 0 { '-' } else { '+' }, exp.abs())
+    }
+}
+
 /// Formats `x` with a printf-style format holding exactly one conversion
 /// `%[flags][width][.prec](f|F|e|E|g|G|d|i)`; text around it is copied and
 /// `%%` yields `%`. `%d` truncates `x` toward zero.
@@ -244,6 +261,26 @@ fn integer(a: f64, precision: Option<usize>) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// As LAMMPS 22 Jul 2025 prints them (fix ave/histo's block lines).
+    #[test]
+    fn shortest_matches_lammps_fmt() {
+        for (x, text) in [
+            (1536.0, "1536"),
+            (-1.2810265668751807e-17, "-1.2810265668751807e-17"),
+            (1.5899805187281213, "1.5899805187281213"),
+            (-1.709223458376557, "-1.709223458376557"),
+            (0.0, "0"),
+            (1e20, "1e+20"),
+            (-1e20, "-1e+20"),
+            (0.0001, "0.0001"),
+            (1e-5, "1e-05"),
+            (1e15, "1000000000000000"),
+            (1e16, "1e+16"),
+        ] {
+            assert_eq!(format_shortest(x), text);
+        }
+    }
 
     #[test]
     fn g_matches_c_printf() {

@@ -15,7 +15,7 @@ pub mod variables;
 pub use boolean::evaluate_boolean;
 pub use data_file::{parse_data, read_data, write_data, AtomStyle, DataAtom, DataFile, PairCoeffs};
 pub use expr::evaluate;
-pub use format::{format_g, format_printf};
+pub use format::{format_g, format_printf, format_shortest};
 pub use h5md::{check_h5md, repair_h5md, H5mdError, H5mdField, H5mdMeta, H5mdSummary, H5mdWriter};
 pub use restart::{row_width, ColumnSpec, RestartError, RestartHeader, RestartReader, RestartWriter};
 pub use command::{Command, Location, ScriptError};

@@ -45,6 +45,15 @@ impl Blocks {
         Ok(Self { ave, ..Self::default() })
     }
 
+    /// How many of the last blocks a combination holds (all: `usize::MAX`).
+    pub fn span(&self) -> usize {
+        match self.ave {
+            Ave::One => 1,
+            Ave::Running => usize::MAX,
+            Ave::Window(m) => m,
+        }
+    }
+
     /// Combines a block with the earlier ones: the sum and the number of blocks in it.
     pub fn combine(&mut self, block: Vec<f64>) -> (Vec<f64>, f64) {
         if self.ave == Ave::One {

@@ -7,6 +7,7 @@
 //! [`OUTPUT_FIXES`].
 
 pub mod ave_chunk;
+pub mod ave_histo;
 pub mod ave_time;
 pub mod blocks;
 pub mod print;
@@ -48,6 +49,7 @@ type ParseOutputFix = fn(a: &mut Args, c: &OutputFixContext) -> Result<Box<dyn O
 pub const OUTPUT_FIXES: &[(&str, ParseOutputFix)] = &[
     ("ave/time", |a, c| Ok(Box::new(ave_time::AveTime::parse(a, c)?))),
     ("ave/chunk", |a, c| Ok(Box::new(ave_chunk::AveChunk::parse(a, c)?))),
+    ("ave/histo", |a, c| Ok(Box::new(ave_histo::AveHisto::parse(a, c)?))),
     ("print", |a, c| Ok(Box::new(print::Print::parse(a, c)?))),
 ];
 

@@ -1,7 +1,7 @@
 //! Computes and output fixes beside the reference LAMMPS (issue 38): temp/partial,
 //! temp/com, temp/region, gyration, count/type, vacf, msd, property/atom, reduce and
 //! reduce/region, coord/atom of a group, ke/atom; fix ave/time (scalar and vector modes,
-//! ave running, c_ID[*], f_ID in thermo), fix print; thermo_modify temp of a temp/partial;
+//! ave running, c_ID[*], f_ID in thermo), fix ave/histo, fix print; thermo_modify temp of a temp/partial;
 //! the group functions of variables (count, mass, xcm, vcm, fcm, bound, gyration, ke, with
 //! and without a region).
 //! A deterministic pair dpd scene (gamma 0): every thermo value to round-off, the files
@@ -82,6 +82,36 @@ thermo_modify temp tp
 run 10
 ";
 
+/// fix ave/histo of per-atom keywords, per-atom computes (beyond extra, ave running),
+/// a global vector and global scalars (beyond end, ave window).
+const HISTO: &str = "units lj
+comm_modify vel yes
+lattice fcc 3.0
+region box block 0 4 0 4 0 4
+create_box 2 box
+create_atoms 1 box
+region half block 0 2 INF INF INF INF
+set region half type 2
+mass * 1.0
+mass 2 2.0
+pair_style dpd 1.0 1.0 4928
+pair_coeff * * 25.0 0.0
+fix nve all nve
+velocity all create 1.0 87287 loop geom
+group two type 2
+compute ke all ke/atom
+compute g all gyration
+variable t equal temp
+fix h1 all ave/histo 2 3 10 -2.0 2.0 8 vx vy file h1.txt mode vector
+fix h2 two ave/histo 5 2 10 0.0 3.0 6 c_ke beyond extra file h2.txt ave running mode vector
+fix h3 all ave/histo 1 1 10 -0.5 2.0 5 c_g mode vector file h3.txt
+fix h4 all ave/histo 1 5 10 0.0 1.0 3 c_g[1] c_g[2] v_t beyond end ave window 2 file h4.txt
+thermo_style custom step temp f_h1[1] f_h1[2] f_h1[3] f_h1[4] f_h2[1] f_h2[3] f_h3[1] f_h4[1] f_h4[3] f_h4[4]
+thermo 10
+thermo_modify format float %.17g
+run 40
+";
+
 /// The numbers of a text file, line by line.
 fn numbers(path: &Path) -> Vec<Vec<f64>> {
     let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
@@ -91,9 +121,17 @@ fn numbers(path: &Path) -> Vec<Vec<f64>> {
 #[test]
 fn computes_and_output_fixes_match_lammps() {
     let ((dl, l), (dg, g)) = both("computes", SCENE);
-    let (bl, bg) = (parse_thermo_blocks(&l, "Step"), parse_thermo_blocks(&g, "Step"));
-    assert_eq!(bl.len(), 2);
-    assert_eq!(bg.len(), 2);
+    let worst = same_thermo(&l, &g, 1e-12);
+    eprintln!("thermo: worst relative difference {worst:.2e}");
+    // %g values: to their 6 digits
+    same_files(&dl, &dg, &["ave.txt", "avec.txt", "print.txt"], 1e-9);
+}
+
+/// The thermo blocks of two runs agree to `rel` of each column's largest magnitude; returns
+/// the worst relative difference.
+fn same_thermo(l: &str, g: &str, rel: f64) -> f64 {
+    let (bl, bg) = (parse_thermo_blocks(l, "Step"), parse_thermo_blocks(g, "Step"));
+    assert_eq!(bl.len(), bg.len());
     let mut worst: f64 = 0.0;
     for (tl, tg) in bl.iter().zip(&bg) {
         assert_eq!(tl.header, tg.header);
@@ -102,44 +140,54 @@ fn computes_and_output_fixes_match_lammps() {
             let scale = tl.rows.iter().map(|r| r[c].abs()).fold(0.0, f64::max).max(1e-300);
             for (rl, rg) in tl.rows.iter().zip(&tg.rows) {
                 let d = (rl[c] - rg[c]).abs() / scale;
-                assert!(d < 1e-12, "{name} at step {}: gendpde {} LAMMPS {}", rl[0], rg[c], rl[c]);
+                assert!(d < rel, "{name} at step {}: gendpde {} LAMMPS {}", rl[0], rg[c], rl[c]);
                 worst = worst.max(d);
             }
         }
     }
-    eprintln!("thermo: worst relative difference {worst:.2e}");
-    for file in ["ave.txt", "avec.txt", "print.txt"] {
+    worst
+}
+
+/// The files of two runs hold the same headings and numbers (to `rel` of 1 or more).
+fn same_files(dl: &Path, dg: &Path, files: &[&str], rel: f64) {
+    for file in files {
         let (nl, ng) = (numbers(&dl.join(file)), numbers(&dg.join(file)));
         assert_eq!(nl.len(), ng.len(), "{file}: lines");
         for (a, b) in nl.iter().zip(&ng) {
             assert_eq!(a.len(), b.len(), "{file}: {a:?} vs {b:?}");
             for (x, y) in a.iter().zip(b) {
-                assert!((x - y).abs() <= 1e-9 * x.abs().max(1e-6), "{file}: LAMMPS {a:?} gendpde {b:?}");
+                assert!((x - y).abs() <= rel * x.abs().max(1.0), "{file}: LAMMPS {a:?} gendpde {b:?}");
             }
         }
-    }
-    // the headings are LAMMPS's
-    for file in ["ave.txt", "avec.txt", "print.txt"] {
         let heads = |d: &Path| std::fs::read_to_string(d.join(file)).unwrap().lines().filter(|l| l.starts_with('#')).map(String::from).collect::<Vec<_>>();
-        assert_eq!(heads(&dl), heads(&dg), "{file}");
+        assert_eq!(heads(dl), heads(dg), "{file}");
     }
+}
+
+#[test]
+fn ave_histo_matches_lammps() {
+    let ((dl, l), (dg, g)) = both("histo", HISTO);
+    let worst = same_thermo(&l, &g, 1e-12);
+    eprintln!("thermo: worst relative difference {worst:.2e}");
+    same_files(&dl, &dg, &["h1.txt", "h2.txt", "h3.txt", "h4.txt"], 1e-12);
 }
 
 #[cfg(feature = "mpi")]
 #[test]
 fn computes_and_output_fixes_do_not_depend_on_the_rank_count() {
-    let dir = tempdir("computes-ranks");
-    std::fs::write(dir.join("in.x"), SCENE).unwrap();
-    let mut first: Option<Vec<String>> = None;
-    for np in [1, 3] {
-        let out = mpirun(np, &dir, &["run", "in.x", "-log", "none"]);
-        assert!(out.status.success(), "{np} ranks: {}", String::from_utf8_lossy(&out.stderr));
-        let thermo: Vec<String> = parse_thermo_blocks(&String::from_utf8_lossy(&out.stdout), "Step").iter().flat_map(|b| b.rows.iter().map(|r| format!("{r:?}"))).collect();
-        let files = ["ave.txt", "avec.txt", "print.txt"].map(|f| std::fs::read_to_string(dir.join(f)).unwrap());
-        let all: Vec<String> = thermo.into_iter().chain(files).collect();
-        match &first {
-            None => first = Some(all),
-            Some(f) => assert!(*f == all, "{np} ranks differ from 1 rank"),
+    for (scene, files) in [(SCENE, &["ave.txt", "avec.txt", "print.txt"][..]), (HISTO, &["h1.txt", "h2.txt", "h3.txt", "h4.txt"][..])] {
+        let dir = tempdir("computes-ranks");
+        std::fs::write(dir.join("in.x"), scene).unwrap();
+        let mut first: Option<Vec<String>> = None;
+        for np in [1, 3] {
+            let out = mpirun(np, &dir, &["run", "in.x", "-log", "none"]);
+            assert!(out.status.success(), "{np} ranks: {}", String::from_utf8_lossy(&out.stderr));
+            let thermo: Vec<String> = parse_thermo_blocks(&String::from_utf8_lossy(&out.stdout), "Step").iter().flat_map(|b| b.rows.iter().map(|r| format!("{r:?}"))).collect();
+            let all: Vec<String> = thermo.into_iter().chain(files.iter().map(|f| std::fs::read_to_string(dir.join(f)).unwrap())).collect();
+            match &first {
+                None => first = Some(all),
+                Some(f) => assert!(*f == all, "{np} ranks differ from 1 rank"),
+            }
         }
     }
 }
