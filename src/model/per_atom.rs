@@ -69,10 +69,28 @@ pub fn input(sim: &Sim, sys: &System, vars: &Variables, global: &dyn Fn(&str) ->
     if let Some(v) = name.strip_prefix("v_") {
         return atom_variable(vars, v, sys, sim.units.mvv2e, global);
     }
+    if name.starts_with("f_") {
+        let (ncol, col, values) = fix_values(sim, name).ok_or_else(|| format!("{name}: no fix with per-atom values of that ID (or no such column)"))?;
+        let s = &sys.store;
+        return Ok((0..s.nlocal).map(|i| values.get((s.tag[i] as usize - 1) * ncol + col).copied().unwrap_or(0.0)).collect());
+    }
     if name.starts_with("c_") {
         return evaluate(sim, sys, vars, global, |e| compute::per_atom(&sim.computes, e, name)).unwrap_or_else(|| Err(format!("{name}: no per-atom compute of that ID (or no such column)")));
     }
     let keyword = Keyword::find(name).ok_or_else(|| format!("unknown per-atom input '{name}'"))?;
     let reader = keyword.reader(&sys.store)?;
     Ok((0..sys.store.nlocal).map(|i| reader.get(sys, i)).collect())
+}
+
+/// The per-atom values `f_ID` (one column) or `f_ID[k]` name: the fix's column count,
+/// the column (from 0) and its values by tag; None if it names none.
+pub fn fix_values<'a>(sim: &'a Sim, name: &str) -> Option<(usize, usize, &'a [f64])> {
+    let ('f', id, index) = compute::reference(name)? else { return None };
+    let (ncol, values) = sim.fix_values.get(id)?.per_atom.as_ref()?;
+    let col = match index {
+        None if *ncol == 1 => 0,
+        Some(k) if (1..=*ncol).contains(&k) => k - 1,
+        _ => return None,
+    };
+    Some((*ncol, col, values))
 }

@@ -19,12 +19,15 @@ const RESERVOIR_STATE: &str = "heat/reservoir/";
 /// Restart state name prefix of a `fix nph` barostat.
 const NPH_STATE: &str = "nph/";
 
-/// The global values a fix publishes, read as `f_ID` (the scalar) and `f_ID[k]`: each
-/// value with whether it is extensive (divided by N under `thermo_modify norm yes`).
+/// The values a fix publishes: global ones read as `f_ID` (the scalar) and `f_ID[k]`, each
+/// with whether it is extensive (divided by N under `thermo_modify norm yes`), and
+/// per-atom ones read by dumps and computes as `f_ID` or `f_ID[k]`.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct FixValues {
     pub scalar: Option<(f64, bool)>,
     pub vector: Vec<(f64, bool)>,
+    /// Per-atom values: the number of columns and the values by (tag - 1) x columns.
+    pub per_atom: Option<(usize, Vec<f64>)>,
     /// The values change only on multiples of this step (LAMMPS's global_freq: thermo
     /// reads them only then).
     pub freq: u64,

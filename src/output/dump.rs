@@ -28,6 +28,8 @@ use std::io::{BufWriter, Write};
 enum Column {
     Keyword(Keyword),
     Compute(String),
+    /// `f_ID` or `f_ID[k]` of a fix with per-atom values (fix ave/atom).
+    Fix(String),
     Variable(String),
 }
 
@@ -36,6 +38,7 @@ impl Column {
         match self {
             Column::Keyword(k) => k.name.to_string(),
             Column::Compute(id) => format!("c_{id}"),
+            Column::Fix(id) => format!("f_{id}"),
             Column::Variable(name) => format!("v_{name}"),
         }
     }
@@ -64,7 +67,7 @@ impl PerAtomInputs<'_> {
         let s = &sys.store;
         Ok(match column {
             Column::Keyword(k) => ColumnValues::Reader(k.reader(s)?),
-            Column::Compute(_) | Column::Variable(_) => {
+            Column::Compute(_) | Column::Fix(_) | Column::Variable(_) => {
                 let name = column.name();
                 let context = ThermoContext::new(sim, sys, self.thermo, self.vars, 0, 0.0);
                 let global = |n: &str| context.keyword(n);
@@ -277,7 +280,7 @@ fn parse_columns(a: &mut Args) -> Result<Vec<Column>, ScriptError> {
         let c = match (w.strip_prefix("c_"), w.strip_prefix("v_")) {
             (Some(id), _) if !id.is_empty() => Column::Compute(id.to_string()),
             (_, Some(name)) if !name.is_empty() => Column::Variable(name.to_string()),
-            _ if w.starts_with("f_") => return Err(a.err(format!("column '{w}': no gendpde fix has per-particle values"))),
+            _ if w.len() > 2 && w.starts_with("f_") => Column::Fix(w[2..].to_string()),
             _ => Column::Keyword(Keyword::find(w).ok_or_else(|| a.err(format!("unknown keyword '{w}'; known: {}, c_ID, v_name", keyword_names())))?),
         };
         a.word("a keyword")?;

@@ -6,6 +6,7 @@
 //! Adding a style: a file with its type implementing [`OutputFix`] and one line in
 //! [`OUTPUT_FIXES`].
 
+pub mod ave_atom;
 pub mod ave_chunk;
 pub mod ave_histo;
 pub mod ave_time;
@@ -48,6 +49,7 @@ type ParseOutputFix = fn(a: &mut Args, c: &OutputFixContext) -> Result<Box<dyn O
 /// Every output fix style, with its parser.
 pub const OUTPUT_FIXES: &[(&str, ParseOutputFix)] = &[
     ("ave/time", |a, c| Ok(Box::new(ave_time::AveTime::parse(a, c)?))),
+    ("ave/atom", |a, c| Ok(Box::new(ave_atom::AveAtom::parse(a, c)?))),
     ("ave/chunk", |a, c| Ok(Box::new(ave_chunk::AveChunk::parse(a, c)?))),
     ("ave/histo", |a, c| Ok(Box::new(ave_histo::AveHisto::parse(a, c)?))),
     ("print", |a, c| Ok(Box::new(print::Print::parse(a, c)?))),

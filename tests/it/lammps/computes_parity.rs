@@ -1,14 +1,15 @@
 //! Computes and output fixes beside the reference LAMMPS (issue 38): temp/partial,
 //! temp/com, temp/region, gyration, count/type, vacf, msd, property/atom, reduce and
 //! reduce/region, coord/atom of a group, ke/atom; fix ave/time (scalar and vector modes,
-//! ave running, c_ID[*], f_ID in thermo), fix ave/histo, fix print; thermo_modify temp of a temp/partial;
+//! ave running, c_ID[*], f_ID in thermo), fix ave/histo, fix ave/atom (f_ID in dumps),
+//! fix print; thermo_modify temp of a temp/partial;
 //! the group functions of variables (count, mass, xcm, vcm, fcm, bound, gyration, ke, with
 //! and without a region).
 //! A deterministic pair dpd scene (gamma 0): every thermo value to round-off, the files
 //! to their printed digits, and the same on 1 and 3 ranks.
 
 use crate::common;
-use common::lammps::{expect_success, parse_thermo_blocks, run_gendpde, run_lammps};
+use common::lammps::{expect_success, parse_dump, parse_thermo_blocks, run_gendpde, run_lammps};
 use common::{mpirun, tempdir};
 use std::path::{Path, PathBuf};
 
@@ -112,6 +113,33 @@ thermo_modify format float %.17g
 run 40
 ";
 
+/// fix ave/atom of a per-atom keyword, a per-atom compute and an atom-style variable on a
+/// group, and of a force on all, in a dump.
+const AVE_ATOM: &str = "units lj
+comm_modify vel yes
+lattice fcc 3.0
+region box block 0 4 0 4 0 4
+create_box 2 box
+create_atoms 1 box
+region half block 0 2 INF INF INF INF
+set region half type 2
+mass * 1.0
+mass 2 2.0
+pair_style dpd 1.0 1.0 4928
+pair_coeff * * 25.0 0.0
+fix nve all nve
+velocity all create 1.0 87287 loop geom
+group two type 2
+compute ke all ke/atom
+variable e atom vx*vx+x
+fix aa two ave/atom 2 3 10 vx c_ke v_e
+fix ab all ave/atom 5 1 5 fz
+dump d all custom 10 aa.dump id f_aa[1] f_aa[2] f_aa[3] f_ab
+dump_modify d sort id format float %.17g
+thermo 10
+run 30
+";
+
 /// The numbers of a text file, line by line.
 fn numbers(path: &Path) -> Vec<Vec<f64>> {
     let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
@@ -172,10 +200,32 @@ fn ave_histo_matches_lammps() {
     same_files(&dl, &dg, &["h1.txt", "h2.txt", "h3.txt", "h4.txt"], 1e-12);
 }
 
+#[test]
+fn ave_atom_matches_lammps() {
+    let ((dl, _), (dg, _)) = both("ave-atom", AVE_ATOM);
+    let read = |d: &Path| parse_dump(&std::fs::read_to_string(d.join("aa.dump")).unwrap());
+    let (fl, fg) = (read(&dl), read(&dg));
+    assert_eq!(fl.len(), 4);
+    assert_eq!(fl.len(), fg.len());
+    let mut worst: f64 = 0.0;
+    for (a, b) in fl.iter().zip(&fg) {
+        assert_eq!((a.timestep, &a.columns), (b.timestep, &b.columns));
+        for ((ia, va), (ib, vb)) in a.atoms.iter().zip(&b.atoms) {
+            assert_eq!(ia, ib);
+            for (x, y) in va.iter().zip(vb) {
+                let d = (x - y).abs() / x.abs().max(1.0);
+                assert!(d < 1e-12, "step {} atom {ia}: LAMMPS {va:?} gendpde {vb:?}", a.timestep);
+                worst = worst.max(d);
+            }
+        }
+    }
+    eprintln!("fix ave/atom: worst relative difference {worst:.2e}");
+}
+
 #[cfg(feature = "mpi")]
 #[test]
 fn computes_and_output_fixes_do_not_depend_on_the_rank_count() {
-    for (scene, files) in [(SCENE, &["ave.txt", "avec.txt", "print.txt"][..]), (HISTO, &["h1.txt", "h2.txt", "h3.txt", "h4.txt"][..])] {
+    for (scene, files) in [(SCENE, &["ave.txt", "avec.txt", "print.txt"][..]), (HISTO, &["h1.txt", "h2.txt", "h3.txt", "h4.txt"][..]), (AVE_ATOM, &["aa.dump"][..])] {
         let dir = tempdir("computes-ranks");
         std::fs::write(dir.join("in.x"), scene).unwrap();
         let mut first: Option<Vec<String>> = None;
