@@ -10,6 +10,7 @@
 //! [`COMPUTE_STYLES`].
 
 pub mod chunk;
+pub mod cluster_atom;
 pub mod com;
 pub mod coord_atom;
 pub mod count_type;
@@ -188,6 +189,7 @@ pub const COMPUTE_STYLES: &[(&str, ParseCompute)] = &[
     ("msd", |a, c| unit(msd::Msd::parse(a, c, "msd")?)),
     ("vacf", |a, c| unit(msd::Msd::parse(a, c, "vacf")?)),
     ("coord/atom", |a, c| unit(coord_atom::CoordAtom::parse(a, c)?)),
+    ("cluster/atom", |a, c| unit(cluster_atom::ClusterAtom::parse(a, c)?)),
     ("rdf", |a, c| match c.group {
         "all" => Ok(Definition::Rdf(Rdf::parse(c.id.clone(), a)?)),
         group => Err(a.err(format!("compute rdf on group {group}: only group all is supported"))),
