@@ -107,3 +107,88 @@ fn create_atoms_keywords_are_checked_as_lammps() {
         expect_error("create-keywords", &format!("{head}{line}\n"), expected);
     }
 }
+
+/// Every static group style, on types set by region: LAMMPS's "N atoms in group ID"
+/// lines, in order, on 1 and 3 ranks (subtract also takes out the group's own earlier
+/// members that are in the other groups, as LAMMPS does).
+const GROUPS: &str = "units lj
+lattice sc 1.0
+region box block 0 4 0 4 0 4
+create_box 3 box
+create_atoms 1 box
+region left block 0 1.5 INF INF INF INF
+region right block 2.5 4 INF INF INF INF
+set region left type 2
+set region right type 3
+group one region left
+group two type 2 3
+group three id 1:40:3 50 52:55
+group four id <> 10 20
+group five type != 1
+group s subtract all one two
+group u union one two
+group i intersect two five three
+group e empty
+variable v atom x>2.5&&y<1.5
+group var variable v
+group three clear
+group three id 60:64
+group one type 1
+group s subtract s five
+group two union two e
+group t id >= 60
+group t intersect t three
+group t type 1:3:2
+group all region left
+group s delete
+group s static
+group neg id -5:-1
+";
+
+/// The "N atoms in group ID" lines of a screen output.
+fn group_lines(out: &str) -> Vec<&str> {
+    out.lines().filter(|l| l.contains(" atoms in group ")).collect()
+}
+
+#[test]
+fn group_styles_select_lammps_members() {
+    let (_, l) = lammps("groups", GROUPS);
+    let expected = group_lines(&l);
+    assert_eq!(expected.len(), 20, "{l}");
+    assert!(expected.contains(&"15 atoms in group i") && expected.contains(&"8 atoms in group var"), "{expected:?}");
+    for np in [1, 3] {
+        let (_, g) = gendpde_on(np, "groups", GROUPS);
+        assert_eq!(group_lines(&g), expected, "{np} ranks");
+    }
+}
+
+#[test]
+fn group_errors_are_lammps_messages() {
+    let head = "units lj\nlattice sc 1.0\nregion box block 0 4 0 4 0 4\ncreate_box 2 box\ncreate_atoms 1 box\ngroup one id 1:9\nvariable e equal 2\n";
+    for (line, expected) in [
+        ("group q union", "in.x:8: group: Illegal group union command: missing argument(s)"),
+        ("group q subtract one", "in.x:8: group: Illegal group subtract command: missing argument(s)"),
+        ("group q intersect one", "in.x:8: group: Illegal group intersect command: missing argument(s)"),
+        ("group q subtract one xx", "in.x:8: group: Group ID xx does not exist"),
+        ("group q molecule 1", "in.x:8: group: Group molecule command requires atom attribute molecule"),
+        ("group q include molecule", "in.x:8: group: Group include molecule command requires atom attribute molecule"),
+        ("group q variable nov", "in.x:8: group: Variable name nov for group does not exist"),
+        ("group q variable e", "in.x:8: group: Variable e for group is invalid style"),
+        ("group all clear", "in.x:8: group: Cannot clear group all"),
+        ("group all delete", "in.x:8: group: Cannot delete group all"),
+        ("group nn clear", "in.x:8: group: Could not find group clear group ID nn"),
+        ("group nn delete", "in.x:8: group: Could not find group delete group ID nn"),
+        ("group q empty x", "in.x:8: group: Illegal group empty command"),
+        ("group q region nor", "in.x:8: group: Region nor for group region does not exist"),
+        ("group q type 1*2", "in.x:8: group: Incorrect range string '1*2': Not a valid integer number: '1*2'"),
+        ("group q type 1:x", "in.x:8: group: Incorrect range string '1:x': Syntax error"),
+        ("group q type 1:3:0", "in.x:8: group: Illegal range increment value"),
+        ("group q type <= 2.5", "in.x:8: group: Expected integer parameter instead of '2.5' in input script or data file"),
+        ("group q id < 6 7", "in.x:8: group: Illegal group command"),
+        ("group q dynamic all region box", "in.x:8: group: group dynamic is not supported"),
+        ("group q xxx", "in.x:8: group: Illegal group command: unknown style 'xxx'"),
+    ] {
+        expect_error("group-errors", &format!("{head}{line}\n"), expected);
+    }
+    expect_error("group-nobox", "group q empty\n", "in.x:1: group: Group command before simulation box is defined");
+}
