@@ -192,3 +192,69 @@ fn group_errors_are_lammps_messages() {
     }
     expect_error("group-nobox", "group q empty\n", "in.x:1: group: Group command before simulation box is defined");
 }
+
+/// LAMMPS's dpd with velocity Verlet in a box of 10 with `neighbor 5.0 bin` (cutoff +
+/// skin = 6 > 10 / 2): gendpde lists with a shorter skin. No noise (T = 0), so thermo
+/// and positions agree with LAMMPS to round-off over 50 steps; bit-identical on 1 and 3
+/// ranks.
+const SMALL_BOX: &str = "units lj
+comm_modify vel yes
+region box block 0 10 0 10 0 10
+create_box 1 box
+create_atoms 1 random 3000 4321 NULL
+mass 1 1.0
+velocity all create 1.0 87287 loop geom
+pair_style dpd 0.0 1.0 34387
+pair_coeff 1 1 25.0 4.5
+neighbor 5.0 bin
+neigh_modify one 4000 page 40000
+timestep 0.01
+fix 1 all nve
+thermo 10
+thermo_style custom step temp pe ke etotal press pxx pyy
+thermo_modify format float %.17g
+run 50
+write_dump all custom small.dump id x y z vx vy vz modify format float %.17g
+";
+
+#[test]
+fn small_box_runs_as_lammps() {
+    let (dl, l) = lammps("small-box", SMALL_BOX);
+    let (dg, g) = gendpde_on(1, "small-box", SMALL_BOX);
+    assert!(g.contains("neighbor skin 5 does not fit the box"), "{g}");
+    let (tl, tg) = (common::lammps::parse_thermo(&l, "Step"), common::lammps::parse_thermo(&g, "Step"));
+    assert_eq!((tl.len(), tg.len()), (6, 6));
+    let mut worst: f64 = 0.0;
+    for (a, b) in tl.iter().zip(&tg) {
+        for (x, y) in a.iter().zip(b) {
+            worst = worst.max((x - y).abs() / x.abs().max(1e-300));
+        }
+    }
+    let (dr, dv) = common::lammps::compare_dumps(&dg.join("small.dump"), &dl.join("small.dump"));
+    eprintln!("thermo {worst:.1e}, positions {dr:.1e} of the box, velocities {dv:.1e}");
+    assert!(worst < 1e-12 && dr < 1e-12 && dv < 1e-11, "thermo {worst:.1e}, positions {dr:.1e}, velocities {dv:.1e}");
+    let (d3, g3) = gendpde_on(3, "small-box", SMALL_BOX);
+    assert_eq!(common::lammps::parse_thermo(&g3, "Step"), tg, "3 ranks");
+    assert!(std::fs::read(d3.join("small.dump")).unwrap() == std::fs::read(dg.join("small.dump")).unwrap(), "3 ranks: another dump");
+}
+
+/// Fix shardlow keeps LAMMPS's refusal of a box shorter than 2 (cutoff + skin); a box
+/// shorter than two cutoffs says what LAMMPS would do.
+#[test]
+fn small_box_refusals_say_why() {
+    let head = "units lj\natom_style dpd\ncomm_modify vel yes\nregion box block 0 10 0 10 0 10\ncreate_box 1 box\n\
+                create_atoms 1 random 300 4321 NULL\nmass 1 1.0\ntimestep 0.01\n";
+    let shardlow = "pair_style dpd/fdt 1.0 1.0 34387\npair_coeff 1 1 25.0 4.5 1.0\nneighbor 5.0 bin\nfix 1 all shardlow\nfix 2 all nve\nrun 5\n";
+    expect_error(
+        "small-shardlow",
+        &format!("{head}{shardlow}"),
+        "in.x:14: run: Shardlow algorithm requires sub-domain length > 2*(rcut+skin). Either reduce the number of processors \
+         requested, or change the cutoff/skin: rcut= 12 bbx= 10 bby= 10 bbz= 10",
+    );
+    let short = head.replace("block 0 10 0 10 0 10", "block 0 1.5 0 10 0 10");
+    expect_error(
+        "small-cutoff",
+        &format!("{short}pair_style dpd 1.0 1.0 34387\npair_coeff 1 1 25.0 4.5\nneighbor 0.3 bin\nfix 2 all nve\nrun 5\n"),
+        "in.x:13: run: box length 1.5 is shorter than 2 x cutoff = 2: LAMMPS runs such a box",
+    );
+}
