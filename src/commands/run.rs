@@ -11,7 +11,7 @@ use crate::output::ave_time::AveTime;
 use crate::output::console::Output;
 use crate::output::restart;
 use crate::output::schedule::{Frame, RunOutput, Span};
-use crate::output::thermo::{header_line, Observables};
+use crate::output::thermo::{self, header_line, Observables};
 use crate::output::Outputs;
 use crate::styles::pair::{build_physics, RunInputs};
 use crate::styles::fix::FixStyle;
@@ -231,13 +231,16 @@ pub fn run(sim: &mut Sim, outputs: &mut Outputs, out: &mut Output, vars: &Variab
     let nsteps = part.nsteps;
     let err = |m: String| AppError::Script(ScriptError::at(cmd, m));
     let physics = prepare(sim, &outputs.averages, cmd, part)?;
-    if mode == Mode::Check {
-        return Ok(());
-    }
     let sys = sim.system.as_mut().expect("prepared system");
     sys.control.interrupt = signals::received();
     sim.energy0.get_or_insert_with(|| Observables::measure(sys).energy());
     let run = Span { first: sys.clock.step, last: sys.clock.step + nsteps };
+    if mode == Mode::Check {
+        // the set-up's thermo line, evaluated as the run evaluates it, printing nothing
+        let frame = Frame { sim, sys: sys_of(sim), vars, thermo: &outputs.thermo, out, run, cpu: 0.0 };
+        return thermo::values(&outputs.thermo, &frame).map(|_| ()).map_err(err);
+    }
+    let sys = sim.system.as_mut().expect("prepared system");
     let comm_before = sys.comm.time().as_secs_f64();
     let traffic_before = sys.comm.traffic();
     let clock = Instant::now();

@@ -258,3 +258,36 @@ fn small_box_refusals_say_why() {
         "in.x:13: run: box length 1.5 is shorter than 2 x cutoff = 2: LAMMPS runs such a box",
     );
 }
+
+/// `gendpde check` evaluates the set-up's thermo line as the run does: a thermo variable
+/// naming an unknown keyword, or one that fails at step 0, fails both with the same
+/// message; a sound line passes both.
+#[test]
+fn check_evaluates_the_setup_thermo_line() {
+    let script = |vars: &str| {
+        format!(
+            "units lj\ncomm_modify vel yes\nregion box block 0 5 0 5 0 5\ncreate_box 1 box\ncreate_atoms 1 random 100 7 NULL\n\
+             mass 1 1.0\npair_style dpd 1.0 1.0 3\npair_coeff 1 1 25.0 4.5\nfix 1 all nve\n{vars}\
+             thermo_style custom step temp v_a\nrun 5\n"
+        )
+    };
+    let outcome = |name: &str, text: &str, mode: &str| {
+        let dir = stage(name, text);
+        let out = if mode == "run" { gendpde(&dir, &["run", "in.x", "-log", "none"]) } else { gendpde(&dir, &["check", "in.x"]) };
+        (out.status.success(), String::from_utf8_lossy(&out.stderr).lines().find(|l| l.starts_with("ERROR")).unwrap_or_default().to_string())
+    };
+    for (vars, expected) in [
+        ("variable a equal pxy\n", "ERROR: in.x:12: run: thermo keyword v_a: unknown identifier 'pxy' in expression"),
+        ("variable a equal 1.0/step\n", "ERROR: in.x:12: run: thermo keyword v_a: division by zero"),
+        ("variable a equal v_b\n", "ERROR: in.x:12: run: thermo keyword v_a: "),
+    ] {
+        let text = script(vars);
+        let (run_ok, run_err) = outcome("check-run", &text, "run");
+        let (check_ok, check_err) = outcome("check-check", &text, "check");
+        assert!(!run_ok && !check_ok, "{vars}: run {run_ok}, check {check_ok}");
+        assert!(run_err.starts_with(expected), "{vars}: {run_err}");
+        assert_eq!(check_err, run_err, "{vars}");
+    }
+    let text = script("variable a equal 2*temp\n");
+    assert_eq!((outcome("check-ok", &text, "run").0, outcome("check-ok", &text, "check").0), (true, true));
+}
