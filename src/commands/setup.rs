@@ -304,8 +304,9 @@ pub fn create_atoms(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
                         hi[k] = (rhi[k] + 1e-6 * len[k]).min(d.hi[k]);
                     }
                 }
+                // as LAMMPS's add_lattice: a region outside the box creates no particle
                 if (0..3).any(|k| hi[k] <= lo[k]) {
-                    return Err(a.err("No overlap of box and region for create_atoms"));
+                    return Ok(());
                 }
             }
             let lattice = sim.lattice.as_ref().filter(|l| !l.basis.is_empty()).ok_or_else(|| a.err("create_atoms needs a lattice with points (a lattice command other than none)"))?;

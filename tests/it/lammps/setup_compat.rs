@@ -291,3 +291,15 @@ fn check_evaluates_the_setup_thermo_line() {
     let text = script("variable a equal 2*temp\n");
     assert_eq!((outcome("check-ok", &text, "run").0, outcome("check-ok", &text, "check").0), (true, true));
 }
+
+/// A lattice region outside the box creates no particle, as in LAMMPS; a random one is
+/// LAMMPS's error.
+#[test]
+fn create_atoms_outside_the_box() {
+    let head = "units lj\nlattice sc 1.0\nregion box block 0 4 0 4 0 4\ncreate_box 1 box\nregion far block 10 12 0 1 0 1 units box\n";
+    let lattice = format!("{head}create_atoms 1 region far\ncreate_atoms 1 box\nmass 1 1.0\nwrite_dump all custom far.dump id x y z\n");
+    let (dl, _) = lammps("far", &lattice);
+    let (dg, _) = gendpde_on(1, "far", &lattice);
+    assert_eq!((snapshot(&dg, "far.dump").atoms.len(), snapshot(&dl, "far.dump").atoms.len()), (64, 64));
+    expect_error("far-random", &format!("{head}create_atoms 1 random 5 3 far\n"), "in.x:6: create_atoms: No overlap of box and region for create_atoms");
+}
