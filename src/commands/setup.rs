@@ -217,10 +217,11 @@ pub fn create_box(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     Ok(())
 }
 
-/// `create_atoms TYPE box | region ID | random N SEED REGION|NULL` with keywords
-/// `basis M T`, `units box|lattice`, `overlap D` and `maxtry N` (random): on the lattice
-/// points in the box (and region), or N points in the region (NULL: the box) drawn as
-/// LAMMPS's add_random draws them, which every rank replays in full, keeping its own.
+/// `create_atoms TYPE box | region ID | single x y z | random N SEED REGION|NULL` with
+/// keywords `basis M T`, `units box|lattice`, `remap yes|no` (single), `overlap D` and
+/// `maxtry N` (random): on the lattice points in the box (and region), one particle, or
+/// N points in the region (NULL: the box) drawn as LAMMPS's add_random draws them, which
+/// every rank replays in full, keeping its own.
 pub fn create_atoms(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     let kind = a.u64("a particle type")? as usize;
     let sys = sim.system.as_mut().ok_or_else(|| a.err("create_atoms before the box exists (create_box, read_data or read_restart)"))?;
@@ -228,12 +229,17 @@ pub fn create_atoms(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
         return Err(a.err(format!("type {kind} is outside 1..{}", sim.ntypes)));
     }
     let region_named = |a: &Args, id: &str| sim.regions.get(id).ok_or_else(|| a.err(format!("no region with ID '{id}'")));
-    let style = a.word("box, region or random")?;
+    let style = a.word("box, region, single or random")?;
+    let mut single = None;
     let (region, random) = match style {
         "box" => (None, None),
         "region" => {
             let id = a.word("a region ID")?;
             (Some(region_named(a, id)?), None)
+        }
+        "single" => {
+            single = Some([a.f64("the x coordinate")?, a.f64("the y coordinate")?, a.f64("the z coordinate")?]);
+            (None, None)
         }
         "random" => {
             let n = a.u64("the number of particles")?;
@@ -247,10 +253,10 @@ pub fn create_atoms(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
             };
             (region, Some((n, seed)))
         }
-        s => return Err(a.err(format!("expected box, region or random, got '{s}'"))),
+        s => return Err(a.err(format!("Unknown create_atoms command option {s}; known: box, region, single, random"))),
     };
     let nbasis = sim.lattice.as_ref().map_or(0, |l| l.basis.len());
-    let (mut basis_kind, mut lattice_units, mut overlap, mut maxtry) = (vec![kind as u32; nbasis], true, None, 1000);
+    let (mut basis_kind, mut lattice_units, mut overlap, mut maxtry, mut remap) = (vec![kind as u32; nbasis], true, None, 1000, false);
     while a.remaining() > 0 {
         match a.word("a keyword")? {
             "basis" => {
@@ -280,7 +286,8 @@ pub fn create_atoms(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
                 }
             }
             k @ ("subset" | "ratio") => return Err(a.err(format!("create_atoms keyword '{k}' is not supported: LAMMPS draws the subset from a generator per rank, so it depends on the rank count"))),
-            k @ ("mol" | "var" | "set" | "rotate" | "remap" | "meshmode" | "radscale") => {
+            "remap" => remap = a.yes_no("remap")?,
+            k @ ("mol" | "var" | "set" | "rotate" | "meshmode" | "radscale") => {
                 return Err(a.err(format!("create_atoms keyword '{k}' is not supported")))
             }
             k => return Err(a.err(format!("Illegal create_atoms command option {k}; known: basis, units, overlap, maxtry"))),
@@ -292,8 +299,18 @@ pub fn create_atoms(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
             .map_err(|e| a.err(e))
     };
     let (d, len) = (&sys.domain, sys.domain.len());
-    let points: Vec<(Vec3, u32)> = match random {
-        None => {
+    let points: Vec<(Vec3, u32)> = match (random, single) {
+        // LAMMPS's add_single: in the box (half-open), after remap into it if asked
+        (None, Some(x)) => {
+            let spacing = if lattice_units { sim.lattice.as_ref().map_or([1.0; 3], |l| l.spacing) } else { [1.0; 3] };
+            let mut r: Vec3 = std::array::from_fn(|k| x[k] * spacing[k]);
+            if remap {
+                d.wrap(&mut r, &mut [0; 3]);
+            }
+            let inside = (0..3).all(|k| r[k] >= d.lo[k] && r[k] < d.hi[k]);
+            if inside { vec![(r, kind as u32)] } else { Vec::new() }
+        }
+        (None, None) => {
             // a region's bounding box clipped to the box; a region's upper face inside
             // the box belongs to it (the box is half-open)
             let (mut lo, mut hi) = (d.lo, d.hi);
@@ -316,7 +333,7 @@ pub fn create_atoms(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
             let points = lattice.points(lo, hi, |r| in_box(r) && region.map(|g| g.contains(r)) != Some(false));
             points.into_iter().map(|(r, m)| (r, basis_kind[m])).collect()
         }
-        Some((n, seed)) => {
+        (Some((n, seed)), _) => {
             // LAMMPS's bounding box: the box, clipped by the region's extent
             let (mut lo, mut hi) = (d.lo, d.hi);
             if let Some((rlo, rhi)) = region.and_then(Region::extent) {

@@ -292,6 +292,22 @@ fn check_evaluates_the_setup_thermo_line() {
     assert_eq!((outcome("check-ok", &text, "run").0, outcome("check-ok", &text, "check").0), (true, true));
 }
 
+/// `create_atoms single`, in lattice and box units, outside the box (none created) and
+/// remapped into it: LAMMPS's particles and tags.
+#[test]
+fn create_atoms_single_places_lammps_particles() {
+    let script = "units lj\nlattice sc 0.5\nregion box block 0 4 0 4 0 4\ncreate_box 2 box\n\
+                  create_atoms 1 single 1.5 2.25 0.5\ncreate_atoms 2 single 5.5 -1.0 0.5 remap yes\n\
+                  create_atoms 2 single 5.5 1.0 0.5\ncreate_atoms 1 single 3.0 3.0 3.0 units box\n\
+                  create_atoms 1 single 9.0 -1.0 7.9 units box remap yes\nmass * 1.0\n\
+                  write_dump all custom s.dump id type x y z modify format float %.17g\n";
+    let (dl, _) = lammps("single", script);
+    let (dg, _) = gendpde_on(1, "single", script);
+    let (g, l) = (snapshot(&dg, "s.dump"), snapshot(&dl, "s.dump"));
+    assert_eq!(l.atoms.len(), 4);
+    assert_eq!(g.atoms, l.atoms);
+}
+
 /// A lattice region outside the box creates no particle, as in LAMMPS; a random one is
 /// LAMMPS's error.
 #[test]
