@@ -290,7 +290,7 @@ pub fn create_atoms(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
             k @ ("mol" | "var" | "set" | "rotate" | "meshmode" | "radscale") => {
                 return Err(a.err(format!("create_atoms keyword '{k}' is not supported")))
             }
-            k => return Err(a.err(format!("Illegal create_atoms command option {k}; known: basis, units, overlap, maxtry"))),
+            k => return Err(a.err(format!("Illegal create_atoms command option {k}; known: basis, units, remap, overlap, maxtry"))),
         }
     }
     let size = sys.comm.size() as f64;
