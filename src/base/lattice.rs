@@ -1,8 +1,8 @@
 //! `lattice` and the points of `create_atoms` (lattice or random).
 
 use gendpde_engine::Vec3;
-use rand_pcg::rand_core::{RngCore, SeedableRng};
-use rand_pcg::Pcg64Mcg;
+use crate::base::park::Park;
+use std::collections::HashMap;
 use nalgebra::{Matrix3, Vector3};
 
 /// A lattice as LAMMPS's `lattice STYLE SCALE [origin x y z] [orient dim i j k]...
@@ -131,18 +131,18 @@ impl Lattice {
         self.cells(lo, hi).iter().map(|r| (r.end() - r.start() + 1) as f64).product::<f64>() * self.basis.len() as f64
     }
 
-    /// The lattice points near the block [lo, hi] that `keep` takes, in LAMMPS's order
-    /// (z, y, x, basis).
-    pub fn points(&self, lo: Vec3, hi: Vec3, keep: impl Fn(Vec3) -> bool) -> Vec<Vec3> {
+    /// The lattice points near the block [lo, hi] that `keep` takes, each with its basis
+    /// index, in LAMMPS's order (z, y, x, basis).
+    pub fn points(&self, lo: Vec3, hi: Vec3, keep: impl Fn(Vec3) -> bool) -> Vec<(Vec3, usize)> {
         let [ri, rj, rk] = self.cells(lo, hi);
         let mut out = Vec::new();
         for k in rk {
             for j in rj.clone() {
                 for i in ri.clone() {
-                    for b in &self.basis {
+                    for (m, b) in self.basis.iter().enumerate() {
                         let r = self.to_box([i as f64 + b[0], j as f64 + b[1], k as f64 + b[2]]);
                         if keep(r) {
-                            out.push(r);
+                            out.push((r, m));
                         }
                     }
                 }
@@ -152,29 +152,87 @@ impl Lattice {
     }
 }
 
-/// `n` points uniform in the block [lo, hi) that `accept` takes (the others are drawn
-/// again), from the sequential stream of `seed` (rand_pcg's Pcg64Mcg, x then y then z of
-/// each point: the same points on every rank). Err when a million draws in a row fail.
-pub fn random_points(n: u64, seed: u64, lo: Vec3, hi: Vec3, accept: impl Fn(Vec3) -> bool) -> Result<Vec<Vec3>, String> {
-    const MAX_TRIES: u32 = 1_000_000;
-    let mut rng = Pcg64Mcg::seed_from_u64(seed);
-    let mut uniform = || (rng.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64);
-    let mut out = Vec::with_capacity(n as usize);
-    let mut failed = 0;
-    while out.len() < n as usize {
-        let r: Vec3 = std::array::from_fn(|d| lo[d] + uniform() * (hi[d] - lo[d]));
-        // rounding can land on hi, which belongs to the next image
-        if (0..3).all(|d| r[d] < hi[d]) && accept(r) {
-            out.push(r);
-            failed = 0;
-        } else {
-            failed += 1;
-            if failed == MAX_TRIES {
-                return Err(format!("{MAX_TRIES} random points in a row missed the region: it has (almost) no volume in the box"));
+/// LAMMPS's `create_atoms random` (create_atoms.cpp `add_random`): RanPark seeded with
+/// `seed`, warmed up by 30 draws, then for each of `n` particles up to `maxtry` candidates
+/// `lo + u (hi - lo)` (x, y, z in turn) until `accept` takes one; a particle whose tries
+/// all fail is skipped. The same points on every rank. Returns the accepted points in
+/// draw order.
+pub fn random_points(n: u64, seed: u64, lo: Vec3, hi: Vec3, maxtry: u64, mut accept: impl FnMut(Vec3) -> bool) -> Vec<Vec3> {
+    let mut rng = Park::new(seed);
+    for _ in 0..30 {
+        rng.uniform();
+    }
+    let mut out = Vec::with_capacity(n.min(1 << 24) as usize);
+    for _ in 0..n {
+        for _ in 0..maxtry {
+            let r: Vec3 = std::array::from_fn(|d| lo[d] + rng.uniform() * (hi[d] - lo[d]));
+            if accept(r) {
+                out.push(r);
+                break;
             }
         }
     }
-    Ok(out)
+    out
+}
+
+/// The points placed so far, binned in cells at least `distance` wide, answering whether
+/// a point lies closer than `distance` to any of them under LAMMPS's minimum image
+/// (create_atoms `overlap`; the cells only narrow the search, the test is LAMMPS's).
+pub struct Overlap {
+    lo: Vec3,
+    len: Vec3,
+    count: [usize; 3],
+    distsq: f64,
+    cells: HashMap<[usize; 3], Vec<Vec3>>,
+}
+
+impl Overlap {
+    /// No points yet, in the periodic box [lo, lo + len).
+    pub fn new(lo: Vec3, len: Vec3, distance: f64) -> Self {
+        // a margin over `distance` so that rounding never splits a close pair by two cells
+        let count = std::array::from_fn(|d| ((len[d] / (distance * (1.0 + 1e-9))).floor() as usize).max(1));
+        Self { lo, len, count, distsq: distance * distance, cells: HashMap::new() }
+    }
+
+    fn cell(&self, r: Vec3) -> [usize; 3] {
+        std::array::from_fn(|d| {
+            let f = ((r[d] - self.lo[d]) / self.len[d]).rem_euclid(1.0);
+            ((f * self.count[d] as f64) as usize).min(self.count[d] - 1)
+        })
+    }
+
+    pub fn add(&mut self, r: Vec3) {
+        self.cells.entry(self.cell(r)).or_default().push(r);
+    }
+
+    /// Whether `r` lies closer than the distance to a point added (LAMMPS: the squared
+    /// minimum-image distance below the squared overlap).
+    pub fn hits(&self, r: Vec3) -> bool {
+        let c = self.cell(r);
+        // the cells within one of c along each axis (all of them when there are fewer than 3)
+        let near = |d: usize| -> Vec<usize> {
+            let n = self.count[d];
+            if n < 3 { (0..n).collect() } else { vec![(c[d] + n - 1) % n, c[d], (c[d] + 1) % n] }
+        };
+        let (nx, ny, nz) = (near(0), near(1), near(2));
+        for &i in &nx {
+            for &j in &ny {
+                for &k in &nz {
+                    let Some(points) = self.cells.get(&[i, j, k]) else { continue };
+                    for p in points {
+                        let dist: Vec3 = std::array::from_fn(|d| {
+                            let x = r[d] - p[d];
+                            if x.abs() > 0.5 * self.len[d] { if x < 0.0 { x + self.len[d] } else { x - self.len[d] } } else { x }
+                        });
+                        if dist[0] * dist[0] + dist[1] * dist[1] + dist[2] * dist[2] < self.distsq {
+                            return true;
+                        }
+                    }
+                }
+            }
+        }
+        false
+    }
 }
 
 #[cfg(test)]
@@ -219,11 +277,11 @@ mod tests {
         let (lo, hi) = ([-1.0, 2.0, 0.5], [3.0, 2.5, 7.0]);
         let mut chi2s = Vec::new();
         for seed in 1..=20 {
-            let pts = random_points(6400, seed, lo, hi, |_| true).unwrap();
+            let pts = random_points(6400, seed, lo, hi, 1000, |_| true);
             assert_eq!(pts.len(), 6400);
             let mut bins = [0.0; 64];
             for r in &pts {
-                assert!((0..3).all(|d| r[d] >= lo[d] && r[d] < hi[d]), "{r:?}");
+                assert!((0..3).all(|d| r[d] >= lo[d] && r[d] <= hi[d]), "{r:?}");
                 let b: Vec<usize> = (0..3).map(|d| ((r[d] - lo[d]) / (hi[d] - lo[d]) * 4.0) as usize).collect();
                 bins[b[0] + 4 * b[1] + 16 * b[2]] += 1.0;
             }
@@ -233,19 +291,34 @@ mod tests {
         // the mean of 20 chi-square(63) values: 63 +- 11.2 / sqrt(20) = 2.5; 4 sigma
         assert!((mean - 63.0).abs() < 10.0, "mean chi-square {mean} over 20 seeds: {chi2s:?}");
         assert!(chi2s.iter().all(|&c| c < 120.0), "a seed fails at p < 1e-5: {chi2s:?}");
-        let some = |seed| random_points(4, seed, lo, hi, |_| true).unwrap();
+        let some = |seed| random_points(4, seed, lo, hi, 1000, |_| true);
         assert_ne!(some(1), some(2));
         assert_eq!(some(7), some(7));
-        assert!(random_points(1, 1, lo, hi, |_| false).is_err());
+        assert!(random_points(3, 1, lo, hi, 5, |_| false).is_empty());
+    }
+
+    /// The cells find every pair closer than the distance across the periodic faces, as
+    /// the all-pairs minimum-image test does.
+    #[test]
+    fn overlap_agrees_with_all_pairs() {
+        let (lo, len, dist) = ([0.0, -1.0, 2.0], [5.0, 3.0, 1.1], 0.7);
+        let placed = random_points(300, 3, lo, [5.0, 2.0, 3.1], 1, |_| true);
+        let mut o = Overlap::new(lo, len, dist);
+        placed.iter().for_each(|&p| o.add(p));
+        let image = |x: f64, l: f64| if x.abs() > 0.5 * l { if x < 0.0 { x + l } else { x - l } } else { x };
+        for r in random_points(2000, 4, lo, [5.0, 2.0, 3.1], 1, |_| true) {
+            let brute = placed.iter().any(|p| (0..3).map(|d| image(r[d] - p[d], len[d]).powi(2)).sum::<f64>() < dist * dist);
+            assert_eq!(o.hits(r), brute, "{r:?}");
+        }
     }
 
     #[test]
     fn points_follow_lammps_order() {
         let l = Lattice::new("sc", 1.0, true, &LatticeOptions::default()).unwrap();
         let pts = l.points([0.0; 3], [2.0; 3], inside([0.0; 3], [2.0; 3]));
-        assert_eq!(pts[0], [0.0, 0.0, 0.0]);
-        assert_eq!(pts[1], [1.0, 0.0, 0.0]);
-        assert_eq!(pts[2], [0.0, 1.0, 0.0]);
+        assert_eq!(pts[0], ([0.0, 0.0, 0.0], 0));
+        assert_eq!(pts[1], ([1.0, 0.0, 0.0], 0));
+        assert_eq!(pts[2], ([0.0, 1.0, 0.0], 0));
         assert_eq!(pts.len(), 8);
     }
 }

@@ -1,7 +1,8 @@
 //! LAMMPS's Park–Miller generator (RanPark: minimal standard, multiplier 16807 modulo
 //! 2^31 - 1, Schrage's method), with its position-keyed reseeding. The script commands
-//! that LAMMPS randomises with it (`velocity create`, `set type/fraction`) draw the same
-//! numbers here, so they give LAMMPS's values for the same seed and coordinates.
+//! that LAMMPS randomises with it (`velocity create`, `set type/fraction`, `create_atoms
+//! random`) draw the same numbers here, so they give LAMMPS's values for the same seed
+//! and coordinates.
 
 const IA: i32 = 16807;
 const IM: i32 = 2_147_483_647;

@@ -166,7 +166,7 @@ impl Interpreter {
             // need (ghost velocities included) and uses full lists; accepted for
             // compatibility.
             "comm_modify" | "newton" => {}
-            "group" => group::group(sim, a)?,
+            "group" => group::group(sim, &self.vars, &outputs.thermo, &mut self.out, a)?,
             "velocity" => velocity::velocity(sim, &self.vars, &outputs.thermo, a)?,
             "read_data" => particles::read_data(sim, a)?,
             "write_data" => particles::write_data(sim, a)?,

@@ -10,10 +10,12 @@ use crate::model::sim::Sim;
 use crate::output::console::Output;
 use crate::output::restart;
 use crate::output::schedule::{Frame, RunOutput, Span};
-use crate::output::thermo::{header_line, Observables};
+use crate::output::thermo::{self, header_line, Observables};
 use crate::output::Outputs;
 use crate::styles::pair::{build_physics, RunInputs};
-use gendpde_integrators::{Physics, Snapshot};
+use crate::styles::fix::FixStyle;
+use gendpde_engine::CellGrid;
+use gendpde_integrators::{Physics, RebuildPolicy, Snapshot, System};
 use gendpde_io::{Command, ScriptError, Variables};
 use indicatif::ProgressBar;
 use std::time::Instant;
@@ -108,20 +110,33 @@ pub struct RunPart {
 /// densities, forces) for a run of `part.nsteps`; errors name `cmd`.
 pub fn prepare(sim: &mut Sim, rdfs: &[String], cmd: &Command, part: RunPart) -> Result<Box<dyn Physics>, AppError> {
     let err = |m: String| AppError::Script(ScriptError::at(cmd, m));
-    let inputs = RunInputs { fixes: &sim.fixes, dt: sim.dt, skin: sim.skin, rebuild: sim.rebuild.clone(), kb: sim.units.kb, mvv2e: sim.units.mvv2e, ntypes: sim.ntypes };
-    let physics = build_physics(cmd, sim.pair.as_deref(), &inputs)?;
+    let mut inputs = RunInputs { fixes: &sim.fixes, dt: sim.dt, skin: sim.skin, rebuild: sim.rebuild.clone(), kb: sim.units.kb, mvv2e: sim.units.mvv2e, ntypes: sim.ntypes };
+    let mut physics = build_physics(cmd, sim.pair.as_deref(), &inputs)?;
     let sys = sim.system.as_mut().ok_or_else(|| err("run before create_box".into()))?;
     if sys.store.nlocal == 0 {
         return Err(err("the box holds no particles (create_atoms)".into()));
     }
     sys.clock.run = part.ramp;
-    // the cells must reach the pairs that the computes read by fix ave/time count
     sys.lists.min_cell = 0.0;
+    let skin = list_skin(sys, physics.as_ref(), sim.skin, inputs.has(|f| matches!(f, FixStyle::Shardlow { .. }))).map_err(err)?;
+    if skin < sim.skin {
+        if sys.comm.rank() == 0 {
+            log::warn!(
+                "neighbor skin {} does not fit the box (cells of side cutoff + skin, two per box length): lists use skin \
+                 {skin} and are rebuilt whenever a particle has moved half of it (the dynamics do not depend on the skin)",
+                sim.skin
+            );
+        }
+        // every, delay and check no would let particles outrun the shorter skin
+        (inputs.skin, inputs.rebuild) = (skin, RebuildPolicy { every: 1, delay: 0, check: true });
+        physics = build_physics(cmd, sim.pair.as_deref(), &inputs)?;
+    }
+    // the cells must reach the pairs that the computes read by fix ave/time count
     sys.lists.cutoff = physics.cutoff();
     for rdf in sim.rdfs.iter().filter(|r| rdfs.contains(&r.id)) {
         let rc = rdf.cutoff_for(sys.lists.cutoff);
-        rdf.check_reach(sys, rc + sim.skin).map_err(err)?;
-        sys.lists.min_cell = sys.lists.min_cell.max(rc + sim.skin);
+        rdf.check_reach(sys, rc + skin).map_err(err)?;
+        sys.lists.min_cell = sys.lists.min_cell.max(rc + skin);
     }
     if let Some(i) = (0..sys.store.nlocal).find(|&i| !sys.store.mass[i].is_finite()) {
         return Err(err(format!("the mass of type {} is not set", sys.store.kind[i])));
@@ -135,7 +150,7 @@ pub fn prepare(sim: &mut Sim, rdfs: &[String], cmd: &Command, part: RunPart) -> 
     // a run that continues another (`pre no`, as LAMMPS's, once a run has been made and
     // while no particle has moved half the skin since the lists were built) keeps its
     // cells, lists and forces, as a restart's continuation does
-    if part.continues && sim.energy0.is_some() && sys.grid.is_some() && sys.comm.max(sys.displacement_since_build()) <= 0.5 * sim.skin {
+    if part.continues && sim.energy0.is_some() && sys.grid.is_some() && sys.comm.max(sys.displacement_since_build()) <= 0.5 * skin {
         sys.control.restored = true;
         sys.control.restored_grid = sys.grid.as_ref().map(|g| g.count);
     }
@@ -170,6 +185,44 @@ pub fn prepare(sim: &mut Sim, rdfs: &[String], cmd: &Command, part: RunPart) -> 
     Ok(physics)
 }
 
+/// The skin the lists use: the script's `skin`, or, when the box is too short for cells of
+/// side cutoff + skin (two per box length), the skin of cells of a third of the shortest
+/// box length (k = 2, room for 3 ranks per dimension), else of half of it. The choice
+/// depends on the box only, so that every rank count lists alike. LAMMPS runs such boxes
+/// (its ghost atoms reach any distance); its fix shardlow does not, and with it LAMMPS's
+/// message is given. A box shorter than two cutoffs cannot be run.
+fn list_skin(sys: &System, physics: &dyn Physics, skin: f64, shardlow: bool) -> Result<f64, String> {
+    let reach = physics.list_radius();
+    if CellGrid::new(&sys.domain, reach).is_ok() {
+        return Ok(skin);
+    }
+    let len = sys.domain.len();
+    if shardlow {
+        let procs = sys.comm.grid.dims;
+        return Err(format!(
+            "Shardlow algorithm requires sub-domain length > 2*(rcut+skin). Either reduce the number of processors \
+             requested, or change the cutoff/skin: rcut= {} bbx= {} bby= {} bbz= {}",
+            2.0 * reach,
+            len[0] / procs[0] as f64,
+            len[1] / procs[1] as f64,
+            len[2] / procs[2] as f64
+        ));
+    }
+    let cutoff = (reach - skin).max(0.0);
+    let shortest = len.iter().copied().fold(f64::INFINITY, f64::min);
+    // just below the radius, so that rounding keeps the count of cells
+    let fitting = [3.0, 2.0].map(|n| shortest / n * (1.0 - 1e-12) - cutoff);
+    fitting.into_iter().find(|&s| s >= 0.0 && CellGrid::new(&sys.domain, cutoff + s).is_ok()).ok_or_else(|| {
+        format!(
+            "box length {shortest} is shorter than 2 x cutoff = {}: LAMMPS runs such a box, a particle then interacting \
+             with several periodic images of another (or twice with one), but gendpde's cell grid holds one image of \
+             each pair; enlarge the box to more than {} or shorten the cutoff",
+            2.0 * cutoff,
+            2.0 * cutoff
+        )
+    })
+}
+
 /// One run of `part.nsteps` steps of `run` command `cmd`: sets up, then advances,
 /// writing the outputs that are due at the setup and after every step (a check only
 /// sets up).
@@ -177,13 +230,16 @@ pub fn run(sim: &mut Sim, outputs: &mut Outputs, out: &mut Output, vars: &Variab
     let nsteps = part.nsteps;
     let err = |m: String| AppError::Script(ScriptError::at(cmd, m));
     let physics = prepare(sim, &outputs.rdfs(), cmd, part)?;
-    if mode == Mode::Check {
-        return Ok(());
-    }
     let sys = sim.system.as_mut().expect("prepared system");
     sys.control.interrupt = signals::received();
     sim.energy0.get_or_insert_with(|| Observables::measure(sys).energy());
     let run = Span { first: sys.clock.step, last: sys.clock.step + nsteps };
+    if mode == Mode::Check {
+        // the set-up's thermo line, evaluated as the run evaluates it, printing nothing
+        let frame = Frame { sim, sys: sys_of(sim), vars, thermo: &outputs.thermo, out, run, cpu: 0.0 };
+        return thermo::values(&outputs.thermo, &frame).map(|_| ()).map_err(err);
+    }
+    let sys = sim.system.as_mut().expect("prepared system");
     let comm_before = sys.comm.time().as_secs_f64();
     let traffic_before = sys.comm.traffic();
     let clock = Instant::now();

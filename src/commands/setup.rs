@@ -3,7 +3,8 @@
 //! reset_timestep, run_style and atom_modify.
 
 use crate::base::args::Args;
-use crate::base::lattice::{random_points, Lattice, LatticeOptions};
+use crate::base::lattice::{random_points, Lattice, LatticeOptions, Overlap};
+use crate::base::park::MAX_SEED;
 use crate::base::region::{Region, Shape};
 use crate::base::memory;
 use crate::base::units::Units;
@@ -216,87 +217,166 @@ pub fn create_box(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     Ok(())
 }
 
-/// `create_atoms TYPE box | region ID | random N SEED REGION|NULL`: on the lattice points
-/// in the box (and region), or N points uniform in the region (NULL: the box) from the
-/// sequential stream of SEED, which every rank replays in full, keeping its own particles.
+/// `create_atoms TYPE box | region ID | single x y z | random N SEED REGION|NULL` with
+/// keywords `basis M T`, `units box|lattice`, `remap yes|no` (single), `overlap D` and
+/// `maxtry N` (random): on the lattice points in the box (and region), one particle, or
+/// N points in the region (NULL: the box) drawn as LAMMPS's add_random draws them, which
+/// every rank replays in full, keeping its own.
 pub fn create_atoms(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
     let kind = a.u64("a particle type")? as usize;
     let sys = sim.system.as_mut().ok_or_else(|| a.err("create_atoms before the box exists (create_box, read_data or read_restart)"))?;
     if kind < 1 || kind > sim.ntypes {
         return Err(a.err(format!("type {kind} is outside 1..{}", sim.ntypes)));
     }
-    // a region, and its bounding box clipped to the box; a region's upper face inside
-    // the box belongs to it (the box is half-open)
-    let clip = |a: &Args, id: &str| {
-        let region = sim.regions.get(id).ok_or_else(|| a.err(format!("no region with ID '{id}'")))?;
-        let (d, len) = (&sys.domain, sys.domain.len());
-        let (mut lo, mut hi) = (d.lo, d.hi);
-        if let Some((rlo, rhi)) = region.extent() {
-            for k in 0..3 {
-                lo[k] = lo[k].max(rlo[k]);
-                if rhi[k] < d.hi[k] {
-                    hi[k] = (rhi[k] + 1e-6 * len[k]).min(d.hi[k]);
+    let region_named = |a: &Args, id: &str| sim.regions.get(id).ok_or_else(|| a.err(format!("no region with ID '{id}'")));
+    let style = a.word("box, region, single or random")?;
+    let mut single = None;
+    let (region, random) = match style {
+        "box" => (None, None),
+        "region" => {
+            let id = a.word("a region ID")?;
+            (Some(region_named(a, id)?), None)
+        }
+        "single" => {
+            single = Some([a.f64("the x coordinate")?, a.f64("the y coordinate")?, a.f64("the z coordinate")?]);
+            (None, None)
+        }
+        "random" => {
+            let n = a.u64("the number of particles")?;
+            let seed = a.u64("a positive random seed")?;
+            if seed == 0 || seed > MAX_SEED {
+                return Err(a.err(format!("Illegal create_atoms random seed {seed}: the random seed must be positive and at most {MAX_SEED}")));
+            }
+            let region = match a.word("a region ID or NULL")? {
+                "NULL" => None,
+                id => Some(region_named(a, id)?),
+            };
+            (region, Some((n, seed)))
+        }
+        s => return Err(a.err(format!("Unknown create_atoms command option {s}; known: box, region, single, random"))),
+    };
+    let nbasis = sim.lattice.as_ref().map_or(0, |l| l.basis.len());
+    let (mut basis_kind, mut lattice_units, mut overlap, mut maxtry, mut remap) = (vec![kind as u32; nbasis], true, None, 1000, false);
+    while a.remaining() > 0 {
+        match a.word("a keyword")? {
+            "basis" => {
+                let (m, t) = (a.u64("a basis atom")? as usize, a.u64("a particle type")? as usize);
+                if m < 1 || m > nbasis || t < 1 || t > sim.ntypes {
+                    return Err(a.err(format!("Out of range basis setting '{m} {t}' in create_atoms command")));
+                }
+                basis_kind[m - 1] = t as u32;
+            }
+            "units" => match a.word("box or lattice")? {
+                "box" => lattice_units = false,
+                "lattice" => lattice_units = true,
+                u => return Err(a.err(format!("Unknown create_atoms units option {u}"))),
+            },
+            k @ ("overlap" | "maxtry") if random.is_none() => return Err(a.err(format!("Create_atoms {k} can only be used with random style"))),
+            "overlap" => {
+                let d = a.f64("the overlap distance")?;
+                if d <= 0.0 {
+                    return Err(a.err(format!("Illegal create_atoms overlap value: {d}")));
+                }
+                overlap = Some(d);
+            }
+            "maxtry" => {
+                maxtry = a.u64("the number of tries")?;
+                if maxtry == 0 {
+                    return Err(a.err("create_atoms maxtry must be positive"));
                 }
             }
+            k @ ("subset" | "ratio") => return Err(a.err(format!("create_atoms keyword '{k}' is not supported: LAMMPS draws the subset from a generator per rank, so it depends on the rank count"))),
+            "remap" => remap = a.yes_no("remap")?,
+            k @ ("mol" | "var" | "set" | "rotate" | "meshmode" | "radscale") => {
+                return Err(a.err(format!("create_atoms keyword '{k}' is not supported")))
+            }
+            k => return Err(a.err(format!("Illegal create_atoms command option {k}; known: basis, units, remap, overlap, maxtry"))),
         }
-        if (0..3).any(|d| hi[d] <= lo[d]) {
-            return Err(a.err(format!("region '{id}' does not overlap the box")));
-        }
-        Ok::<_, ScriptError>((region, lo, hi))
-    };
+    }
     let size = sys.comm.size() as f64;
     let check_memory = |a: &Args, bound: f64| {
         memory::check(24.0 * bound + memory::STORE_BYTES_PER_PARTICLE * bound / size, &format!("create_atoms of up to {bound:.3e} particles"))
             .map_err(|e| a.err(e))
     };
-    let points = match a.word("box, region or random")? {
-        style @ ("box" | "region") => {
-            let (region, lo, hi) = if style == "box" { (None, sys.domain.lo, sys.domain.hi) } else {
-                let id = a.word("a region ID")?;
-                let (region, lo, hi) = clip(a, id)?;
-                (Some(region), lo, hi)
-            };
-            a.done()?;
+    let (d, len) = (&sys.domain, sys.domain.len());
+    let points: Vec<(Vec3, u32)> = match (random, single) {
+        // LAMMPS's add_single: in the box (half-open), after remap into it if asked
+        (None, Some(x)) => {
+            let spacing = if lattice_units { sim.lattice.as_ref().map_or([1.0; 3], |l| l.spacing) } else { [1.0; 3] };
+            let mut r: Vec3 = std::array::from_fn(|k| x[k] * spacing[k]);
+            if remap {
+                d.wrap(&mut r, &mut [0; 3]);
+            }
+            let inside = (0..3).all(|k| r[k] >= d.lo[k] && r[k] < d.hi[k]);
+            if inside { vec![(r, kind as u32)] } else { Vec::new() }
+        }
+        (None, None) => {
+            // a region's bounding box clipped to the box; a region's upper face inside
+            // the box belongs to it (the box is half-open)
+            let (mut lo, mut hi) = (d.lo, d.hi);
+            if let Some((rlo, rhi)) = region.and_then(Region::extent) {
+                for k in 0..3 {
+                    lo[k] = lo[k].max(rlo[k]);
+                    if rhi[k] < d.hi[k] {
+                        hi[k] = (rhi[k] + 1e-6 * len[k]).min(d.hi[k]);
+                    }
+                }
+                // as LAMMPS's add_lattice: a region outside the box creates no particle
+                if (0..3).any(|k| hi[k] <= lo[k]) {
+                    return Ok(());
+                }
+            }
             let lattice = sim.lattice.as_ref().filter(|l| !l.basis.is_empty()).ok_or_else(|| a.err("create_atoms needs a lattice with points (a lattice command other than none)"))?;
             check_memory(a, lattice.count_bound(lo, hi))?;
             // in the box as LAMMPS: a point on both periodic faces is created once
-            let (d, len) = (&sys.domain, sys.domain.len());
             let in_box = |r: Vec3| (0..3).all(|k| r[k] >= d.lo[k] - 1e-6 * len[k] && r[k] < d.hi[k] - 2e-6 * len[k]);
-            lattice.points(lo, hi, |r| in_box(r) && region.map(|g| g.contains(r)) != Some(false))
+            let points = lattice.points(lo, hi, |r| in_box(r) && region.map(|g| g.contains(r)) != Some(false));
+            points.into_iter().map(|(r, m)| (r, basis_kind[m])).collect()
         }
-        "random" => {
-            let n = a.u64("the number of particles")?;
-            let seed = a.u64("a positive random seed")?;
-            if seed == 0 {
-                return Err(a.err("the random seed must be positive"));
+        (Some((n, seed)), _) => {
+            // LAMMPS's bounding box: the box, clipped by the region's extent
+            let (mut lo, mut hi) = (d.lo, d.hi);
+            if let Some((rlo, rhi)) = region.and_then(Region::extent) {
+                lo = std::array::from_fn(|k| lo[k].max(rlo[k]));
+                hi = std::array::from_fn(|k| hi[k].min(rhi[k]));
             }
-            let (region, lo, hi) = match a.word("a region ID or NULL")? {
-                "NULL" => (None, sys.domain.lo, sys.domain.hi),
-                id => {
-                    let (region, lo, hi) = clip(a, id)?;
-                    (Some(region), lo, hi)
-                }
-            };
-            if let Some(k) = a.peek() {
-                return Err(a.err(match k {
-                    "overlap" | "maxtry" => format!("create_atoms random: keyword '{k}' is not supported"),
-                    _ => format!("unexpected argument '{k}'"),
-                }));
+            if (0..3).any(|k| lo[k] > hi[k]) {
+                return Err(a.err("No overlap of box and region for create_atoms"));
             }
             check_memory(a, n as f64)?;
-            random_points(n, seed, lo, hi, |r| region.map(|g| g.contains(r)) != Some(false)).map_err(|e| a.err(e))?
+            // units lattice (the default) scales the overlap by the x lattice spacing
+            let mut near = overlap.map(|o| {
+                let mut near = Overlap::new(d.lo, len, if lattice_units { o * sim.lattice.as_ref().map_or(1.0, |l| l.spacing[0]) } else { o });
+                all_positions(sys).into_iter().for_each(|r| near.add(r));
+                near
+            });
+            // a point that rounds onto the box's upper face is on no rank's sub-box in
+            // LAMMPS: inserted, yet not created
+            let in_box = |r: Vec3| (0..3).all(|k| r[k] < d.hi[k]);
+            let points = random_points(n, seed, lo, hi, maxtry, |r| {
+                if region.is_some_and(|g| !g.contains(r)) || near.as_ref().is_some_and(|o| o.hits(r)) {
+                    return false;
+                }
+                if let Some(o) = near.as_mut().filter(|_| in_box(r)) {
+                    o.add(r);
+                }
+                true
+            });
+            if (points.len() as u64) < n && sys.comm.rank() == 0 {
+                log::warn!("Only inserted {} particles out of {n}", points.len());
+            }
+            points.into_iter().filter(|&r| in_box(r)).map(|r| (r, kind as u32)).collect()
         }
-        s => return Err(a.err(format!("expected box, region or random, got '{s}'"))),
     };
     if sim.max_tag + points.len() as u64 > u32::MAX as u64 {
         return Err(a.err(format!("more than {} particles: particle IDs must fit in 32 bits", u32::MAX)));
     }
-    let mass = sim.masses[kind - 1].map_or(f64::NAN, |m| m * sim.units.mvv2e);
     sys.store.truncate_ghosts();
-    for r in points {
+    for (r, kind) in points {
         sim.max_tag += 1;
         if sys.comm.keeps(&sys.domain, r) {
-            sys.store.push(sim.max_tag, kind as u32, mass, r);
+            let mass = sim.masses[kind as usize - 1].map_or(f64::NAN, |m| m * sim.units.mvv2e);
+            sys.store.push(sim.max_tag, kind, mass, r);
             if sys.store.has(Fields::EDPD) {
                 // LAMMPS's atom_vec_edpd create_atom_post
                 let i = sys.store.nlocal - 1;
@@ -305,6 +385,21 @@ pub fn create_atoms(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
         }
     }
     sim.check_density_cap().map_err(|e| a.err(e))
+}
+
+/// The positions of the particles of all ranks (every rank gets all of them).
+fn all_positions(sys: &System) -> Vec<Vec3> {
+    let t = sys.comm.transport();
+    let counts = t.all_gather(&[sys.store.nlocal as u64]);
+    let width = 3 * counts.iter().copied().max().unwrap_or(0) as usize;
+    let mut local: Vec<u64> = sys.store.r[..sys.store.nlocal].iter().flat_map(|r| r.map(f64::to_bits)).collect();
+    local.resize(width, 0);
+    let all = t.all_gather(&local);
+    counts
+        .iter()
+        .zip(all.chunks_exact(width.max(1)))
+        .flat_map(|(&n, rank)| rank[..3 * n as usize].chunks_exact(3).map(|c| [0, 1, 2].map(|k| f64::from_bits(c[k]))))
+        .collect()
 }
 
 /// `mass TYPES M`.

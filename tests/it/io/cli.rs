@@ -80,7 +80,7 @@ fn check_names_the_line_of_each_error() {
         ("missing argument", GOOD.replace("pair_coeff * * 4.5 1.0", "pair_coeff * * 4.5"), "in.test:8: pair_coeff: missing argument"),
         ("negative mass", GOOD.replace("mass 1 1.0", "mass 1 -1.0"), "in.test:6: mass: the mass must be positive"),
         ("density cap", GOOD.replace("lattice sc 0.5", "lattice sc 0.8"), "in.test:9: fix: mean number density"),
-        ("small box", GOOD.replace("0 12 0 12 0 12", "0 12 0 12 0 3"), "in.test:11: run: box length"),
+        ("small box", GOOD.replace("0 12 0 12 0 12", "0 12 0 12 0 3"), "in.test:11: run: Shardlow algorithm requires sub-domain length > 2*(rcut+skin)"),
         ("non-number", GOOD.replace("timestep", "x").replace("run 10", "timestep abc\nrun 10"), "in.test:11: timestep: expected the timestep (a number), got 'abc'"),
     ];
     for (what, script, expect) in cases {

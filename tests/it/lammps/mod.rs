@@ -8,3 +8,4 @@ mod lammps_parity;
 mod lammps_vv;
 mod pair_coeffs;
 mod script_compat;
+mod setup_compat;

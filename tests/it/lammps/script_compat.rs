@@ -87,28 +87,22 @@ region slab block 2 5 INF INF 1 3 units box
 create_atoms 1 random 500 4321 NULL
 create_atoms 2 random 300 777 slab
 mass * 1.0
-write_dump all custom rand.dump id type x y z
+write_dump all custom rand.dump id type x y z modify format float %.17g
 ";
 
-/// Counts per type and bounds as LAMMPS's (the positions differ: another generator):
-/// type 1 fills the box, type 2 the slab 2 <= x <= 5, 1 <= z <= 3.
+/// The positions LAMMPS draws for the same seeds, to the last bit, per tag: type 1 fills
+/// the box, type 2 the slab 2 <= x <= 5, 1 <= z <= 3.
 #[test]
 fn create_atoms_random_fills_the_region_as_lammps() {
     let ((dg, _), (dl, _)) = both("random", RANDOM);
-    let (g, l) = (census(&dump(&dg.join("rand.dump"))), census(&dump(&dl.join("rand.dump"))));
-    eprintln!("gendpde {g:?}\nLAMMPS  {l:?}");
+    let (g, l) = (dump(&dg.join("rand.dump")), dump(&dl.join("rand.dump")));
+    assert_eq!(g.atoms.len(), 800);
+    assert_eq!(g.columns, l.columns);
+    assert_eq!(g.atoms, l.atoms, "gendpde's positions differ from LAMMPS's");
     let limits = [(1, 500, [0.0, 0.0, 0.0], [10.0, 8.0, 6.0]), (2, 300, [2.0, 0.0, 1.0], [5.0, 8.0, 3.0])];
-    for census in [&g, &l] {
-        assert_eq!(census.len(), 2);
-        for (c, (t, n, lo, hi)) in census.iter().zip(limits) {
-            assert_eq!((c.0, c.1), (t, n));
-            for d in 0..3 {
-                let len = hi[d] - lo[d];
-                // N points reach within a few L/N of each face
-                assert!(c.2[d] >= lo[d] && c.2[d] < lo[d] + 0.05 * len, "type {t} lower bound {d}: {c:?}");
-                assert!(c.3[d] <= hi[d] && c.3[d] > hi[d] - 0.05 * len, "type {t} upper bound {d}: {c:?}");
-            }
-        }
+    for (c, (t, n, lo, hi)) in census(&g).iter().zip(limits) {
+        assert_eq!((c.0, c.1), (t, n));
+        assert!((0..3).all(|d| c.2[d] >= lo[d] && c.3[d] <= hi[d]), "type {t}: {c:?}");
     }
 }
 
@@ -117,12 +111,14 @@ fn create_atoms_random_fills_the_region_as_lammps() {
 fn create_atoms_random_errors_name_the_line() {
     let head = "units lj\nregion box block 0 4 0 4 0 4\ncreate_box 1 box\n";
     for (line, expected) in [
-        ("create_atoms 1 random 10 0 NULL", "in.x:4: create_atoms: the random seed must be positive"),
+        ("create_atoms 1 random 10 0 NULL", "in.x:4: create_atoms: Illegal create_atoms random seed 0"),
         ("create_atoms 1 random 10 5", "in.x:4: create_atoms: missing argument: expected a region ID or NULL"),
         ("create_atoms 1 random ten 5 NULL", "in.x:4: create_atoms: expected the number of particles (a non-negative integer), got 'ten'"),
         ("create_atoms 1 random 10 5 nowhere", "in.x:4: create_atoms: no region with ID 'nowhere'"),
-        ("create_atoms 1 random 10 5 NULL overlap 0.5", "in.x:4: create_atoms: create_atoms random: keyword 'overlap' is not supported"),
-        ("region far block 10 12 0 1 0 1 units box\ncreate_atoms 1 random 10 5 far", "in.x:5: create_atoms: region 'far' does not overlap the box"),
+        ("create_atoms 1 random 10 5 NULL overlap 0", "in.x:4: create_atoms: Illegal create_atoms overlap value: 0"),
+        ("create_atoms 1 random 10 5 NULL subset 3 7", "in.x:4: create_atoms: create_atoms keyword 'subset' is not supported"),
+        ("create_atoms 1 box overlap 0.5", "in.x:4: create_atoms: Create_atoms overlap can only be used with random style"),
+        ("region far block 10 12 0 1 0 1 units box\ncreate_atoms 1 random 10 5 far", "in.x:5: create_atoms: No overlap of box and region for create_atoms"),
         ("create_atoms 2 random 10 5 NULL", "in.x:4: create_atoms: type 2 is outside 1..1"),
     ] {
         expect_error("random-errors", &format!("{head}{line}\n"), expected);
@@ -637,7 +633,7 @@ create_atoms 1 random 1000 11 s
 create_atoms 2 random 1000 12 c
 create_atoms 3 random 1000 13 o
 mass * 1.0
-write_dump all custom rand.dump id type x y z
+write_dump all custom rand.dump id type x y z modify format float %.17g
 ";
     let ((dg, _), (dl, _)) = both("random-curved", script);
     for (who, d) in [("gendpde", &dg), ("LAMMPS", &dl)] {
