@@ -6,7 +6,6 @@ pub mod ave_time;
 pub mod checkpoint;
 pub mod console;
 pub mod dump;
-pub mod h5md;
 pub mod restart;
 pub mod schedule;
 pub mod thermo;
