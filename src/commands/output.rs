@@ -87,7 +87,7 @@ pub fn dump(dumps: &mut Vec<Box<dyn Dump>>, sim: &Sim, a: &mut Args) -> Result<(
     if dumps.iter().any(|d| d.id() == id) {
         return Err(a.err(format!("dump ID '{id}' is in use (undump it first)")));
     }
-    let dump = dump::parse(id, sim, a, None)?;
+    let dump = dump::parse(id, sim, a, false)?;
     dumps.push(dump);
     Ok(())
 }
@@ -116,8 +116,8 @@ pub fn undump(dumps: &mut Vec<Box<dyn Dump>>, a: &mut Args) -> Result<(), Script
 
 /// `write_dump GROUP STYLE FILE ARGS... [modify ...]`: one frame of a dump of any style.
 pub fn write_dump(sim: &Sim, vars: &Variables, thermo: &ThermoConfig, out: &mut Output, a: &mut Args) -> Result<(), ScriptError> {
+    let dump = WriteDump::parse(sim, a)?;
     let sys = sim.system.as_ref().ok_or_else(|| a.err("write_dump before create_box"))?;
-    let dump = WriteDump::parse(sim, sys.clock.step, a)?;
     let run = Span { first: sys.clock.step, last: sys.clock.step };
     dump.write(&mut Frame { sim, sys, vars, thermo, out, run, cpu: 0.0 }).map_err(|e| a.err(e))
 }

@@ -165,7 +165,7 @@ impl RunOutput for DcdDump {
 
 impl Dump for DcdDump {
     fn modify(&mut self, key: &str, a: &mut Args) -> Result<(), ScriptError> {
-        if self.head.every.modify(key, a)? {
+        if self.head.modify(key, a)? {
             return Ok(());
         }
         match key {

@@ -75,7 +75,7 @@ impl RunOutput for H5mdDump {
 
 impl Dump for H5mdDump {
     fn modify(&mut self, key: &str, a: &mut Args) -> Result<(), ScriptError> {
-        if self.head.every.modify(key, a)? {
+        if self.head.modify(key, a)? {
             return Ok(());
         }
         match key {
@@ -111,7 +111,8 @@ impl H5mdDump {
         let values = thermo::values(frame.thermo, frame)?;
         let observables: Vec<(&str, f64)> = frame.thermo.keywords.iter().map(String::as_str).zip(values).filter(|(k, _)| *k != "step").collect();
         if sys.comm.rank() == 0 && self.writer.is_none() {
-            let path = Path::new(&self.head.file);
+            let file = self.head.path(sys.clock.step);
+            let path = Path::new(&file);
             let w = if self.append && path.exists() {
                 H5mdWriter::append(path, natoms, &self.fields)
             } else {

@@ -230,6 +230,9 @@ pub struct Head {
     pub group: u32,
     pub every: Every,
     pub file: String,
+    /// `dump_modify pad N`: the digits of the step in the file name's `*` (0: as many as
+    /// it has).
+    pub pad: usize,
     /// Written once by `write_dump` (LAMMPS's dump `WRITE_DUMP`), not every N steps.
     pub once: bool,
 }
@@ -239,6 +242,21 @@ impl Head {
     pub fn count(&self, sys: &System) -> u64 {
         let s = &sys.store;
         sys.comm.count((0..s.nlocal).filter(|&i| s.in_group(i, self.group)).count())
+    }
+
+    /// The file of a frame at `step`: the step in place of a `*`.
+    pub fn path(&self, step: u64) -> String {
+        self.file.replace('*', &format!("{step:0pad$}", pad = self.pad))
+    }
+
+    /// `dump_modify every N`, `first yes|no` and `pad N` (read already); false for other
+    /// keys.
+    pub fn modify(&mut self, key: &str, a: &mut Args) -> Result<bool, ScriptError> {
+        match key {
+            "pad" => self.pad = a.u64("the number of digits of the step")? as usize,
+            _ => return self.every.modify(key, a),
+        }
+        Ok(true)
     }
 
     /// Whether the style's words end here: at the end of the command, or of the words
@@ -286,9 +304,9 @@ impl Head {
 
 /// LAMMPS's `dump_modify` keywords.
 pub const LAMMPS_MODIFY_KEYS: &[&str] = &[
-    "append", "at", "author", "buffer", "colname", "delay", "element", "email", "every", "every/time", "fileper", "first", "flush", "format", "header",
-    "image", "label", "maxfiles", "nfile", "pad", "pbc", "precision", "refresh", "region", "scale", "sfactor", "skip", "sort", "tfactor", "thermo",
-    "thresh", "time", "triclinic/general", "types", "units", "unwrap",
+    "append", "author", "buffer", "colname", "delay", "element", "email", "every", "every/time", "fileper", "first", "flush", "format", "header",
+    "image", "maxfiles", "nfile", "pad", "pbc", "precision", "refresh", "region", "scale", "sfactor", "skip", "sort", "tfactor",
+    "thresh", "time", "triclinic/general", "units", "unwrap",
 ];
 
 /// The error for `dump_modify` keyword `key` that dump `head` does not take: one of
@@ -303,28 +321,22 @@ pub fn unknown_key(head: &Head, key: &str, known: &str, a: &Args) -> ScriptError
 const STYLES: &str = "custom, atom, xyz, h5md, dcd, xtc";
 
 /// The words after `dump ID` (`GROUP STYLE N FILE ...`) or, for `write_dump` (`once`),
-/// after the command (`GROUP STYLE FILE ...`, the file's `*` replaced by `step`).
-pub fn parse(id: &str, sim: &Sim, a: &mut Args, once: Option<u64>) -> Result<Box<dyn Dump>, ScriptError> {
+/// after the command (`GROUP STYLE FILE ...`).
+pub fn parse(id: &str, sim: &Sim, a: &mut Args, once: bool) -> Result<Box<dyn Dump>, ScriptError> {
     let group = groups::mask(&sim.groups, a.word("a group ID")?, a)?;
     let style = a.word(&format!("a dump style ({STYLES})"))?.to_string();
-    let every = match once {
-        Some(_) => 1,
-        None => a.u64("the output interval N")?,
-    };
+    let every = if once { 1 } else { a.u64("the output interval N")? };
     if every == 0 {
         return Err(a.err("the output interval must be positive"));
     }
-    let mut file = a.word("a file name")?.to_string();
+    let file = a.word("a file name")?.to_string();
     if file.contains('%') || file.ends_with(".gz") || file.ends_with(".bin") {
         return Err(a.err(format!("file '{file}': per-rank (%), compressed and binary dumps are not supported")));
-    }
-    if let Some(step) = once {
-        file = file.replace('*', &step.to_string());
     }
     if matches!(style.as_str(), "dcd" | "xtc") && file.contains('*') {
         return Err(a.err(format!("Invalid dump {style} filename '{file}': one file holds every frame")));
     }
-    let head = Head { id: id.to_string(), group, every: Every::new(every), file, once: once.is_some() };
+    let head = Head { id: id.to_string(), group, every: Every::new(every), file, pad: 0, once };
     Ok(match style.as_str() {
         "custom" | "atom" | "xyz" => Box::new(text::TextDump::parse(head, &style, a)?),
         "h5md" => Box::new(H5mdDump::parse(head, a)?),
@@ -345,10 +357,9 @@ pub struct WriteDump {
 }
 
 impl WriteDump {
-    /// The words after `write_dump` at `step`: `GROUP STYLE FILE ARGS... [modify KEY
-    /// VALUES...]`.
-    pub fn parse(sim: &Sim, step: u64, a: &mut Args) -> Result<Self, ScriptError> {
-        let mut dump = parse("WRITE_DUMP", sim, a, Some(step))?;
+    /// The words after `write_dump`: `GROUP STYLE FILE ARGS... [modify KEY VALUES...]`.
+    pub fn parse(sim: &Sim, a: &mut Args) -> Result<Self, ScriptError> {
+        let mut dump = parse("WRITE_DUMP", sim, a, true)?;
         let file = dump.file().to_string();
         dump.set_file(format!("{file}.tmp"));
         if a.peek() == Some("modify") {
@@ -365,9 +376,12 @@ impl WriteDump {
     pub fn write(mut self, frame: &mut Frame) -> Result<(), String> {
         self.dump.write(frame)?;
         self.dump.close()?;
-        let tmp = format!("{}.tmp", self.file);
+        let step = frame.sys.clock.step;
+        let tmp = self.dump.head().path(step);
+        self.dump.set_file(std::mem::take(&mut self.file));
+        let file = self.dump.head().path(step);
         match frame.sys.comm.rank() {
-            0 => std::fs::rename(&tmp, &self.file).map_err(|e| format!("renaming '{tmp}' to '{}': {e}", self.file)),
+            0 => std::fs::rename(&tmp, &file).map_err(|e| format!("renaming '{tmp}' to '{file}': {e}")),
             _ => Ok(()),
         }
     }

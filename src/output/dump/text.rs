@@ -135,10 +135,6 @@ impl TextFormat {
             "header" => self.header = a.yes_no("header")?,
             // LAMMPS's buffering of the ranks' rows: the text is the same either way
             "buffer" => _ = a.yes_no("buffer")?,
-            "types" => match a.word("numeric or labels")? {
-                "numeric" => {}
-                v => return Err(a.err(format!("types {v}: gendpde has no type labels (types numeric)"))),
-            },
             "format" => match a.word("line, int, float, none or a column number M")? {
                 "none" => {
                     let columns = std::mem::take(&mut self.columns);
@@ -301,8 +297,6 @@ pub struct TextDump {
     image: bool,
     /// `flush`: flush the file after every frame (LAMMPS's default).
     flush: bool,
-    /// `pad`: the digits of the step in a file name's `*` (0: as many as it has).
-    pad: usize,
     out: Option<BufWriter<File>>,
     /// A frame was written (with the units, when asked for).
     wrote_units: bool,
@@ -320,7 +314,7 @@ impl TextDump {
         head.done(a)?;
         let float = if head.once { Format::RoundTrip } else { Format::Printf("%g".into()) };
         let format = TextFormat::new(style, columns, float);
-        Ok(Self { head, format, append: false, scale: true, image: false, flush: true, pad: 0, out: None, wrote_units: false })
+        Ok(Self { head, format, append: false, scale: true, image: false, flush: true, out: None, wrote_units: false })
     }
 
     /// `dump atom`'s columns after `scale` or `image` changed.
@@ -335,7 +329,7 @@ impl TextDump {
             return Ok(());
         }
         let per_frame = self.head.file.contains('*');
-        let path = self.head.file.replace('*', &format!("{step:0pad$}", pad = self.pad));
+        let path = self.head.path(step);
         let append = self.append && !per_frame;
         let f = File::options().create(true).write(true).append(append).truncate(!append).open(&path);
         self.out = Some(BufWriter::new(f.map_err(|e| format!("cannot open '{path}': {e}"))?));
@@ -377,18 +371,17 @@ impl RunOutput for TextDump {
 
 impl Dump for TextDump {
     fn modify(&mut self, key: &str, a: &mut Args) -> Result<(), ScriptError> {
-        if self.head.every.modify(key, a)? || self.format.modify(key, a)? {
+        if self.head.modify(key, a)? || self.format.modify(key, a)? {
             return Ok(());
         }
         match key {
             "append" => self.append = a.yes_no("append")?,
             "flush" => self.flush = a.yes_no("flush")?,
-            "pad" => self.pad = a.u64("the number of digits of the step")? as usize,
             "scale" | "image" if self.format.style == Style::Atom => {
                 *(if key == "scale" { &mut self.scale } else { &mut self.image }) = a.yes_no(key)?;
                 self.atom_columns();
             }
-            _ => return Err(unknown_key(&self.head, key, "append, flush, pad, sort, format, header, units, time, types, buffer, element (scale, image: dump atom)", a)),
+            _ => return Err(unknown_key(&self.head, key, "append, flush, pad, sort, format, header, units, time, buffer, element (scale, image: dump atom)", a)),
         }
         Ok(())
     }

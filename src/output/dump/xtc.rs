@@ -95,7 +95,7 @@ impl RunOutput for XtcDump {
 
 impl Dump for XtcDump {
     fn modify(&mut self, key: &str, a: &mut Args) -> Result<(), ScriptError> {
-        if self.head.every.modify(key, a)? {
+        if self.head.modify(key, a)? {
             return Ok(());
         }
         match key {
