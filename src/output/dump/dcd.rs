@@ -6,7 +6,7 @@
 //! header's frame count and last step are updated in place.
 
 use crate::base::args::Args;
-use crate::output::dump::{unknown_key, Dump, Head};
+use crate::output::dump::head::{unknown_key, Dump, Head};
 use crate::output::schedule::{Frame, RunOutput, Span};
 use gendpde_integrators::System;
 use gendpde_io::ScriptError;

@@ -4,7 +4,8 @@
 //! (`dump::KEYWORDS`).
 
 use crate::base::args::Args;
-use crate::output::dump::{readers, unknown_key, Dump, Head, Keyword};
+use crate::output::dump::head::{unknown_key, Dump, Head};
+use crate::output::dump::keywords::{readers, Keyword};
 use crate::output::schedule::{Frame, RunOutput, Span};
 use crate::output::thermo;
 use gendpde_io::{H5mdField, H5mdMeta, H5mdWriter, ScriptError};

@@ -4,7 +4,8 @@
 use crate::base::args::Args;
 use crate::model::per_atom;
 use crate::model::sim::Sim;
-use crate::output::dump::{keyword_names, Dump, Head, Keyword, Reader, unknown_key, LAMMPS_MODIFY_KEYS};
+use crate::output::dump::head::{unknown_key, Dump, Head, LAMMPS_MODIFY_KEYS};
+use crate::output::dump::keywords::{keyword_names, Keyword, Reader};
 use crate::output::schedule::{Frame, RunOutput, Span};
 use crate::output::thermo::{ThermoConfig, ThermoContext};
 use gendpde_integrators::System;

@@ -63,20 +63,7 @@ impl Bits {
             }
         }
         for i in 1..3 {
-            let mut tmp = nums[i];
-            let mut k = 0;
-            while k < nbytes {
-                tmp = bytes[k].wrapping_mul(sizes[i]).wrapping_add(tmp);
-                bytes[k] = tmp & 0xff;
-                tmp >>= 8;
-                k += 1;
-            }
-            while tmp != 0 {
-                bytes[k] = tmp & 0xff;
-                k += 1;
-                tmp >>= 8;
-            }
-            nbytes = k;
+            nbytes = mul_add(&mut bytes, nbytes, sizes[i], nums[i]);
         }
         if nbits >= nbytes as u32 * 8 {
             for &b in &bytes[..nbytes] {
@@ -100,6 +87,24 @@ impl Bits {
     }
 }
 
+/// The little-endian base-256 number in `bytes[..n]` times `size` plus `add`; returns its
+/// byte count.
+fn mul_add(bytes: &mut [u32; 32], n: usize, size: u32, add: u32) -> usize {
+    let (mut tmp, mut k) = (add, 0);
+    while k < n {
+        tmp = bytes[k].wrapping_mul(size).wrapping_add(tmp);
+        bytes[k] = tmp & 0xff;
+        tmp >>= 8;
+        k += 1;
+    }
+    while tmp != 0 {
+        bytes[k] = tmp & 0xff;
+        k += 1;
+        tmp >>= 8;
+    }
+    k
+}
+
 /// The bits of an integer below `size` (`sizeofint`).
 fn bits_of_int(size: i32) -> u32 {
     let (mut num, mut bits) = (1u32, 0);
@@ -116,20 +121,7 @@ fn bits_of_ints(sizes: [u32; 3]) -> u32 {
     bytes[0] = 1;
     let mut nbytes = 1;
     for s in sizes {
-        let mut tmp = 0u32;
-        let mut k = 0;
-        while k < nbytes {
-            tmp = bytes[k].wrapping_mul(s).wrapping_add(tmp);
-            bytes[k] = tmp & 0xff;
-            tmp >>= 8;
-            k += 1;
-        }
-        while tmp != 0 {
-            bytes[k] = tmp & 0xff;
-            k += 1;
-            tmp >>= 8;
-        }
-        nbytes = k;
+        nbytes = mul_add(&mut bytes, nbytes, s, 0);
     }
     let (mut num, mut bits) = (1u32, 0);
     nbytes -= 1;

@@ -6,7 +6,8 @@
 
 use crate::base::args::Args;
 use crate::base::units::Units;
-use crate::output::dump::{unknown_key, xdr, Dump, Head};
+use crate::output::dump::head::{unknown_key, Dump, Head};
+use crate::output::dump::xdr;
 use crate::output::schedule::{Frame, RunOutput, Span};
 use gendpde_io::ScriptError;
 use std::fs::File;
@@ -65,9 +66,9 @@ impl XtcDump {
         xdr::float(&mut o, (step as f64 * self.tfactor * f.sim.dt) as f32);
         let len = sys.domain.len();
         // the box vectors, a row each
-        for k in 0..3 {
+        for (k, l) in len.iter().enumerate() {
             for j in 0..3 {
-                xdr::float(&mut o, if j == k { (self.sfactor * len[k]) as f32 } else { 0.0 });
+                xdr::float(&mut o, if j == k { (self.sfactor * l) as f32 } else { 0.0 });
             }
         }
         let coords: Vec<f32> = r.iter().flat_map(|p| p.map(|x| (self.sfactor * x) as f32)).collect();
