@@ -13,23 +13,26 @@ use std::io::{BufWriter, Write};
 
 /// When a periodic dump writes: every N steps, at the setup of a run when the step is
 /// a multiple of N (`first yes`: at the first setup after the dump command whatever the
-/// step, as LAMMPS), once per step.
+/// step, as LAMMPS), once per step, none before the `delay` step.
 #[derive(Clone, Debug)]
 pub struct Every {
     pub every: u64,
     pub first: bool,
+    /// `dump_modify delay D`: no frame before step D.
+    pub delay: u64,
     last_step: Option<u64>,
 }
 
 impl Every {
     pub fn new(every: u64) -> Self {
-        Self { every, first: false, last_step: None }
+        Self { every, first: false, delay: 0, last_step: None }
     }
 
     pub fn next_step(&self, step: u64, run: Span) -> Option<u64> {
         let first = self.first && self.last_step.is_none() && step == run.first;
         let due = if first { step } else { step.next_multiple_of(self.every) };
-        Some(if self.last_step == Some(due) { (due + 1).next_multiple_of(self.every) } else { due })
+        let due = if self.last_step == Some(due) { (due + 1).next_multiple_of(self.every) } else { due };
+        Some(if due < self.delay { self.delay.next_multiple_of(self.every) } else { due })
     }
 
     /// Notes a frame written at `step`.
@@ -37,7 +40,8 @@ impl Every {
         self.last_step = Some(step);
     }
 
-    /// `dump_modify every N` and `first yes|no` (read already); false for other keys.
+    /// `dump_modify every N`, `first yes|no` and `delay D` (read already); false for
+    /// other keys.
     pub fn modify(&mut self, key: &str, a: &mut Args) -> Result<bool, ScriptError> {
         match key {
             "every" => {
@@ -47,6 +51,7 @@ impl Every {
                 }
             }
             "first" => self.first = a.yes_no("first")?,
+            "delay" => self.delay = a.u64("the first step a frame may be written at")?,
             _ => return Ok(false),
         }
         Ok(true)
@@ -157,9 +162,9 @@ pub const LAMMPS_MODIFY_KEYS: &[&str] = &[
 
 /// The error for `dump_modify` keyword `key` that dump `head` does not take: one of
 /// LAMMPS's it does not implement, or an unknown one; `known` lists those it takes
-/// besides every and first.
+/// besides every, first, delay and pad.
 pub fn unknown_key(head: &Head, key: &str, known: &str, a: &Args) -> ScriptError {
     let what = if LAMMPS_MODIFY_KEYS.contains(&key) { "is not supported for this dump style" } else { "is unknown" };
-    a.err(format!("dump {}: dump_modify keyword '{key}' {what}; supported: every, first, {known}", head.id))
+    a.err(format!("dump {}: dump_modify keyword '{key}' {what}; supported: every, first, delay, pad, {known}", head.id))
 }
 

@@ -382,7 +382,7 @@ impl Dump for TextDump {
                 *(if key == "scale" { &mut self.scale } else { &mut self.image }) = a.yes_no(key)?;
                 self.atom_columns();
             }
-            _ => return Err(unknown_key(&self.head, key, "append, flush, pad, sort, format, header, units, time, buffer, element (scale, image: dump atom)", a)),
+            _ => return Err(unknown_key(&self.head, key, "append, flush, sort, format, header, units, time, buffer, element (scale, image: dump atom)", a)),
         }
         Ok(())
     }

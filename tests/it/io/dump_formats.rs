@@ -1,5 +1,5 @@
 //! Dumps on groups, dump dcd and dump xtc, write_dump of every style and the dump_modify
-//! keywords flush, header and pad: the same files as the reference LAMMPS on a
+//! keywords flush, header, pad and delay: the same files as the reference LAMMPS on a
 //! deterministic scene (byte for byte but the DCD title lines, which name the writer and
 //! the time), the same bytes on 1 and 3 ranks, and MDAnalysis reads the DCD and XTC
 //! positions back.
@@ -128,23 +128,27 @@ fn group_dumps_dcd_and_xtc_match_lammps_on_1_and_3_ranks() {
 }
 
 #[test]
-fn dump_modify_header_pad_flush_and_write_dump_pad_match_lammps() {
+fn dump_modify_header_pad_flush_delay_and_write_dump_pad_match_lammps() {
     let rest = "dump h heavy custom 5 h.dump id type x
 dump_modify h header no flush no sort id buffer no
 dump p all atom 5 p.*.atom
 dump_modify p pad 6 sort id
 dump q heavy xyz 5 q.xyz
 dump_modify q header no sort id
+dump e heavy xyz 2 e.xyz
+dump_modify e delay 5 first yes sort id
 run 10
 write_dump heavy custom w*.dump id x modify sort id pad 4 format float %g
 ";
     let (dl, dg) = (stage("modify-lammps", rest), stage("modify-gendpde", rest));
     expect_success("LAMMPS", &run_lammps(&dl, "in.dumps", &[]));
     gendpde(&dg);
-    for f in ["h.dump", "p.000000.atom", "p.000005.atom", "p.000010.atom", "q.xyz", "w0010.dump"] {
+    for f in ["h.dump", "p.000000.atom", "p.000005.atom", "p.000010.atom", "q.xyz", "e.xyz", "w0010.dump"] {
         assert_eq!(String::from_utf8(bytes(&dl, f)).unwrap(), String::from_utf8(bytes(&dg, f)).unwrap(), "{f}");
     }
     assert!(!String::from_utf8(bytes(&dg, "h.dump")).unwrap().contains("ITEM"), "header no");
+    let steps: Vec<String> = String::from_utf8(bytes(&dg, "e.xyz")).unwrap().lines().filter_map(|l| l.strip_prefix(" Atoms. Timestep: ").map(String::from)).collect();
+    assert_eq!(steps, ["6", "8", "10"], "delay 5: none before step 5, first yes too");
 }
 
 /// Reads the DCD and XTC files of a run with MDAnalysis and prints, per frame, the
