@@ -1,6 +1,6 @@
 //! Dumps: `dump ID GROUP STYLE N FILE ...` every N steps and `write_dump GROUP STYLE FILE
 //! ...` once: LAMMPS's text formats ([`text`]), H5MD ([`h5md`]), and the binary
-//! trajectories of VMD and GROMACS ([`dcd`], [`xtc`]).
+//! trajectories of VMD and GROMACS ([`dcd`], [`xtc`]), PNG pictures ([`image`]).
 //!
 //! The per-particle keywords are one table ([`keywords`]); what every dump shares is in
 //! [`head`].
@@ -12,6 +12,7 @@
 pub mod dcd;
 pub mod h5md;
 pub mod head;
+pub mod image;
 pub mod keywords;
 pub mod text;
 mod xdr;
@@ -26,7 +27,7 @@ use crate::output::schedule::Frame;
 use gendpde_io::ScriptError;
 
 /// The dump styles, for messages.
-const STYLES: &str = "custom, atom, xyz, h5md, dcd, xtc";
+const STYLES: &str = "custom, atom, xyz, h5md, dcd, xtc, image";
 
 /// The words after `dump ID` (`GROUP STYLE N FILE ...`) or, for `write_dump` (`once`),
 /// after the command (`GROUP STYLE FILE ...`).
@@ -49,6 +50,7 @@ pub fn parse(id: &str, sim: &Sim, a: &mut Args, once: bool) -> Result<Box<dyn Du
         "custom" | "atom" | "xyz" => Box::new(text::TextDump::parse(head, &style, a)?),
         "h5md" => Box::new(h5md::H5mdDump::parse(head, a)?),
         "dcd" => Box::new(dcd::DcdDump::parse(head, a)?),
+        "image" => Box::new(image::ImageDump::parse(head, a)?),
         "xtc" => {
             let root = sim.system.as_ref().is_none_or(|s| s.comm.rank() == 0);
             Box::new(xtc::XtcDump::parse(head, &sim.units, root, a)?)

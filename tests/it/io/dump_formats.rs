@@ -2,7 +2,8 @@
 //! keywords flush, header, pad and delay: the same files as the reference LAMMPS on a
 //! deterministic scene (byte for byte but the DCD title lines, which name the writer and
 //! the time), the same bytes on 1 and 3 ranks, and MDAnalysis reads the DCD and XTC
-//! positions back.
+//! positions back. dump image: PNG pictures of the group's types, the same on 3 ranks
+//! (the reference LAMMPS writes no PNG; its JPEG of the same view looks alike).
 
 use crate::common;
 
@@ -209,6 +210,73 @@ fn bad_dumps_are_refused_with_lammps_messages() {
         ("dump c all atom 10 c.dump\ndump_modify c region none", "in.bad:3: dump_modify: dump c: dump_modify keyword 'region' is not supported for this dump style"),
         ("dump c all atom 10 c.dump\ndump_modify c bogus 1", "in.bad:3: dump_modify: dump c: dump_modify keyword 'bogus' is unknown"),
         ("write_dump all cfg c.cfg", "in.bad:2: write_dump: unknown dump style 'cfg'"),
+    ] {
+        std::fs::write(d.join("in.bad"), format!("units lj\n{cmd}\n")).unwrap();
+        let out = Command::new(env!("CARGO_BIN_EXE_gendpde")).current_dir(&d).args(["check", "in.bad"]).output().unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success() && err.contains(want), "{cmd}: expected '{want}', got:\n{err}");
+    }
+}
+
+/// The RGB pixels, width and height of a PNG file.
+fn png_pixels(path: &Path) -> (Vec<u8>, u32, u32) {
+    let decoder = png::Decoder::new(std::fs::File::open(path).unwrap_or_else(|e| panic!("{}: {e}", path.display())));
+    let mut reader = decoder.read_info().unwrap();
+    let mut buf = vec![0; reader.output_buffer_size()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    assert_eq!(info.color_type, png::ColorType::Rgb);
+    buf.truncate(info.buffer_size());
+    (buf, info.width, info.height)
+}
+
+#[test]
+fn dump_image_draws_the_group_by_type_in_png_the_same_on_3_ranks() {
+    let rest = "dump i all image 10 all.*.png type type
+dump j heavy image 10 heavy.*.png type type size 400 300 view 80 -20 zoom 1.3 axes yes 0.5 0.03
+dump_modify j acolor 2 orange adiam 2 0.8 backcolor white boxcolor black pad 3
+run 10
+";
+    let (d1, d3) = (stage("image-np1", rest), stage("image-np3", rest));
+    gendpde(&d1);
+    let out = mpirun(3, &d3, &["run", "in.dumps", "-log", "none"]);
+    assert!(out.status.success(), "gendpde on 3 ranks:\n{}", String::from_utf8_lossy(&out.stderr));
+    for f in ["all.0.png", "all.10.png", "heavy.000.png", "heavy.010.png"] {
+        assert!(bytes(&d1, f) == bytes(&d3, f), "{f}: 1 and 3 ranks differ");
+    }
+    // LAMMPS's defaults: 512 x 512, black, type 1 red and type 2 green
+    let (all, w, h) = png_pixels(&d1.join("all.10.png"));
+    assert_eq!((w, h), (512, 512));
+    let px = |p: &[u8], i: usize| [p[3 * i], p[3 * i + 1], p[3 * i + 2]];
+    assert_eq!(px(&all, 0), [0, 0, 0], "background");
+    let count = |p: &[u8], f: &dyn Fn([u8; 3]) -> bool| (0..p.len() / 3).filter(|&i| f(px(p, i))).count();
+    let red = |c: [u8; 3]| c[0] > 60 && c[1] < c[0] / 4 && c[2] < c[0] / 4;
+    let green = |c: [u8; 3]| c[1] > 30 && c[0] < c[1] / 4 && c[2] < c[1] / 4;
+    let (nr, ng) = (count(&all, &red), count(&all, &green));
+    eprintln!("dump image all: {nr} red and {ng} green pixels of {}", w * h);
+    assert!(nr > 20_000 && ng > 20_000, "both types drawn: {nr} red, {ng} green");
+    // the heavy group only, orange on white, in the size asked for
+    let (heavy, w, h) = png_pixels(&d1.join("heavy.010.png"));
+    assert_eq!((w, h), (400, 300));
+    assert_eq!(px(&heavy, 0), [255, 255, 255], "backcolor white");
+    let orange = |c: [u8; 3]| c[0] > 60 && c[1] > c[0] / 3 && c[1] < c[0] && c[2] < c[0] / 4;
+    assert!(count(&heavy, &orange) > 20_000, "type 2 in orange");
+    // green only on the y axis, blue on the z axis
+    let blue = |c: [u8; 3]| c[2] > 60 && c[0] < c[2] / 4 && c[1] < c[2] / 4;
+    let (ng, nb) = (count(&heavy, &green), count(&heavy, &blue));
+    assert!(ng < 1000, "no type 1 in group heavy: {ng} green pixels");
+    assert!(nb > 50, "the z axis: {nb} blue pixels");
+}
+
+#[test]
+fn dump_image_refuses_what_it_does_not_draw() {
+    let d = tempdir("image-errors");
+    for (cmd, want) in [
+        ("dump i all image 10 a.*.jpg type type", "gendpde writes PNG only"),
+        ("dump i all image 10 a.png type type", "Dump image requires one snapshot per file"),
+        ("dump i all image 10 a.*.png element type", "dump image color 'element': gendpde colours and sizes atoms by type only"),
+        ("dump i all image 10 a.*.png type type bond atom 0.5", "dump image keyword 'bond' is not supported"),
+        ("dump i all image 10 a.*.png type type ssao yes 1 0.5", "ssao yes: ambient occlusion is not supported"),
+        ("dump i all image 10 a.*.png type type\ndump_modify i acolor 1 nocolor", "Invalid color name 'nocolor'"),
     ] {
         std::fs::write(d.join("in.bad"), format!("units lj\n{cmd}\n")).unwrap();
         let out = Command::new(env!("CARGO_BIN_EXE_gendpde")).current_dir(&d).args(["check", "in.bad"]).output().unwrap();
