@@ -26,14 +26,13 @@ pub struct DcdDump {
     natoms: Option<u64>,
     skip: u64,
     frames: u32,
-    out: Option<BufWriter<File>>,
 }
 
 impl DcdDump {
     /// The words after `dump ID GROUP dcd N FILE` (none).
     pub fn parse(head: Head, a: &mut Args) -> Result<Self, ScriptError> {
         head.done(a)?;
-        Ok(Self { head, unwrap: false, flush: true, natoms: None, skip: 0, frames: 0, out: None })
+        Ok(Self { head, unwrap: false, flush: true, natoms: None, skip: 0, frames: 0 })
     }
 
     fn write_frame(&mut self, f: &Frame) -> Result<(), String> {
@@ -59,16 +58,16 @@ impl DcdDump {
         }
         let path = self.head.file.clone();
         let io = |e: std::io::Error| format!("writing '{path}': {e}");
-        if self.out.is_none() {
+        if self.head.out.is_none() {
             let file = match self.frames {
                 0 => File::create(&path),
                 _ => File::options().read(true).write(true).open(&path),
             };
             let mut o = BufWriter::new(file.map_err(io)?);
             o.seek(SeekFrom::End(0)).map_err(io)?;
-            self.out = Some(o);
+            self.head.out = Some(o);
         }
-        let o = self.out.as_mut().expect("opened above");
+        let o = self.head.out.as_mut().expect("opened above");
         if self.frames == 0 {
             header(o, step32, self.skip as i32, f.sim.dt as f32, natoms as i32).map_err(io)?;
         }
@@ -178,10 +177,6 @@ impl Dump for DcdDump {
             _ => return Err(unknown_key(&self.head, key, "unwrap, flush, sort id", a)),
         }
         Ok(())
-    }
-
-    fn close(&mut self) -> Result<(), String> {
-        self.head.close(&mut self.out)
     }
 
     fn head(&self) -> &Head {

@@ -63,7 +63,9 @@ pub trait Dump: RunOutput {
     /// One `dump_modify` keyword (read already) and its values.
     fn modify(&mut self, key: &str, a: &mut Args) -> Result<(), ScriptError>;
     /// Flushes and closes its file (it reopens, appending, when written again).
-    fn close(&mut self) -> Result<(), String>;
+    fn close(&mut self) -> Result<(), String> {
+        self.head_mut().close()
+    }
     /// Its ID, group, schedule and file.
     fn head(&self) -> &Head;
     fn head_mut(&mut self) -> &mut Head;
@@ -86,6 +88,8 @@ pub struct Head {
     pub pad: usize,
     /// Written once by `write_dump` (LAMMPS's dump `WRITE_DUMP`), not every N steps.
     pub once: bool,
+    /// The open file of the text, dcd and xtc styles (rank 0).
+    pub out: Option<BufWriter<File>>,
 }
 
 impl Head {
@@ -121,9 +125,9 @@ impl Head {
         if self.at_end(a) { Ok(()) } else { a.done() }
     }
 
-    /// Flushes and closes the dump's file `out`, if open.
-    pub fn close(&self, out: &mut Option<BufWriter<File>>) -> Result<(), String> {
-        match out.take() {
+    /// Flushes and closes the dump's file, if open.
+    pub fn close(&mut self) -> Result<(), String> {
+        match self.out.take() {
             Some(mut o) => o.flush().map_err(|e| format!("dump {}: closing '{}': {e}", self.id, self.file)),
             None => Ok(()),
         }

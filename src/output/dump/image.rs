@@ -360,10 +360,6 @@ impl Dump for ImageDump {
         Ok(())
     }
 
-    fn close(&mut self) -> Result<(), String> {
-        Ok(())
-    }
-
     fn head(&self) -> &Head {
         &self.head
     }

@@ -298,7 +298,6 @@ pub struct TextDump {
     image: bool,
     /// `flush`: flush the file after every frame (LAMMPS's default).
     flush: bool,
-    out: Option<BufWriter<File>>,
     /// A frame was written (with the units, when asked for).
     wrote_units: bool,
 }
@@ -315,7 +314,7 @@ impl TextDump {
         head.done(a)?;
         let float = if head.once { Format::RoundTrip } else { Format::Printf("%g".into()) };
         let format = TextFormat::new(style, columns, float);
-        Ok(Self { head, format, append: false, scale: true, image: false, flush: true, out: None, wrote_units: false })
+        Ok(Self { head, format, append: false, scale: true, image: false, flush: true, wrote_units: false })
     }
 
     /// `dump atom`'s columns after `scale` or `image` changed.
@@ -326,14 +325,14 @@ impl TextDump {
     }
 
     fn open(&mut self, step: u64) -> Result<(), String> {
-        if self.out.is_some() {
+        if self.head.out.is_some() {
             return Ok(());
         }
         let per_frame = self.head.file.contains('*');
         let path = self.head.path(step);
         let append = self.append && !per_frame;
         let f = File::options().create(true).write(true).append(append).truncate(!append).open(&path);
-        self.out = Some(BufWriter::new(f.map_err(|e| format!("cannot open '{path}': {e}"))?));
+        self.head.out = Some(BufWriter::new(f.map_err(|e| format!("cannot open '{path}': {e}"))?));
         // later frames of the same file append, as LAMMPS keeps it open
         self.append = self.append || !per_frame;
         Ok(())
@@ -357,11 +356,14 @@ impl RunOutput for TextDump {
             if f.sys.comm.rank() == 0 {
                 self.open(step)?;
             }
-            self.format.frame(&mut self.out, &self.head, f.sim, f.sys, &PerAtomInputs { vars: f.vars, thermo: f.thermo }, !self.wrote_units)?;
+            let mut out = self.head.out.take();
+            let wrote = self.format.frame(&mut out, &self.head, f.sim, f.sys, &PerAtomInputs { vars: f.vars, thermo: f.thermo }, !self.wrote_units);
+            self.head.out = out;
+            wrote?;
             self.wrote_units = true;
             if self.head.file.contains('*') {
-                self.close()?;
-            } else if let Some(o) = self.out.as_mut().filter(|_| self.flush) {
+                self.head.close()?;
+            } else if let Some(o) = self.head.out.as_mut().filter(|_| self.flush) {
                 o.flush().map_err(|e| e.to_string())?;
             }
             Ok(())
@@ -385,10 +387,6 @@ impl Dump for TextDump {
             _ => return Err(unknown_key(&self.head, key, "append, flush, sort, format, header, units, time, buffer, element (scale, image: dump atom)", a)),
         }
         Ok(())
-    }
-
-    fn close(&mut self) -> Result<(), String> {
-        self.head.close(&mut self.out)
     }
 
     fn head(&self) -> &Head {

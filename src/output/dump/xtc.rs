@@ -25,7 +25,6 @@ pub struct XtcDump {
     /// The interval of the first frame (LAMMPS refuses a change).
     every: Option<u64>,
     opened: bool,
-    out: Option<BufWriter<File>>,
 }
 
 impl XtcDump {
@@ -43,7 +42,7 @@ impl XtcDump {
             }
             _ => (0.1 / angstrom, 0.001 / units.femtosecond),
         };
-        Ok(Self { head, unwrap: false, precision: 1000.0, sfactor, tfactor, every: None, opened: false, out: None })
+        Ok(Self { head, unwrap: false, precision: 1000.0, sfactor, tfactor, every: None, opened: false })
     }
 
     fn write_frame(&mut self, f: &Frame) -> Result<(), String> {
@@ -74,13 +73,13 @@ impl XtcDump {
         let coords: Vec<f32> = r.iter().flat_map(|p| p.map(|x| (self.sfactor * x) as f32)).collect();
         xdr::coords(&mut o, &coords, self.precision);
         let path = &self.head.file;
-        if self.out.is_none() {
+        if self.head.out.is_none() {
             // a file closed by a stopped run is added to
             let file = File::options().create(true).write(true).append(self.opened).truncate(!self.opened).open(path);
-            self.out = Some(BufWriter::new(file.map_err(|e| format!("Cannot open XTC format dump file {path}: {e}"))?));
+            self.head.out = Some(BufWriter::new(file.map_err(|e| format!("Cannot open XTC format dump file {path}: {e}"))?));
             self.opened = true;
         }
-        self.out.as_mut().expect("opened above").write_all(&o).map_err(|e| format!("writing '{path}': {e}"))
+        self.head.out.as_mut().expect("opened above").write_all(&o).map_err(|e| format!("writing '{path}': {e}"))
     }
 }
 
@@ -127,10 +126,6 @@ impl Dump for XtcDump {
             _ => return Err(unknown_key(&self.head, key, "unwrap, precision, sfactor, tfactor, flush no, sort id", a)),
         }
         Ok(())
-    }
-
-    fn close(&mut self) -> Result<(), String> {
-        self.head.close(&mut self.out)
     }
 
     fn head(&self) -> &Head {
