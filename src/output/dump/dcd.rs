@@ -39,7 +39,7 @@ impl DcdDump {
         let sys = f.sys;
         let step = sys.clock.step;
         self.head.every.wrote(step);
-        let n = self.head.count(sys);
+        let n = self.head.count(f.sim, sys)?;
         let natoms = *self.natoms.get_or_insert(n);
         if n != natoms {
             return Err(format!("Dump dcd of non-matching # of atoms: {n} in group, {natoms} in the file"));

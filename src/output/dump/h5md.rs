@@ -106,7 +106,7 @@ impl Dump for H5mdDump {
 impl H5mdDump {
     /// Writes a frame of the current step.
     fn write_frame(&mut self, frame: &Frame) -> Result<(), String> {
-        let (sys, natoms) = (frame.sys, self.head.count(frame.sys) as usize);
+        let (sys, natoms) = (frame.sys, self.head.count(frame.sim, frame.sys)? as usize);
         self.head.every.wrote(sys.clock.step);
         // the thermo keywords at this step, the observables (every rank: collective)
         let values = thermo::values(frame.thermo, frame)?;
@@ -158,7 +158,7 @@ impl H5mdDump {
             first_row += n;
             Ok(())
         };
-        head.rows(sys, frame.sim.max_tag, width, row, &mut emit)?;
+        head.rows(frame.sim, sys, width, row, &mut emit)?;
         if let Some(w) = self.writer.as_mut() {
             w.end_frame().map_err(|e| e.0)?;
         }

@@ -4,6 +4,7 @@
 
 use crate::base::args::Args;
 use crate::base::gather;
+use crate::model::sim::Sim;
 use crate::output::schedule::{Frame, RunOutput, Span};
 use gendpde_engine::Vec3;
 use gendpde_integrators::System;
@@ -88,15 +89,27 @@ pub struct Head {
     pub pad: usize,
     /// Written once by `write_dump` (LAMMPS's dump `WRITE_DUMP`), not every N steps.
     pub once: bool,
+    /// `dump_modify region ID` (custom, image): only the particles in the region.
+    pub region: Option<String>,
     /// The open file of the text, dcd and xtc styles (rank 0).
     pub out: Option<BufWriter<File>>,
 }
 
 impl Head {
-    /// The number of the group's particles on all ranks (every rank calls).
-    pub fn count(&self, sys: &System) -> u64 {
-        let s = &sys.store;
-        sys.comm.count((0..s.nlocal).filter(|&i| s.in_group(i, self.group)).count())
+    /// Which owned particles a frame writes: those of the group (and of the `dump_modify
+    /// region`, if any, at their current positions).
+    fn selected<'a>(&'a self, sim: &'a Sim, sys: &'a System) -> Result<impl Fn(usize) -> bool + 'a, String> {
+        let region = match &self.region {
+            Some(id) => Some(sim.regions.get(id).ok_or_else(|| format!("Dump_modify region ID {id} does not exist"))?),
+            None => None,
+        };
+        Ok(move |i: usize| sys.store.in_group(i, self.group) && region.is_none_or(|r| r.contains(sys.store.r[i])))
+    }
+
+    /// The number of particles a frame writes, on all ranks (every rank calls).
+    pub fn count(&self, sim: &Sim, sys: &System) -> Result<u64, String> {
+        let selected = self.selected(sim, sys)?;
+        Ok(sys.comm.count((0..sys.store.nlocal).filter(|&i| selected(i)).count()))
     }
 
     /// The file of a frame at `step`: the step in place of a `*`.
@@ -104,8 +117,15 @@ impl Head {
         self.file.replace('*', &format!("{step:0pad$}", pad = self.pad))
     }
 
-    /// `dump_modify every N`, `first yes|no` and `pad N` (read already); false for other
-    /// keys.
+    /// `dump_modify region ID|none` (read already) of the styles that take it (custom,
+    /// image).
+    pub fn set_region(&mut self, a: &mut Args) -> Result<(), ScriptError> {
+        self.region = Some(a.word("a region ID or none")?).filter(|&r| r != "none").map(String::from);
+        Ok(())
+    }
+
+    /// `dump_modify every N`, `first yes|no`, `delay D` and `pad N` (read already); false
+    /// for other keys.
     pub fn modify(&mut self, key: &str, a: &mut Args) -> Result<bool, ScriptError> {
         match key {
             "pad" => self.pad = a.u64("the number of digits of the step")? as usize,
@@ -142,7 +162,7 @@ impl Head {
             b.extend([sys.store.tag[i] as f64, r[0], r[1], r[2]]);
         };
         let mut out = Vec::new();
-        self.rows(sys, f.sim.max_tag, 4, row, &mut |rows: &[f64]| -> Result<(), String> {
+        self.rows(f.sim, sys, 4, row, &mut |rows: &[f64]| -> Result<(), String> {
             out.extend(rows.chunks_exact(4).map(|r| [r[1], r[2], r[3]]));
             Ok(())
         })?;
@@ -151,9 +171,9 @@ impl Head {
 
     /// Calls `emit` on rank 0 with the rows of the group's particles in ID order, as
     /// `gather::sorted_rows` (every rank calls).
-    pub fn rows<E>(&self, sys: &System, max_tag: u64, width: usize, row: impl Fn(usize, &mut Vec<f64>), emit: &mut dyn FnMut(&[f64]) -> Result<(), E>) -> Result<(), E> {
-        let group = self.group;
-        gather::sorted_rows(sys, max_tag, width, |i, b| if sys.store.in_group(i, group) { row(i, b) }, emit)
+    pub fn rows(&self, sim: &Sim, sys: &System, width: usize, row: impl Fn(usize, &mut Vec<f64>), emit: &mut dyn FnMut(&[f64]) -> Result<(), String>) -> Result<(), String> {
+        let selected = self.selected(sim, sys)?;
+        gather::sorted_rows(sys, sim.max_tag, width, |i, b| if selected(i) { row(i, b) }, emit)
     }
 }
 

@@ -155,7 +155,7 @@ impl ImageDump {
                         return Err(a.err("dump image ssao yes: ambient occlusion is not supported"));
                     }
                 }
-                w @ ("bond" | "line" | "tri" | "body" | "fix" | "persp" | "subbox" | "grid" | "gridx" | "gridy" | "gridz" | "fsaa" | "region") => {
+                w @ ("bond" | "line" | "tri" | "body" | "fix" | "persp" | "subbox" | "grid" | "gridx" | "gridy" | "gridz" | "fsaa") => {
                     return Err(a.err(format!("dump image keyword '{w}' is not supported (gendpde draws atoms, the box and axes)")))
                 }
                 w => return Err(a.err(format!("unknown dump image keyword '{w}'; known: size view zoom center up box axes shiny atom adiam ssao"))),
@@ -273,7 +273,7 @@ impl ImageDump {
             b.extend([sys.store.tag[i] as f64, r[0], r[1], r[2], f64::from(sys.store.kind[i])]);
         };
         let mut spheres = Vec::new();
-        self.head.rows(sys, f.sim.max_tag, 5, row, &mut |rows: &[f64]| -> Result<(), String> {
+        self.head.rows(f.sim, sys, 5, row, &mut |rows: &[f64]| -> Result<(), String> {
             for r in rows.chunks_exact(5) {
                 let t = r[4] as u64;
                 spheres.push(([r[1], r[2], r[3]], self.type_diameter(t), self.type_color(t)));
@@ -350,12 +350,13 @@ impl Dump for ImageDump {
                 let types = a.range("an atom type", u64::from(u32::MAX))?;
                 self.diameters.push((types, a.positive("an atom diameter")?));
             }
+            "region" => self.head.set_region(a)?,
             "backcolor" | "boxcolor" => {
                 let c = color(a, a.peek().unwrap_or(""))?;
                 a.word("a color name")?;
                 *(if key == "backcolor" { &mut self.background } else { &mut self.box_color }) = c;
             }
-            _ => return Err(unknown_key(&self.head, key, "acolor, adiam, backcolor, boxcolor", a)),
+            _ => return Err(unknown_key(&self.head, key, "acolor, adiam, backcolor, boxcolor, region", a)),
         }
         Ok(())
     }

@@ -45,7 +45,7 @@ pub fn parse(id: &str, sim: &Sim, a: &mut Args, once: bool) -> Result<Box<dyn Du
     if matches!(style.as_str(), "dcd" | "xtc") && file.contains('*') {
         return Err(a.err(format!("Invalid dump {style} filename '{file}': one file holds every frame")));
     }
-    let head = Head { id: id.to_string(), group, every: Every::new(every), file, pad: 0, once, out: None };
+    let head = Head { id: id.to_string(), group, every: Every::new(every), file, pad: 0, once, region: None, out: None };
     Ok(match style.as_str() {
         "custom" | "atom" | "xyz" => Box::new(text::TextDump::parse(head, &style, a)?),
         "h5md" => Box::new(h5md::H5mdDump::parse(head, a)?),

@@ -243,7 +243,7 @@ impl TextFormat {
             columns.insert(0, Column::Keyword(Keyword::find("type").expect("type is a keyword")));
         }
         let values: Vec<ColumnValues> = columns.iter().map(|c| inputs.values(c, sim, sys)).collect::<Result<_, _>>()?;
-        let natoms = head.count(sys);
+        let natoms = head.count(sim, sys)?;
         if let Some(o) = o.as_mut().filter(|_| self.header) {
             self.header(o, sim, sys, natoms, self.units && first).map_err(|e| e.to_string())?;
         }
@@ -259,7 +259,7 @@ impl TextFormat {
             let Some(o) = o.as_mut() else { return Ok(()) };
             rows.chunks_exact(width).try_for_each(|r| self.row(o, &r[1..]))
         };
-        head.rows(sys, sim.max_tag, width, row, &mut emit)
+        head.rows(sim, sys, width, row, &mut emit)
     }
 }
 
@@ -380,11 +380,12 @@ impl Dump for TextDump {
         match key {
             "append" => self.append = a.yes_no("append")?,
             "flush" => self.flush = a.yes_no("flush")?,
+            "region" if self.format.style == Style::Custom => self.head.set_region(a)?,
             "scale" | "image" if self.format.style == Style::Atom => {
                 *(if key == "scale" { &mut self.scale } else { &mut self.image }) = a.yes_no(key)?;
                 self.atom_columns();
             }
-            _ => return Err(unknown_key(&self.head, key, "append, flush, sort, format, header, units, time, buffer, element (scale, image: dump atom)", a)),
+            _ => return Err(unknown_key(&self.head, key, "append, flush, sort, format, header, units, time, buffer, element (region: dump custom; scale, image: dump atom)", a)),
         }
         Ok(())
     }

@@ -1,5 +1,5 @@
 //! Dumps on groups, dump dcd and dump xtc, write_dump of every style and the dump_modify
-//! keywords flush, header, pad and delay: the same files as the reference LAMMPS on a
+//! keywords flush, header, pad, delay and region: the same files as the reference LAMMPS on a
 //! deterministic scene (byte for byte but the DCD title lines, which name the writer and
 //! the time), the same bytes on 1 and 3 ranks, and MDAnalysis reads the DCD and XTC
 //! positions back. dump image: PNG pictures of the group's types, the same on 3 ranks
@@ -129,7 +129,7 @@ fn group_dumps_dcd_and_xtc_match_lammps_on_1_and_3_ranks() {
 }
 
 #[test]
-fn dump_modify_header_pad_flush_delay_and_write_dump_pad_match_lammps() {
+fn dump_modify_header_pad_flush_delay_region_and_write_dump_pad_match_lammps() {
     let rest = "dump h heavy custom 5 h.dump id type x
 dump_modify h header no flush no sort id buffer no
 dump p all atom 5 p.*.atom
@@ -138,18 +138,26 @@ dump q heavy xyz 5 q.xyz
 dump_modify q header no sort id
 dump e heavy xyz 2 e.xyz
 dump_modify e delay 5 first yes sort id
+region ball sphere 3 3 3 2.0
+dump r heavy custom 5 r.dump id type
+dump_modify r region ball sort id
+dump n all custom 5 n.dump id type
+dump_modify n region ball region none sort id
 run 10
 write_dump heavy custom w*.dump id x modify sort id pad 4 format float %g
 ";
     let (dl, dg) = (stage("modify-lammps", rest), stage("modify-gendpde", rest));
     expect_success("LAMMPS", &run_lammps(&dl, "in.dumps", &[]));
     gendpde(&dg);
-    for f in ["h.dump", "p.000000.atom", "p.000005.atom", "p.000010.atom", "q.xyz", "e.xyz", "w0010.dump"] {
+    for f in ["h.dump", "p.000000.atom", "p.000005.atom", "p.000010.atom", "q.xyz", "e.xyz", "r.dump", "n.dump", "w0010.dump"] {
         assert_eq!(String::from_utf8(bytes(&dl, f)).unwrap(), String::from_utf8(bytes(&dg, f)).unwrap(), "{f}");
     }
     assert!(!String::from_utf8(bytes(&dg, "h.dump")).unwrap().contains("ITEM"), "header no");
     let steps: Vec<String> = String::from_utf8(bytes(&dg, "e.xyz")).unwrap().lines().filter_map(|l| l.strip_prefix(" Atoms. Timestep: ").map(String::from)).collect();
     assert_eq!(steps, ["6", "8", "10"], "delay 5: none before step 5, first yes too");
+    let counts = |f: &str| parse_dump(&String::from_utf8(bytes(&dg, f)).unwrap()).iter().map(|s| s.atoms.len()).collect::<Vec<_>>();
+    assert!(counts("r.dump").iter().all(|&n| n > 20 && n < 100), "region ball of group heavy: {:?}", counts("r.dump"));
+    assert_eq!(counts("n.dump"), [729; 3], "region none: every particle");
 }
 
 /// Reads the DCD and XTC files of a run with MDAnalysis and prints, per frame, the
