@@ -97,6 +97,8 @@ struct TextFormat {
     /// overrides (`format M`).
     formats: Vec<Format>,
     overrides: Vec<Option<String>>,
+    /// `colname`: the header names of columns (custom), None for the column's own.
+    names: Vec<Option<String>>,
     units: bool,
     time: bool,
     /// `header`: write each frame's header (default yes).
@@ -112,7 +114,7 @@ fn check_format(a: &Args, f: &str) -> Result<String, ScriptError> {
 
 impl TextFormat {
     fn new(style: Style, columns: Vec<Column>, float: Format) -> Self {
-        let mut f = Self { style, columns: Vec::new(), float, formats: Vec::new(), overrides: Vec::new(), units: false, time: false, header: true, elements: Vec::new() };
+        let mut f = Self { style, columns: Vec::new(), float, formats: Vec::new(), overrides: Vec::new(), names: Vec::new(), units: false, time: false, header: true, elements: Vec::new() };
         f.reset(columns);
         f
     }
@@ -121,6 +123,7 @@ impl TextFormat {
     fn reset(&mut self, columns: Vec<Column>) {
         self.formats = columns.iter().map(|c| if c.integer() { Format::Printf("%d".into()) } else { self.float.clone() }).collect();
         self.overrides = vec![None; columns.len()];
+        self.names = vec![None; columns.len()];
         self.columns = columns;
     }
 
@@ -134,6 +137,23 @@ impl TextFormat {
                 v => return Err(a.err(format!("sort {v}: text dumps are sorted by id (sort id or off)"))),
             },
             "header" => self.header = a.yes_no("header")?,
+            "colname" if self.style == Style::Custom => {
+                let which = a.word("a column number, a column keyword or default")?;
+                if which == "default" {
+                    self.names.fill(None);
+                    return Ok(true);
+                }
+                let n = self.columns.len() as i64;
+                let col = match which.parse::<i64>() {
+                    Ok(k) if (1..=n).contains(&k) => Some(k - 1),
+                    Ok(k) if (-n..=-1).contains(&k) => Some(n + k),
+                    Ok(_) => None,
+                    Err(_) => self.columns.iter().position(|c| c.name() == which).map(|k| k as i64),
+                };
+                let name = a.word("a column name")?;
+                let col = col.ok_or_else(|| a.err(format!("Incorrect dump_modify arguments: colname {which} {name}")))?;
+                self.names[col as usize] = Some(name.to_string());
+            }
             // LAMMPS's buffering of the ranks' rows: the text is the same either way
             "buffer" => _ = a.yes_no("buffer")?,
             "format" => match a.word("line, int, float, none or a column number M")? {
@@ -209,7 +229,7 @@ impl TextFormat {
             let e = |x: f64| format_printf("%1.16e", x).unwrap_or_else(|_| format!("{x:e}"));
             writeln!(o, "{} {}", e(d.lo[k]), e(d.hi[k]))?;
         }
-        let names: Vec<String> = self.columns.iter().map(Column::name).collect();
+        let names: Vec<String> = self.columns.iter().zip(&self.names).map(|(c, n)| n.clone().unwrap_or_else(|| c.name())).collect();
         writeln!(o, "ITEM: ATOMS {}", names.join(" "))
     }
 
@@ -385,7 +405,7 @@ impl Dump for TextDump {
                 *(if key == "scale" { &mut self.scale } else { &mut self.image }) = a.yes_no(key)?;
                 self.atom_columns();
             }
-            _ => return Err(unknown_key(&self.head, key, "append, flush, sort, format, header, units, time, buffer, element (region: dump custom; scale, image: dump atom)", a)),
+            _ => return Err(unknown_key(&self.head, key, "append, flush, sort, format, header, units, time, buffer, element (region, colname: dump custom; scale, image: dump atom)", a)),
         }
         Ok(())
     }

@@ -1,5 +1,5 @@
 //! Dumps on groups, dump dcd and dump xtc, write_dump of every style and the dump_modify
-//! keywords flush, header, pad, delay and region: the same files as the reference LAMMPS on a
+//! keywords flush, header, pad, delay, region and colname: the same files as the reference LAMMPS on a
 //! deterministic scene (byte for byte but the DCD title lines, which name the writer and
 //! the time), the same bytes on 1 and 3 ranks, and MDAnalysis reads the DCD and XTC
 //! positions back. dump image: PNG pictures of the group's types, the same on 3 ranks
@@ -129,7 +129,7 @@ fn group_dumps_dcd_and_xtc_match_lammps_on_1_and_3_ranks() {
 }
 
 #[test]
-fn dump_modify_header_pad_flush_delay_region_and_write_dump_pad_match_lammps() {
+fn dump_modify_keywords_and_write_dump_pad_match_lammps() {
     let rest = "dump h heavy custom 5 h.dump id type x
 dump_modify h header no flush no sort id buffer no
 dump p all atom 5 p.*.atom
@@ -143,13 +143,15 @@ dump r heavy custom 5 r.dump id type
 dump_modify r region ball sort id
 dump n all custom 5 n.dump id type
 dump_modify n region ball region none sort id
+dump k heavy custom 5 k.dump id type x y vx
+dump_modify k sort id colname 1 ID colname x pos colname -1 last colname -2 yy format float %.3f
 run 10
 write_dump heavy custom w*.dump id x modify sort id pad 4 format float %g
 ";
     let (dl, dg) = (stage("modify-lammps", rest), stage("modify-gendpde", rest));
     expect_success("LAMMPS", &run_lammps(&dl, "in.dumps", &[]));
     gendpde(&dg);
-    for f in ["h.dump", "p.000000.atom", "p.000005.atom", "p.000010.atom", "q.xyz", "e.xyz", "r.dump", "n.dump", "w0010.dump"] {
+    for f in ["h.dump", "p.000000.atom", "p.000005.atom", "p.000010.atom", "q.xyz", "e.xyz", "r.dump", "n.dump", "k.dump", "w0010.dump"] {
         assert_eq!(String::from_utf8(bytes(&dl, f)).unwrap(), String::from_utf8(bytes(&dg, f)).unwrap(), "{f}");
     }
     assert!(!String::from_utf8(bytes(&dg, "h.dump")).unwrap().contains("ITEM"), "header no");
@@ -216,6 +218,7 @@ fn bad_dumps_are_refused_with_lammps_messages() {
         ("dump t all xtc 10 t.xtc\ndump_modify t flush yes", "in.bad:3: dump_modify: Cannot set dump_modify flush for dump xtc"),
         ("dump t all xtc 10 t.xtc\ndump_modify t sfactor 0", "in.bad:3: dump_modify: Illegal dump_modify sfactor value (must be > 0.0)"),
         ("dump c all atom 10 c.dump\ndump_modify c region none", "in.bad:3: dump_modify: dump c: dump_modify keyword 'region' is not supported for this dump style"),
+        ("dump c all custom 10 c.dump id x\ndump_modify c colname 3 X", "in.bad:3: dump_modify: Incorrect dump_modify arguments: colname 3 X"),
         ("dump c all atom 10 c.dump\ndump_modify c bogus 1", "in.bad:3: dump_modify: dump c: dump_modify keyword 'bogus' is unknown"),
         ("write_dump all cfg c.cfg", "in.bad:2: write_dump: unknown dump style 'cfg'"),
     ] {
