@@ -1,7 +1,7 @@
-//! The per-particle keywords of LAMMPS (and gendpde's), one table: a keyword that is a
-//! field of the particle table reads it (`engine::FIELDS`), the others are derived (v =
-//! p/m, unwrapped and scaled positions, uMech = u - uCond). Dumps, H5MD, compute
-//! property/atom and the inputs of compute reduce read them.
+//! The per-particle keywords of LAMMPS (and gendpde's), one table, [`KEYWORDS`]: a
+//! keyword that is a field of the particle table reads it (`engine::FIELDS`), the others
+//! are derived (v = p/m, unwrapped and scaled positions, uMech = u - uCond). The text
+//! dumps, H5MD, compute property/atom and the per-atom inputs of computes read them.
 
 use gendpde_engine::{FieldReader, Particles};
 use gendpde_integrators::System;
@@ -134,3 +134,20 @@ impl Reader {
 pub fn readers(keywords: &[Keyword], sys: &System) -> Result<Vec<Reader>, String> {
     keywords.iter().map(|k| k.reader(&sys.store)).collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn field_keywords_name_fields_of_the_particle_table() {
+        let width = |f: &str| gendpde_engine::FIELDS.iter().find(|x| x.name == f).map(|x| x.width);
+        for k in KEYWORDS {
+            match k.source {
+                Source::Field(f, i) => assert!(width(f).is_some_and(|w| i < w), "{}: value {i} of field '{f}'", k.name),
+                Source::Derived(_, reads) => assert!(reads.iter().all(|f| width(f).is_some()), "{}: reads {reads:?}", k.name),
+            }
+        }
+    }
+}
+

@@ -188,10 +188,10 @@ impl Interpreter {
             "thermo" => output::thermo(&mut outputs.thermo, a)?,
             "thermo_style" => output::thermo_style(&mut outputs.thermo, &self.vars, a)?,
             "thermo_modify" => output::thermo_modify(&mut outputs.thermo, &sim.computes, a)?,
-            "dump" => output::dump(&mut outputs.dumps, a)?,
+            "dump" => output::dump(&mut outputs.dumps, sim, a)?,
             "dump_modify" => output::dump_modify(&mut outputs.dumps, a)?,
             "undump" => output::undump(&mut outputs.dumps, a)?,
-            "write_dump" => output::write_dump(sim, &self.vars, &outputs.thermo, a)?,
+            "write_dump" => output::write_dump(sim, &self.vars, &outputs.thermo, &mut self.out, a)?,
             "checkpoint" => outputs.checkpoint = Checkpoint::parse(a)?,
             "print" => {
                 let (sim, thermo, vars) = (&*sim, &outputs.thermo, &self.vars);

@@ -6,8 +6,8 @@ use crate::base::args::Args;
 use crate::base::script::Mode;
 use crate::model::sim::Sim;
 use crate::output::console::Output;
-use crate::output::dump::{group_all, Dump, PerAtomInputs, TextDump, WriteDump};
-use crate::output::h5md::H5mdDump;
+use crate::output::dump::{self, Dump, WriteDump};
+use crate::output::schedule::{Frame, Span};
 use crate::output::thermo::{heading, ThermoConfig};
 use crate::styles::compute::{self, Compute};
 use gendpde_io::{ScriptError, Variables};
@@ -81,19 +81,13 @@ pub fn thermo_modify(thermo: &mut ThermoConfig, computes: &[Box<dyn Compute>], a
     Ok(())
 }
 
-/// `dump ID all custom|atom|xyz|h5md N FILE ...`.
-pub fn dump(dumps: &mut Vec<Box<dyn Dump>>, a: &mut Args) -> Result<(), ScriptError> {
+/// `dump ID GROUP custom|atom|xyz|h5md|dcd|xtc N FILE ...`.
+pub fn dump(dumps: &mut Vec<Box<dyn Dump>>, sim: &Sim, a: &mut Args) -> Result<(), ScriptError> {
     let id = a.word("a dump ID")?;
     if dumps.iter().any(|d| d.id() == id) {
         return Err(a.err(format!("dump ID '{id}' is in use (undump it first)")));
     }
-    group_all(a)?;
-    let style = a.word("a dump style (custom, atom, xyz or h5md)")?;
-    let dump: Box<dyn Dump> = match TextDump::parse(id, style, a)? {
-        Some(d) => Box::new(d),
-        None if style == "h5md" => Box::new(H5mdDump::parse(id, a)?),
-        None => return Err(a.err(format!("unknown dump style '{style}'; known: custom, atom, xyz, h5md"))),
-    };
+    let dump = dump::parse(id, sim, a, false)?;
     dumps.push(dump);
     Ok(())
 }
@@ -120,11 +114,12 @@ pub fn undump(dumps: &mut Vec<Box<dyn Dump>>, a: &mut Args) -> Result<(), Script
     dumps.remove(k).close().map_err(|e| a.err(e))
 }
 
-/// `write_dump all custom FILE COLUMNS... [modify ...]`.
-pub fn write_dump(sim: &Sim, vars: &Variables, thermo: &ThermoConfig, a: &mut Args) -> Result<(), ScriptError> {
-    let dump = WriteDump::parse(a)?;
+/// `write_dump GROUP STYLE FILE ARGS... [modify ...]`: one frame of a dump of any style.
+pub fn write_dump(sim: &Sim, vars: &Variables, thermo: &ThermoConfig, out: &mut Output, a: &mut Args) -> Result<(), ScriptError> {
+    let dump = WriteDump::parse(sim, a)?;
     let sys = sim.system.as_ref().ok_or_else(|| a.err("write_dump before create_box"))?;
-    dump.write(sim, sys, &PerAtomInputs { vars, thermo }).map_err(|e| a.err(e))
+    let run = Span { first: sys.clock.step, last: sys.clock.step };
+    dump.write(&mut Frame { sim, sys, vars, thermo, out, run, cpu: 0.0 }).map_err(|e| a.err(e))
 }
 
 /// `print TEXT [screen yes|no]`, TEXT substituted as it executes (LAMMPS's print).

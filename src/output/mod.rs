@@ -5,7 +5,6 @@ pub mod checkpoint;
 pub mod console;
 pub mod dump;
 pub mod fix;
-pub mod h5md;
 pub mod restart;
 pub mod schedule;
 pub mod thermo;

@@ -220,7 +220,7 @@ fn bad_dump_commands_are_refused_with_their_line() {
         ("dump c all custom 0 c.dump id", "in.bad:2: dump: the output interval must be positive"),
         ("dump c all atom 10 c.dump\ndump_modify c format 7 %g", "in.bad:3: dump_modify: format 7: expected"),
         ("dump c all atom 10 c.dump\ndump_modify c sort 2", "in.bad:3: dump_modify: sort 2"),
-        ("dump c all atom 10 c.dump\ndump_modify c author me", "in.bad:3: dump_modify: dump c: unknown dump_modify keyword 'author'"),
+        ("dump c all atom 10 c.dump\ndump_modify c author me", "in.bad:3: dump_modify: dump c: dump_modify keyword 'author' is not supported for this dump style"),
         ("dump_modify nope every 2", "in.bad:2: dump_modify: no dump with ID 'nope'"),
         ("dump c all xyz 10 c.dump\ndump c all xyz 10 d.dump", "in.bad:3: dump: dump ID 'c' is in use"),
     ] {

@@ -1,28 +1,20 @@
-//! Text dumps in LAMMPS's formats: `dump ID all custom|atom|xyz N FILE ...` every N
-//! steps, and `write_dump all custom FILE COLUMNS... [modify ...]` once.
-//!
-//! The per-particle keywords (LAMMPS's and gendpde's) are one table, [`KEYWORDS`]: a
-//! keyword that is a field of the particle table reads it (`engine::FIELDS`), the others
-//! are derived (v = p/m, unwrapped and scaled positions, uMech = u - uCond). H5MD dumps
-//! select their elements from the same table.
-//!
-//! Rank 0 writes the rows in ID order, collected in blocks of 2^20 IDs (`gather`), so it
-//! never holds more than one block. Unlike LAMMPS, dumps are always sorted by ID.
+//! LAMMPS's text dumps: `dump ID GROUP custom|atom|xyz N FILE [COLUMNS...]` and their
+//! `dump_modify` keywords (formats, headers, units, time, element names).
 
 use crate::base::args::Args;
-use crate::base::gather;
-pub use crate::base::particle_keywords::{keyword_names, readers, Keyword, Reader};
 use crate::model::per_atom;
 use crate::model::sim::Sim;
-use crate::output::thermo::{ThermoConfig, ThermoContext};
+use crate::output::dump::head::{unknown_key, Dump, Head, LAMMPS_MODIFY_KEYS};
+use crate::base::particle_keywords::{keyword_names, Keyword, Reader};
 use crate::output::schedule::{Frame, RunOutput, Span};
+use crate::output::thermo::{ThermoConfig, ThermoContext};
 use gendpde_integrators::System;
 use gendpde_io::{format_printf, ScriptError, Variables};
 use std::fs::File;
 use std::io::{BufWriter, Write};
 
 /// A column of a text dump: a per-particle keyword, or LAMMPS's `c_ID` or `c_ID[k]` (a
-/// per-atom compute's vector or array column) or `v_name` (an atom-style variable, evaluated per particle
+/// per-atom compute's vector or array column), `f_ID` or `f_ID[k]`, or `v_name` (an atom-style variable, evaluated per particle
 /// when the frame is written).
 #[derive(Clone)]
 enum Column {
@@ -55,10 +47,10 @@ enum ColumnValues {
     Values(Vec<f64>),
 }
 
-/// What the values of `c_ID` and `v_name` columns read besides the system.
-pub struct PerAtomInputs<'a> {
-    pub vars: &'a Variables,
-    pub thermo: &'a ThermoConfig,
+/// What the values of `c_ID`, `f_ID` and `v_name` columns read besides the system.
+struct PerAtomInputs<'a> {
+    vars: &'a Variables,
+    thermo: &'a ThermoConfig,
 }
 
 impl PerAtomInputs<'_> {
@@ -104,8 +96,12 @@ struct TextFormat {
     /// overrides (`format M`).
     formats: Vec<Format>,
     overrides: Vec<Option<String>>,
+    /// `colname`: the header names of columns (custom), None for the column's own.
+    names: Vec<Option<String>>,
     units: bool,
     time: bool,
+    /// `header`: write each frame's header (default yes).
+    header: bool,
     /// `element`: the xyz name of each type (default: the type number).
     elements: Vec<String>,
 }
@@ -117,7 +113,7 @@ fn check_format(a: &Args, f: &str) -> Result<String, ScriptError> {
 
 impl TextFormat {
     fn new(style: Style, columns: Vec<Column>, float: Format) -> Self {
-        let mut f = Self { style, columns: Vec::new(), float, formats: Vec::new(), overrides: Vec::new(), units: false, time: false, elements: Vec::new() };
+        let mut f = Self { style, columns: Vec::new(), float, formats: Vec::new(), overrides: Vec::new(), names: Vec::new(), units: false, time: false, header: true, elements: Vec::new() };
         f.reset(columns);
         f
     }
@@ -126,6 +122,7 @@ impl TextFormat {
     fn reset(&mut self, columns: Vec<Column>) {
         self.formats = columns.iter().map(|c| if c.integer() { Format::Printf("%d".into()) } else { self.float.clone() }).collect();
         self.overrides = vec![None; columns.len()];
+        self.names = vec![None; columns.len()];
         self.columns = columns;
     }
 
@@ -133,10 +130,31 @@ impl TextFormat {
     /// `key` is none of them.
     fn modify(&mut self, key: &str, a: &mut Args) -> Result<bool, ScriptError> {
         match key {
-            "sort" => match a.word("id")? {
-                "id" => {}
-                v => return Err(a.err(format!("sort {v}: dumps are always sorted by id"))),
+            // `off`: LAMMPS's rows come in no set order; ID order is one
+            "sort" => match a.word("off or id")? {
+                "id" | "off" => {}
+                v => return Err(a.err(format!("sort {v}: text dumps are sorted by id (sort id or off)"))),
             },
+            "header" => self.header = a.yes_no("header")?,
+            "colname" if self.style == Style::Custom => {
+                let which = a.word("a column number, a column keyword or default")?;
+                if which == "default" {
+                    self.names.fill(None);
+                    return Ok(true);
+                }
+                let n = self.columns.len() as i64;
+                let col = match which.parse::<i64>() {
+                    Ok(k) if (1..=n).contains(&k) => Some(k - 1),
+                    Ok(k) if (-n..=-1).contains(&k) => Some(n + k),
+                    Ok(_) => None,
+                    Err(_) => self.columns.iter().position(|c| c.name() == which).map(|k| k as i64),
+                };
+                let name = a.word("a column name")?;
+                let col = col.ok_or_else(|| a.err(format!("Incorrect dump_modify arguments: colname {which} {name}")))?;
+                self.names[col as usize] = Some(name.to_string());
+            }
+            // LAMMPS's buffering of the ranks' rows: the text is the same either way
+            "buffer" => _ = a.yes_no("buffer")?,
             "format" => match a.word("line, int, float, none or a column number M")? {
                 "none" => {
                     let columns = std::mem::take(&mut self.columns);
@@ -210,7 +228,7 @@ impl TextFormat {
             let e = |x: f64| format_printf("%1.16e", x).unwrap_or_else(|_| format!("{x:e}"));
             writeln!(o, "{} {}", e(d.lo[k]), e(d.hi[k]))?;
         }
-        let names: Vec<String> = self.columns.iter().map(Column::name).collect();
+        let names: Vec<String> = self.columns.iter().zip(&self.names).map(|(c, n)| n.clone().unwrap_or_else(|| c.name())).collect();
         writeln!(o, "ITEM: ATOMS {}", names.join(" "))
     }
 
@@ -238,14 +256,14 @@ impl TextFormat {
 
     /// Writes a frame of `sys` to `o` on rank 0 (every rank must call: it gathers);
     /// `first`: the first frame of the dump (LAMMPS writes the units once).
-    fn frame(&self, o: &mut Option<impl Write>, sim: &Sim, sys: &System, inputs: &PerAtomInputs, first: bool) -> Result<(), String> {
+    fn frame(&self, o: &mut Option<impl Write>, head: &Head, sim: &Sim, sys: &System, inputs: &PerAtomInputs, first: bool) -> Result<(), String> {
         let mut columns = self.columns.clone();
         if self.style == Style::Xyz {
             columns.insert(0, Column::Keyword(Keyword::find("type").expect("type is a keyword")));
         }
         let values: Vec<ColumnValues> = columns.iter().map(|c| inputs.values(c, sim, sys)).collect::<Result<_, _>>()?;
-        let natoms = sys.comm.count(sys.store.nlocal);
-        if let Some(o) = o.as_mut() {
+        let natoms = head.count(sim, sys)?;
+        if let Some(o) = o.as_mut().filter(|_| self.header) {
             self.header(o, sim, sys, natoms, self.units && first).map_err(|e| e.to_string())?;
         }
         let width = columns.len() + 1;
@@ -260,17 +278,13 @@ impl TextFormat {
             let Some(o) = o.as_mut() else { return Ok(()) };
             rows.chunks_exact(width).try_for_each(|r| self.row(o, &r[1..]))
         };
-        gather::sorted_rows(sys, sim.max_tag, width, row, &mut emit)?;
-        if let Some(o) = o.as_mut() {
-            o.flush().map_err(|e| e.to_string())?;
-        }
-        Ok(())
+        head.rows(sim, sys, width, row, &mut emit)
     }
 }
 
 /// Whether `w` is a `dump_modify` keyword (ends a list of element names).
 fn is_modify_key(w: &str) -> bool {
-    matches!(w, "sort" | "format" | "units" | "time" | "element" | "every" | "first" | "append" | "author" | "email" | "scale" | "image")
+    LAMMPS_MODIFY_KEYS.contains(&w)
 }
 
 /// The columns of a `dump custom` or `write_dump custom`.
@@ -292,243 +306,113 @@ fn parse_columns(a: &mut Args) -> Result<Vec<Column>, ScriptError> {
     Ok(cols)
 }
 
-/// The group word of a dump command (only `all`).
-pub fn group_all(a: &mut Args) -> Result<(), ScriptError> {
-    match a.word("a group")? {
-        "all" => Ok(()),
-        g => Err(a.err(format!("group '{g}': only group all is defined"))),
-    }
-}
-
-/// A `write_dump` snapshot: its file and format.
-pub struct WriteDump {
-    file: String,
-    format: TextFormat,
-}
-
-impl WriteDump {
-    /// The words after `write_dump`: `all custom FILE COLUMNS... [modify KEY VALUES...]`.
-    /// Floats print in the shortest form that reads back to the same double unless a
-    /// format is given.
-    pub fn parse(a: &mut Args) -> Result<Self, ScriptError> {
-        group_all(a)?;
-        match a.word("a dump style (custom)")? {
-            "custom" => {}
-            s => return Err(a.err(format!("unknown write_dump style '{s}'; known: custom"))),
-        }
-        let file = a.word("a file name")?.to_string();
-        let mut format = TextFormat::new(Style::Custom, parse_columns(a)?, Format::RoundTrip);
-        if a.peek() == Some("modify") {
-            a.word("modify")?;
-            while a.remaining() > 0 {
-                let key = a.word("a dump_modify keyword")?;
-                if !format.modify(key, a)? {
-                    return Err(a.err(format!("write_dump modify {key}: known are sort, format, units, time")));
-                }
-            }
-        }
-        Ok(Self { file, format })
-    }
-
-    /// Writes the snapshot (rank 0 writes, through a temporary file; every rank calls).
-    pub fn write(&self, sim: &Sim, sys: &System, inputs: &PerAtomInputs) -> Result<(), String> {
-        let (file, tmp) = (&self.file, format!("{}.tmp", self.file));
-        let mut out = match sys.comm.rank() {
-            0 => Some(BufWriter::new(File::create(&tmp).map_err(|e| format!("cannot create '{tmp}': {e}"))?)),
-            _ => None,
-        };
-        self.format.frame(&mut out, sim, sys, inputs, true).map_err(|e| format!("writing '{file}': {e}"))?;
-        if out.is_some() {
-            drop(out);
-            std::fs::rename(&tmp, file).map_err(|e| format!("renaming '{tmp}' to '{file}': {e}"))?;
-        }
-        Ok(())
-    }
-}
-
-/// When a periodic dump writes: every N steps, at the setup of a run when the step is
-/// a multiple of N (`first yes`: at the first setup after the dump command whatever the
-/// step, as LAMMPS), once per step.
-#[derive(Clone, Debug)]
-pub struct Every {
-    pub every: u64,
-    pub first: bool,
-    last_step: Option<u64>,
-}
-
-impl Every {
-    pub fn new(every: u64) -> Self {
-        Self { every, first: false, last_step: None }
-    }
-
-    pub fn next_step(&self, step: u64, run: Span) -> Option<u64> {
-        let first = self.first && self.last_step.is_none() && step == run.first;
-        let due = if first { step } else { step.next_multiple_of(self.every) };
-        Some(if self.last_step == Some(due) { (due + 1).next_multiple_of(self.every) } else { due })
-    }
-
-    /// Notes a frame written at `step`.
-    pub fn wrote(&mut self, step: u64) {
-        self.last_step = Some(step);
-    }
-
-    /// `dump_modify every N` and `first yes|no` (read already); false for other keys.
-    pub fn modify(&mut self, key: &str, a: &mut Args) -> Result<bool, ScriptError> {
-        match key {
-            "every" => {
-                self.every = a.u64("the output interval N")?;
-                if self.every == 0 {
-                    return Err(a.err("every: the output interval must be positive"));
-                }
-            }
-            "first" => self.first = a.yes_no("first")?,
-            _ => return Ok(false),
-        }
-        Ok(true)
-    }
-}
-
-/// A periodic dump: text or H5MD.
-pub trait Dump: RunOutput {
-    fn id(&self) -> &str;
-    /// One `dump_modify` keyword (read already) and its values.
-    fn modify(&mut self, key: &str, a: &mut Args) -> Result<(), ScriptError>;
-    /// Flushes and closes its file (it reopens, appending, when written again).
-    fn close(&mut self) -> Result<(), String>;
-}
-
-/// `dump ID all custom|atom|xyz N FILE [COLUMNS...]`.
+/// `dump ID GROUP custom|atom|xyz N FILE [COLUMNS...]`.
 pub struct TextDump {
-    id: String,
-    every: Every,
-    file: String,
+    head: Head,
     format: TextFormat,
     append: bool,
     /// `dump atom`: `scale` and `image` of dump_modify.
     scale: bool,
     image: bool,
-    out: Option<BufWriter<File>>,
+    /// `flush`: flush the file after every frame (LAMMPS's default).
+    flush: bool,
     /// A frame was written (with the units, when asked for).
     wrote_units: bool,
 }
 
 impl TextDump {
-    /// The words after `dump ID` when the style is a text one (None otherwise).
-    pub fn parse(id: &str, style: &str, a: &mut Args) -> Result<Option<Self>, ScriptError> {
-        let style = match style {
-            "custom" => Style::Custom,
-            "atom" => Style::Atom,
-            "xyz" => Style::Xyz,
-            _ => return Ok(None),
+    /// The words after `dump ID GROUP STYLE N FILE` of a text style: the columns of
+    /// `custom`. A `write_dump` prints floats in the shortest form that reads back.
+    pub fn parse(head: Head, style: &str, a: &mut Args) -> Result<Self, ScriptError> {
+        let (style, columns) = match style {
+            "custom" => (Style::Custom, parse_columns(a)?),
+            "atom" => (Style::Atom, keyword_columns(&["id", "type", "xs", "ys", "zs"])),
+            _ => (Style::Xyz, keyword_columns(&["x", "y", "z"])),
         };
-        let every = a.u64("the output interval N")?;
-        if every == 0 {
-            return Err(a.err("the output interval must be positive"));
-        }
-        let file = a.word("a file name")?.to_string();
-        if file.contains('%') || file.ends_with(".gz") || file.ends_with(".bin") {
-            return Err(a.err(format!("file '{file}': per-rank (%), compressed and binary dumps are not supported")));
-        }
-        let columns = match style {
-            Style::Custom => parse_columns(a)?,
-            Style::Atom => ["id", "type", "xs", "ys", "zs"].iter().filter_map(|k| Keyword::find(k)).map(Column::Keyword).collect(),
-            Style::Xyz => ["x", "y", "z"].iter().filter_map(|k| Keyword::find(k)).map(Column::Keyword).collect(),
-        };
-        a.done()?;
-        let format = TextFormat::new(style, columns, Format::Printf("%g".into()));
-        Ok(Some(Self { id: id.to_string(), every: Every::new(every), file, format, append: false, scale: true, image: false, out: None, wrote_units: false }))
+        head.done(a)?;
+        let float = if head.once { Format::RoundTrip } else { Format::Printf("%g".into()) };
+        let format = TextFormat::new(style, columns, float);
+        Ok(Self { head, format, append: false, scale: true, image: false, flush: true, wrote_units: false })
     }
 
     /// `dump atom`'s columns after `scale` or `image` changed.
     fn atom_columns(&mut self) {
         let pos = if self.scale { ["id", "type", "xs", "ys", "zs"] } else { ["id", "type", "x", "y", "z"] };
         let image: &[&str] = if self.image { &["ix", "iy", "iz"] } else { &[] };
-        self.format.reset(pos.iter().chain(image).filter_map(|k| Keyword::find(k)).map(Column::Keyword).collect());
+        self.format.reset(keyword_columns(&[&pos[..], image].concat()));
     }
 
     fn open(&mut self, step: u64) -> Result<(), String> {
-        if self.out.is_some() {
+        if self.head.out.is_some() {
             return Ok(());
         }
-        let per_frame = self.file.contains('*');
-        let path = self.file.replace('*', &step.to_string());
+        let per_frame = self.head.file.contains('*');
+        let path = self.head.path(step);
         let append = self.append && !per_frame;
         let f = File::options().create(true).write(true).append(append).truncate(!append).open(&path);
-        self.out = Some(BufWriter::new(f.map_err(|e| format!("cannot open '{path}': {e}"))?));
+        self.head.out = Some(BufWriter::new(f.map_err(|e| format!("cannot open '{path}': {e}"))?));
         // later frames of the same file append, as LAMMPS keeps it open
         self.append = self.append || !per_frame;
         Ok(())
     }
 }
 
+/// The columns of keywords `names`.
+fn keyword_columns(names: &[&str]) -> Vec<Column> {
+    names.iter().filter_map(|k| Keyword::find(k)).map(Column::Keyword).collect()
+}
+
 impl RunOutput for TextDump {
     fn next_step(&self, step: u64, run: Span) -> Option<u64> {
-        self.every.next_step(step, run)
+        self.head.every.next_step(step, run)
     }
 
     fn write(&mut self, f: &mut Frame) -> Result<(), String> {
         let step = f.sys.clock.step;
-        self.every.wrote(step);
+        self.head.every.wrote(step);
         let result = (|| {
             if f.sys.comm.rank() == 0 {
                 self.open(step)?;
             }
-            self.format.frame(&mut self.out, f.sim, f.sys, &PerAtomInputs { vars: f.vars, thermo: f.thermo }, !self.wrote_units)?;
+            let mut out = self.head.out.take();
+            let wrote = self.format.frame(&mut out, &self.head, f.sim, f.sys, &PerAtomInputs { vars: f.vars, thermo: f.thermo }, !self.wrote_units);
+            self.head.out = out;
+            wrote?;
             self.wrote_units = true;
-            if self.file.contains('*') {
-                self.out = None;
+            if self.head.file.contains('*') {
+                self.head.close()?;
+            } else if let Some(o) = self.head.out.as_mut().filter(|_| self.flush) {
+                o.flush().map_err(|e| e.to_string())?;
             }
             Ok(())
         })();
-        result.map_err(|e: String| format!("dump {}: {e}", self.id))
+        result.map_err(|e: String| format!("dump {}: {e}", self.head.id))
     }
 }
 
 impl Dump for TextDump {
-    fn id(&self) -> &str {
-        &self.id
-    }
-
     fn modify(&mut self, key: &str, a: &mut Args) -> Result<(), ScriptError> {
-        if self.every.modify(key, a)? || self.format.modify(key, a)? {
+        if self.head.modify(key, a)? || self.format.modify(key, a)? {
             return Ok(());
         }
         match key {
             "append" => self.append = a.yes_no("append")?,
+            "flush" => self.flush = a.yes_no("flush")?,
+            "region" if self.format.style == Style::Custom => self.head.set_region(a)?,
             "scale" | "image" if self.format.style == Style::Atom => {
                 *(if key == "scale" { &mut self.scale } else { &mut self.image }) = a.yes_no(key)?;
                 self.atom_columns();
             }
-            _ => {
-                return Err(a.err(format!(
-                    "dump {}: unknown dump_modify keyword '{key}'; known: every, first, append, sort, format, units, time, element (scale, image: dump atom)",
-                    self.id
-                )))
-            }
+            _ => return Err(unknown_key(&self.head, key, "append, flush, sort, format, header, units, time, buffer, element (region, colname: dump custom; scale, image: dump atom)", a)),
         }
         Ok(())
     }
 
-    fn close(&mut self) -> Result<(), String> {
-        match self.out.take() {
-            Some(mut o) => o.flush().map_err(|e| format!("dump {}: closing '{}': {e}", self.id, self.file)),
-            None => Ok(()),
-        }
+    fn head(&self) -> &Head {
+        &self.head
     }
-}
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn field_keywords_name_fields_of_the_particle_table() {
-        let width = |f: &str| gendpde_engine::FIELDS.iter().find(|x| x.name == f).map(|x| x.width);
-        for k in KEYWORDS {
-            match k.source {
-                Source::Field(f, i) => assert!(width(f).is_some_and(|w| i < w), "{}: value {i} of field '{f}'", k.name),
-                Source::Derived(_, reads) => assert!(reads.iter().all(|f| width(f).is_some()), "{}: reads {reads:?}", k.name),
-            }
-        }
+    fn head_mut(&mut self) -> &mut Head {
+        &mut self.head
     }
 }

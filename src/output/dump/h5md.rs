@@ -1,19 +1,18 @@
-//! `dump ID all h5md N FILE field... [append yes]`: H5MD snapshots every N steps,
-//! written by rank 0 from particles gathered in tag order (`gather`); the values of
-//! each element are those of the dump keywords (`dump::KEYWORDS`).
+//! `dump ID GROUP h5md N FILE field... [append yes]`: H5MD snapshots every N steps of
+//! the group's particles, written by rank 0 from particles gathered in tag order
+//! (`gather`); the values of each element are those of the dump keywords
+//! (`dump::KEYWORDS`).
 
 use crate::base::args::Args;
-use crate::base::gather::sorted_rows;
-use crate::output::dump::{readers, Dump, Every, Keyword};
+use crate::output::dump::head::{unknown_key, Dump, Head};
+use crate::base::particle_keywords::{readers, Keyword};
 use crate::output::schedule::{Frame, RunOutput, Span};
 use crate::output::thermo;
 use gendpde_io::{H5mdField, H5mdMeta, H5mdWriter, ScriptError};
 use std::path::Path;
 
 pub struct H5mdDump {
-    id: String,
-    every: Every,
-    file: String,
+    head: Head,
     fields: Vec<H5mdField>,
     /// Continue an existing file (a run restarted from a checkpoint) instead of
     /// truncating it.
@@ -43,15 +42,10 @@ fn keywords(f: H5mdField) -> &'static [&'static str] {
 }
 
 impl H5mdDump {
-    /// The words after `dump ID GROUP h5md`: `N FILE field... [append yes|no]`.
-    pub fn parse(id: &str, a: &mut Args) -> Result<Self, ScriptError> {
-        let every = a.u64("the output interval N")?;
-        if every == 0 {
-            return Err(a.err("the output interval must be positive"));
-        }
-        let file = a.word("a file name")?.to_string();
+    /// The words after `dump ID GROUP h5md N FILE`: `field... [append yes|no]`.
+    pub fn parse(head: Head, a: &mut Args) -> Result<Self, ScriptError> {
         let (mut fields, mut append) = (Vec::new(), false);
-        while let Some(w) = a.peek() {
+        while let Some(w) = a.peek().filter(|_| !head.at_end(a)) {
             a.word("a field")?;
             if w == "append" {
                 append = a.yes_no("append")?;
@@ -66,34 +60,30 @@ impl H5mdDump {
             return Err(a.err(format!("missing argument: expected fields ({FIELDS})")));
         }
         let author = std::env::var("USER").unwrap_or_else(|_| "unknown".into());
-        Ok(Self { id: id.to_string(), every: Every::new(every), file, fields, append, author, email: None, writer: None })
+        Ok(Self { head, fields, append, author, email: None, writer: None })
     }
 }
 
 impl RunOutput for H5mdDump {
     fn next_step(&self, step: u64, run: Span) -> Option<u64> {
-        self.every.next_step(step, run)
+        self.head.every.next_step(step, run)
     }
 
     fn write(&mut self, f: &mut Frame) -> Result<(), String> {
-        self.write_frame(f).map_err(|e| format!("dump {}: {e}", self.id))
+        self.write_frame(f).map_err(|e| format!("dump {}: {e}", self.head.id))
     }
 }
 
 impl Dump for H5mdDump {
-    fn id(&self) -> &str {
-        &self.id
-    }
-
     fn modify(&mut self, key: &str, a: &mut Args) -> Result<(), ScriptError> {
-        if self.every.modify(key, a)? {
+        if self.head.modify(key, a)? {
             return Ok(());
         }
         match key {
             "append" => self.append = a.yes_no("append")?,
             "author" => self.author = a.word("an author name (quoted if it has spaces)")?.to_string(),
             "email" => self.email = Some(a.word("an email address")?.to_string()),
-            _ => return Err(a.err(format!("dump {}: unknown dump_modify keyword '{key}' for h5md; known: every, first, append, author, email", self.id))),
+            _ => return Err(unknown_key(&self.head, key, "append, author, email", a)),
         }
         Ok(())
     }
@@ -103,18 +93,27 @@ impl Dump for H5mdDump {
         self.append = true;
         Ok(())
     }
+
+    fn head(&self) -> &Head {
+        &self.head
+    }
+
+    fn head_mut(&mut self) -> &mut Head {
+        &mut self.head
+    }
 }
 
 impl H5mdDump {
     /// Writes a frame of the current step.
     fn write_frame(&mut self, frame: &Frame) -> Result<(), String> {
-        let (sys, natoms) = (frame.sys, frame.sys.comm.count(frame.sys.store.nlocal) as usize);
-        self.every.wrote(sys.clock.step);
+        let (sys, natoms) = (frame.sys, self.head.count(frame.sim, frame.sys)? as usize);
+        self.head.every.wrote(sys.clock.step);
         // the thermo keywords at this step, the observables (every rank: collective)
         let values = thermo::values(frame.thermo, frame)?;
         let observables: Vec<(&str, f64)> = frame.thermo.keywords.iter().map(String::as_str).zip(values).filter(|(k, _)| *k != "step").collect();
         if sys.comm.rank() == 0 && self.writer.is_none() {
-            let path = Path::new(&self.file);
+            let file = self.head.path(sys.clock.step);
+            let path = Path::new(&file);
             let w = if self.append && path.exists() {
                 H5mdWriter::append(path, natoms, &self.fields)
             } else {
@@ -143,7 +142,7 @@ impl H5mdDump {
         }
         let mut first_row = 0;
         let mut column = Vec::new();
-        let (writer, fields) = (&mut self.writer, &self.fields);
+        let (writer, fields, head) = (&mut self.writer, &self.fields, &self.head);
         let mut emit = |rows: &[f64]| -> Result<(), String> {
             let Some(w) = writer.as_mut() else { return Ok(()) };
             let n = rows.len() / width;
@@ -159,7 +158,7 @@ impl H5mdDump {
             first_row += n;
             Ok(())
         };
-        sorted_rows(sys, frame.sim.max_tag, width, row, &mut emit)?;
+        head.rows(frame.sim, sys, width, row, &mut emit)?;
         if let Some(w) = self.writer.as_mut() {
             w.end_frame().map_err(|e| e.0)?;
         }
