@@ -38,3 +38,15 @@ pub fn sorted_rows<E>(
     }
     first_err.map_or(Ok(()), Err)
 }
+
+/// Every rank's `local` words on every rank, concatenated in rank order (the ranks may
+/// hold different numbers of them). Collective.
+pub fn all_ranks(sys: &System, local: &[u64]) -> Vec<u64> {
+    let t = sys.comm.transport();
+    let counts = t.all_gather(&[local.len() as u64]);
+    let width = counts.iter().copied().max().unwrap_or(0) as usize;
+    let mut padded = local.to_vec();
+    padded.resize(width, 0);
+    let all = t.all_gather(&padded);
+    counts.iter().zip(all.chunks_exact(width.max(1))).flat_map(|(&n, rank)| rank[..n as usize].iter().copied()).collect()
+}

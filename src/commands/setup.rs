@@ -389,17 +389,8 @@ pub fn create_atoms(sim: &mut Sim, a: &mut Args) -> Result<(), ScriptError> {
 
 /// The positions of the particles of all ranks (every rank gets all of them).
 fn all_positions(sys: &System) -> Vec<Vec3> {
-    let t = sys.comm.transport();
-    let counts = t.all_gather(&[sys.store.nlocal as u64]);
-    let width = 3 * counts.iter().copied().max().unwrap_or(0) as usize;
-    let mut local: Vec<u64> = sys.store.r[..sys.store.nlocal].iter().flat_map(|r| r.map(f64::to_bits)).collect();
-    local.resize(width, 0);
-    let all = t.all_gather(&local);
-    counts
-        .iter()
-        .zip(all.chunks_exact(width.max(1)))
-        .flat_map(|(&n, rank)| rank[..3 * n as usize].chunks_exact(3).map(|c| [0, 1, 2].map(|k| f64::from_bits(c[k]))))
-        .collect()
+    let local: Vec<u64> = sys.store.r[..sys.store.nlocal].iter().flat_map(|r| r.map(f64::to_bits)).collect();
+    crate::base::gather::all_ranks(sys, &local).chunks_exact(3).map(|c| [0, 1, 2].map(|k| f64::from_bits(c[k]))).collect()
 }
 
 /// `mass TYPES M`.

@@ -55,7 +55,7 @@ impl Compute for ClusterAtom {
         }
         // tag and position of every member on every rank (bit patterns of the doubles)
         let local: Vec<u64> = (0..s.nlocal).filter(|&i| s.in_group(i, self.mask)).flat_map(|i| [s.tag[i], s.r[i][0].to_bits(), s.r[i][1].to_bits(), s.r[i][2].to_bits()]).collect();
-        let all = sys.comm.transport().all_gather(&local);
+        let all = crate::base::gather::all_ranks(sys, &local);
         let mut members: Vec<(u64, Vec3)> = all.chunks_exact(4).map(|c| (c[0], [f64::from_bits(c[1]), f64::from_bits(c[2]), f64::from_bits(c[3])])).collect();
         members.sort_by_key(|m| m.0);
         let d = &sys.domain;

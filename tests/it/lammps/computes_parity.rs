@@ -2,7 +2,7 @@
 //! temp/com, temp/region, gyration, count/type, vacf, msd, property/atom, reduce and
 //! reduce/region, coord/atom of a group, ke/atom; fix ave/time (scalar and vector modes,
 //! ave running, c_ID[*], f_ID in thermo), fix ave/histo, fix ave/atom (f_ID in dumps),
-//! fix print; thermo_modify temp of a temp/partial;
+//! fix print; cluster/atom and coord/atom with type columns; thermo_modify temp of a temp/partial;
 //! the group functions of variables (count, mass, xcm, vcm, fcm, bound, gyration, ke, with
 //! and without a region).
 //! A deterministic pair dpd scene (gamma 0): every thermo value to round-off, the files
@@ -140,6 +140,27 @@ thermo 10
 run 30
 ";
 
+/// compute cluster/atom of a group and of all, and coord/atom, on LAMMPS's random
+/// positions (create_atoms random draws LAMMPS's).
+const CLUSTERS: &str = "units lj
+comm_modify vel yes
+region box block 0 6 0 6 0 6
+create_box 2 box
+create_atoms 1 random 150 4821 NULL
+create_atoms 2 random 60 771 NULL
+mass * 1.0
+pair_style dpd 1.0 1.0 4928
+pair_coeff * * 25.0 0.0
+fix nve all nve
+group two type 2
+compute cl two cluster/atom 0.8
+compute cla all cluster/atom 0.6
+compute co all coord/atom cutoff 0.95 1 2
+dump d all custom 10 cl.dump id c_cl c_cla c_co[1] c_co[2]
+dump_modify d sort id
+run 0
+";
+
 /// The numbers of a text file, line by line.
 fn numbers(path: &Path) -> Vec<Vec<f64>> {
     let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
@@ -222,10 +243,21 @@ fn ave_atom_matches_lammps() {
     eprintln!("fix ave/atom: worst relative difference {worst:.2e}");
 }
 
+#[test]
+fn clusters_and_coordination_match_lammps() {
+    let ((dl, _), (dg, _)) = both("clusters", CLUSTERS);
+    let read = |d: &Path| parse_dump(&std::fs::read_to_string(d.join("cl.dump")).unwrap()).remove(0);
+    let (l, g) = (read(&dl), read(&dg));
+    assert_eq!(l.columns, g.columns);
+    assert_eq!(l.atoms, g.atoms);
+    let labels: std::collections::HashSet<u64> = l.atoms.iter().map(|a| a.1[1] as u64).collect();
+    assert!(labels.len() > 20 && labels.len() < 200, "a scene of many clusters: {}", labels.len());
+}
+
 #[cfg(feature = "mpi")]
 #[test]
 fn computes_and_output_fixes_do_not_depend_on_the_rank_count() {
-    for (scene, files) in [(SCENE, &["ave.txt", "avec.txt", "print.txt"][..]), (HISTO, &["h1.txt", "h2.txt", "h3.txt", "h4.txt"][..]), (AVE_ATOM, &["aa.dump"][..])] {
+    for (scene, files) in [(SCENE, &["ave.txt", "avec.txt", "print.txt"][..]), (HISTO, &["h1.txt", "h2.txt", "h3.txt", "h4.txt"][..]), (AVE_ATOM, &["aa.dump"][..]), (CLUSTERS, &["cl.dump"][..])] {
         let dir = tempdir("computes-ranks");
         std::fs::write(dir.join("in.x"), scene).unwrap();
         let mut first: Option<Vec<String>> = None;
