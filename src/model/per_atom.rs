@@ -8,6 +8,11 @@ use crate::model::sim::Sim;
 use crate::styles::compute::{self, Eval};
 use gendpde_integrators::System;
 use gendpde_io::Variables;
+use std::cell::RefCell;
+use std::collections::HashMap;
+
+/// The per-atom names [`particle_value`] reads.
+const PARTICLE_NAMES: [&str; 12] = ["x", "y", "z", "vx", "vy", "vz", "fx", "fy", "fz", "mass", "type", "id"];
 
 /// The value of per-atom name `name` of owned particle `i` (masses in the script's units:
 /// the store's carry the factor `mvv2e`).
@@ -33,7 +38,23 @@ pub fn variable(vars: &Variables, name: &str, sys: &System, mvv2e: f64, global: 
         Some(style) => return Err(format!("variable '{name}' is {style}-style; expected an atom- or equal-style variable")),
         None => return Err(format!("unknown variable '{name}'")),
     }
-    (0..sys.store.nlocal).map(|i| vars.evaluate_atom(name, &|n| particle_value(sys, i, mvv2e, n).or_else(|| global(n)))).collect()
+    // The global names are collective (thermo keywords, group functions): each is
+    // evaluated once, on every rank alike, by a first evaluation in which every
+    // per-particle name reads the same value (the parser evaluates every operand), and
+    // read from the cache for the particles, so ranks holding different numbers of
+    // particles make the same reductions.
+    let cache: RefCell<HashMap<String, Option<f64>>> = RefCell::default();
+    let cached = |n: &str| {
+        if let Some(&v) = cache.borrow().get(n) {
+            return v;
+        }
+        let v = global(n);
+        cache.borrow_mut().insert(n.to_string(), v);
+        v
+    };
+    let probe = 0.5377;
+    let _ = vars.evaluate_atom(name, &|n| if PARTICLE_NAMES.contains(&n) { Some(probe) } else { cached(n) });
+    (0..sys.store.nlocal).map(|i| vars.evaluate_atom(name, &|n| particle_value(sys, i, mvv2e, n).or_else(|| cached(n)))).collect()
 }
 
 /// The value of equal-style variable `name`.

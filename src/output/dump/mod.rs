@@ -46,7 +46,7 @@ pub fn parse(id: &str, sim: &Sim, a: &mut Args, once: bool) -> Result<Box<dyn Du
     }
     let head = Head { id: id.to_string(), group, every: Every::new(every), file, pad: 0, once, region: None, out: None };
     Ok(match style.as_str() {
-        "custom" | "atom" | "xyz" => Box::new(text::TextDump::parse(head, &style, a)?),
+        "custom" | "atom" | "xyz" => Box::new(text::TextDump::parse(head, &style, sim, a)?),
         "h5md" => Box::new(h5md::H5mdDump::parse(head, a)?),
         "dcd" => Box::new(dcd::DcdDump::parse(head, a)?),
         "image" => Box::new(image::ImageDump::parse(head, a)?),

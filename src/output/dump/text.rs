@@ -323,12 +323,20 @@ pub struct TextDump {
 impl TextDump {
     /// The words after `dump ID GROUP STYLE N FILE` of a text style: the columns of
     /// `custom`. A `write_dump` prints floats in the shortest form that reads back.
-    pub fn parse(head: Head, style: &str, a: &mut Args) -> Result<Self, ScriptError> {
+    /// A `f_ID` column names a fix with per-atom values defined so far (in `sim`).
+    pub fn parse(head: Head, style: &str, sim: &Sim, a: &mut Args) -> Result<Self, ScriptError> {
         let (style, columns) = match style {
             "custom" => (Style::Custom, parse_columns(a)?),
             "atom" => (Style::Atom, keyword_columns(&["id", "type", "xs", "ys", "zs"])),
             _ => (Style::Xyz, keyword_columns(&["x", "y", "z"])),
         };
+        for c in &columns {
+            if let Column::Fix(id) = c {
+                if per_atom::fix_values(sim, &format!("f_{id}")).is_none() {
+                    return Err(a.err(format!("Could not find dump custom fix ID: {id} (or it has no per-atom values of that column)")));
+                }
+            }
+        }
         head.done(a)?;
         let float = if head.once { Format::RoundTrip } else { Format::Printf("%g".into()) };
         let format = TextFormat::new(style, columns, float);

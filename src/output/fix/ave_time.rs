@@ -57,6 +57,7 @@ pub struct AveTime {
 impl AveTime {
     /// The words after `fix ID GROUP ave/time`.
     pub fn parse(a: &mut Args, c: &OutputFixContext) -> Result<Self, ScriptError> {
+        crate::base::groups::mask(&c.sim.groups, c.group, a).map_err(|_| a.err(format!("Could not find fix group ID {}", c.group)))?;
         let sampling = Sampling::parse(a, c.step)?;
         let mut words = Vec::new();
         while let Some(w) = a.peek().filter(|w| ["c_", "f_", "v_"].iter().any(|p| w.starts_with(p))) {
@@ -97,6 +98,11 @@ impl AveTime {
         let (mut names, mut extensive, mut rows) = (Vec::new(), Vec::new(), Vec::new());
         for w in &words {
             let (kind, id, index) = compute::reference(w).ok_or_else(|| a.err(format!("value '{w}': expected c_ID, c_ID[k], f_ID, f_ID[k] or v_name")))?;
+            // a wildcard needs a compute or fix to expand (LAMMPS's message otherwise)
+            let known = compute::find(&sim.computes, id).is_some() || sim.rdfs.iter().any(|r| r.id == id) || sim.fix_values.contains_key(id);
+            if index == Some(0) && !known {
+                return Err(a.err(format!("Invalid fix ave/time argument: {w}")));
+            }
             let shape = match kind {
                 'c' => match (compute::find(&sim.computes, id), sim.rdfs.iter().any(|r| r.id == id)) {
                     (Some(c), _) => c.shape(),
@@ -119,6 +125,7 @@ impl AveTime {
                 let ks: Vec<usize> = match (rdf, index) {
                     (true, Some(0)) => (1..=COLUMNS).collect(),
                     (true, Some(k)) if k <= COLUMNS => vec![k],
+                    (true, Some(_)) => return Err(a.err(format!("Fix ave/time compute {id} array is accessed out-of-range"))),
                     (false, None) if shape.vector > 0 && kind == 'c' => vec![0],
                     _ => return Err(a.err(format!("value '{w}': mode vector takes c_ID of a compute with a global vector or c_ID[k] of a compute rdf"))),
                 };
@@ -135,6 +142,9 @@ impl AveTime {
                 continue;
             }
             let prefix = &w[..2];
+            if rdf {
+                return Err(a.err(format!("Invalid fix ave/time argument: {w} (a compute rdf is an array: mode vector)")));
+            }
             match index {
                 None if shape.scalar => names.push(w.clone()),
                 Some(0) if shape.vector > 0 => names.extend((1..=shape.vector).map(|k| format!("{prefix}{id}[{k}]"))),

@@ -108,7 +108,7 @@ fn atom_variable_errors_name_the_line() {
         ("variable a atom x*2\nprint \"$(v_a)\"", "atom-style"),
         ("variable a equal 2\ndump d all custom 1 o.dump id v_a\nrun 0", "variable 'a' is equal-style, not atom-style"),
         ("dump d all custom 1 o.dump id v_nope\nrun 0", "unknown variable 'nope'"),
-        ("dump d all custom 1 o.dump id f_1", "no gendpde fix has per-particle values"),
+        ("dump d all custom 1 o.dump id f_1", "Could not find dump custom fix ID: 1"),
         ("dump d all custom 1 o.dump id c_ke[2]", "per-atom arrays"),
         ("compute t all temp\nwrite_dump all custom o.dump id c_t", "no per-atom compute with ID 't'"),
         ("variable a atom x+nosuch\nwrite_dump all custom o.dump id v_a", "nosuch"),

@@ -224,12 +224,11 @@ fn bad_input_names_the_line() {
         ("compute g all rdf ten\n", "in.bad:4:", "the number of bins Nbin"),
         ("compute g all rdf 10 1 2\n", "in.bad:4:", "all-all"),
         ("compute g all rdf 10 cutoff -1\n", "in.bad:4:", "cutoff Rc must be positive"),
-        ("compute g all rdf 10\nfix f all ave/time 1 1 1 c_h[*] file x mode vector\n", "in.bad:5:", "no compute rdf with ID 'h'"),
-        ("compute g all rdf 10\nfix f all ave/time 1 1 1 c_g[4] file x mode vector\n", "in.bad:5:", "column"),
+        ("compute g all rdf 10\nfix f all ave/time 1 1 1 c_h[*] file x mode vector\n", "in.bad:5:", "Invalid fix ave/time argument: c_h[*]"),
+        ("compute g all rdf 10\nfix f all ave/time 1 1 1 c_g[4] file x mode vector\n", "in.bad:5:", "Fix ave/time compute g array is accessed out-of-range"),
         ("compute g all rdf 10\nfix f all ave/time 2 1 5 c_g[*] file x mode vector\n", "in.bad:5:", "multiple of Nevery"),
-        ("compute g all rdf 10\nfix f all ave/time 1 1 1 c_g[*] file x\n", "in.bad:5:", "mode vector"),
-        ("compute g all rdf 10\nfix f all ave/time 1 1 1 c_g[*] mode vector\n", "in.bad:5:", "file FILE"),
-        ("compute g all rdf 10\nfix f mobile ave/time 1 1 1 c_g[*] file x mode vector\n", "in.bad:5:", "group all"),
+        ("compute g all rdf 10\nfix f all ave/time 1 1 1 c_g[*] file x\n", "in.bad:5:", "Invalid fix ave/time argument: c_g[*]"),
+        ("compute g all rdf 10\nfix f mobile ave/time 1 1 1 c_g[*] file x mode vector\n", "in.bad:5:", "Could not find fix group ID mobile"),
         ("compute g mobile rdf 10\n", "in.bad:4:", "group mobile"),
     ];
     for (tail, line, what) in cases {

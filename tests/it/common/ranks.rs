@@ -39,5 +39,7 @@ pub fn tempdir(name: &str) -> PathBuf {
 
 /// Thermo lines of a run (its numeric rows).
 pub fn thermo_rows(stdout: &[u8]) -> Vec<String> {
-    String::from_utf8_lossy(stdout).lines().filter(|l| l.trim_start().starts_with(|c: char| c.is_ascii_digit())).map(String::from).collect()
+    // every word a number ("162 atoms in group hot" is no row)
+    let numeric = |l: &str| l.trim_start().starts_with(|c: char| c.is_ascii_digit()) && l.split_whitespace().all(|w| w.parse::<f64>().is_ok());
+    String::from_utf8_lossy(stdout).lines().filter(|l| numeric(l)).map(String::from).collect()
 }

@@ -28,7 +28,10 @@ fn both(name: &str, script: &str) -> ((PathBuf, String), (PathBuf, String)) {
     ((dl, l), (dg, String::from_utf8_lossy(&out.stdout).into_owned()))
 }
 
-const SCENE: &str = "units lj
+/// The deterministic two-type pair dpd scene (gamma 0) the parity scenes start from.
+macro_rules! scene_head {
+    () => {
+        "units lj
 comm_modify vel yes
 lattice fcc 3.0
 region box block 0 4 0 4 0 4
@@ -42,7 +45,13 @@ pair_style dpd 1.0 1.0 4928
 pair_coeff * * 25.0 0.0
 fix nve all nve
 velocity all create 1.0 87287 loop geom
-group one type 1
+"
+    };
+}
+
+const SCENE: &str = concat!(
+    scene_head!(),
+    "group one type 1
 group two type 2
 region slab block 1 3 INF INF INF INF
 compute tp all temp/partial 1 0 1
@@ -81,25 +90,14 @@ thermo 10
 run 30
 thermo_modify temp tp
 run 10
-";
+"
+);
 
 /// fix ave/histo of per-atom keywords, per-atom computes (beyond extra, ave running),
 /// a global vector and global scalars (beyond end, ave window).
-const HISTO: &str = "units lj
-comm_modify vel yes
-lattice fcc 3.0
-region box block 0 4 0 4 0 4
-create_box 2 box
-create_atoms 1 box
-region half block 0 2 INF INF INF INF
-set region half type 2
-mass * 1.0
-mass 2 2.0
-pair_style dpd 1.0 1.0 4928
-pair_coeff * * 25.0 0.0
-fix nve all nve
-velocity all create 1.0 87287 loop geom
-group two type 2
+const HISTO: &str = concat!(
+    scene_head!(),
+    "group two type 2
 compute ke all ke/atom
 compute g all gyration
 variable t equal temp
@@ -111,25 +109,14 @@ thermo_style custom step temp f_h1[1] f_h1[2] f_h1[3] f_h1[4] f_h2[1] f_h2[3] f_
 thermo 10
 thermo_modify format float %.17g
 run 40
-";
+"
+);
 
 /// fix ave/atom of a per-atom keyword, a per-atom compute and an atom-style variable on a
 /// group, and of a force on all, in a dump.
-const AVE_ATOM: &str = "units lj
-comm_modify vel yes
-lattice fcc 3.0
-region box block 0 4 0 4 0 4
-create_box 2 box
-create_atoms 1 box
-region half block 0 2 INF INF INF INF
-set region half type 2
-mass * 1.0
-mass 2 2.0
-pair_style dpd 1.0 1.0 4928
-pair_coeff * * 25.0 0.0
-fix nve all nve
-velocity all create 1.0 87287 loop geom
-group two type 2
+const AVE_ATOM: &str = concat!(
+    scene_head!(),
+    "group two type 2
 compute ke all ke/atom
 variable e atom vx*vx+x
 fix aa two ave/atom 2 3 10 vx c_ke v_e
@@ -138,7 +125,8 @@ dump d all custom 10 aa.dump id f_aa[1] f_aa[2] f_aa[3] f_ab
 dump_modify d sort id format float %.17g
 thermo 10
 run 30
-";
+"
+);
 
 /// compute cluster/atom of a group and of all, and coord/atom, on LAMMPS's random
 /// positions (create_atoms random draws LAMMPS's).
