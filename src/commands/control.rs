@@ -1,10 +1,12 @@
 //! The commands that run other commands: `run` (with `every`), `if`, and `quit`. The
 //! commands they hold are executed as if they were the next lines of the script, their
-//! quoted text substituted when they execute (LAMMPS's Input::one).
+//! quoted text substituted when they execute (LAMMPS's Input::one). And `clear`, which
+//! starts the script's model over.
 
 use super::{resolve, run, Interpreter};
 use crate::base::args::Args;
 use crate::base::script::{AppError, Mode};
+use crate::output::Outputs;
 use gendpde_io::Command;
 
 impl Interpreter {
@@ -82,6 +84,21 @@ impl Interpreter {
         let result = commands.iter().try_for_each(|c| self.execute_str(&name, c));
         self.nested -= 1;
         result
+    }
+}
+
+impl Interpreter {
+    /// `clear`: closes the dumps and deletes the box, the particles, the styles and every
+    /// setting, back to the defaults; the variables, the log, echo and the loop state stay
+    /// (LAMMPS's clear).
+    pub(super) fn clear(&mut self, a: &mut Args) -> Result<(), AppError> {
+        a.done()?;
+        for mut dump in self.outputs.dumps.drain(..) {
+            dump.close().map_err(|e| a.err(e))?;
+        }
+        self.outputs = Outputs::default();
+        self.sim.clear().map_err(|e| a.err(e))?;
+        Ok(())
     }
 }
 

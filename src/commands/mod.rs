@@ -214,6 +214,7 @@ impl Interpreter {
             "run" => self.run(a)?,
             "if" => self.if_then(a)?,
             "quit" => return Err(control::quit(a)?),
+            "clear" => self.clear(a)?,
             other => return Err(a.err(format!("unknown command '{other}' (see docs/commands/ for the commands gendpde knows)")).into()),
         }
         Ok(())

@@ -110,6 +110,14 @@ impl Sim {
         self.transport.take().ok_or_else(|| "the box exists already".into())
     }
 
+    /// Deletes the box, the particles and every definition, back to the defaults of
+    /// [`Sim::new`] on the same ranks (LAMMPS's `clear`).
+    pub fn clear(&mut self) -> Result<(), String> {
+        let transport = self.transport.take().or_else(|| self.system.take().map(|s| s.comm.into_transport()));
+        *self = Sim::new(transport.ok_or("clear: the ranks are held by a box being read")?);
+        Ok(())
+    }
+
     /// The per-particle fields the atom style carries (atom_style edpd: eDPD's
     /// temperature, heat capacity and flux; sph: the SPH density and its rate).
     pub fn atom_style_fields(&self) -> Fields {

@@ -1,6 +1,7 @@
 //! LAMMPS compatibility: scripts run unchanged, LAMMPS's examples, pair coefficients, and
 //! parity with the reference LAMMPS (22 Jul 2025).
 
+mod language;
 mod lammps_change_box;
 mod lammps_examples;
 mod lammps_parity;
