@@ -16,14 +16,14 @@ impl Interpreter {
         let step = self.sim.system.as_ref().map_or(0, |s| s.clock.step);
         let args = run::RunArgs::parse(a, step)?;
         let Some((every, commands)) = &args.every else {
-            return run::run(&mut self.sim, &mut self.outputs, &mut self.out, &self.vars, self.mode, cmd, args.part(step, args.nsteps, true, true));
+            return self.run_part(cmd, args.part(step, args.nsteps, true, true));
         };
         let mut left = args.nsteps;
         loop {
             let step = self.sim.system.as_ref().map_or(0, |s| s.clock.step);
             let n = left.min(*every);
             let part = args.part(step, n, left == args.nsteps, n == left);
-            run::run(&mut self.sim, &mut self.outputs, &mut self.out, &self.vars, self.mode, cmd, part)?;
+            self.run_part(cmd, part)?;
             self.nested(cmd, "run every", commands)?;
             left -= n;
             // a check sets up and runs the commands once
@@ -31,6 +31,14 @@ impl Interpreter {
                 return Ok(());
             }
         }
+    }
+
+    /// One run, marked as running for ramp() and its kin while it sets up and steps.
+    fn run_part(&mut self, cmd: &Command, part: run::RunPart) -> Result<(), AppError> {
+        self.sim.running = true;
+        let done = run::run(&mut self.sim, &mut self.outputs, &mut self.out, &self.vars, self.mode, cmd, part);
+        self.sim.running = false;
+        done
     }
 
     /// `if BOOLEAN then t1 t2 ... [elif BOOLEAN f1 ...]... [else e1 ...]`: the commands

@@ -104,10 +104,14 @@ impl Interpreter {
                     if cmd.args.is_empty() {
                         return Err(ScriptError::at(&cmd, "missing argument: expected variable names").into());
                     }
-                    self.skip_jump = self.vars.next(&cmd.args).map_err(|mut e| {
+                    let (exhausted, universe) = self.vars.next(&cmd.args).map_err(|mut e| {
                         e.loc = Some(cmd.loc.clone());
                         e
                     })?;
+                    self.skip_jump = exhausted;
+                    if let Some(n) = universe {
+                        self.out.line(&format!("Increment via next: value {n} on partition 0"));
+                    }
                     self.idle_jumps = 0;
                 }
                 "jump" => {

@@ -64,6 +64,8 @@ pub struct Sim {
     pub groups: Vec<String>,
     /// State of fixes read from a restart, taken by the fixes as they are defined.
     pub restored_state: Vec<(String, Vec<f64>)>,
+    /// A run is being set up or stepped (LAMMPS's whichflag: ramp() reads its span).
+    pub running: bool,
 }
 
 impl Sim {
@@ -96,6 +98,7 @@ impl Sim {
             reduces: Vec::new(),
             groups: Vec::new(),
             restored_state: Vec::new(),
+            running: false,
         }
     }
 

@@ -188,6 +188,9 @@ impl<'a> ThermoContext<'a> {
         let l = d.len();
         let press = o.pressure_with(&self.kinetic);
         let etotal = self.potential() + 0.5 * self.kinetic.mv2();
+        if let Some(setting) = name.strip_prefix(gendpde_io::functions::SETTING) {
+            return self.setting(setting);
+        }
         Some(match name {
             "step" => self.sys.clock.step as f64,
             "elapsed" => self.elapsed as f64,
@@ -226,10 +229,26 @@ impl<'a> ThermoContext<'a> {
             "yhi" => d.hi[1],
             "zlo" => d.lo[2],
             "zhi" => d.hi[2],
+            // LAMMPS zeroes beginstep and endstep after a run
+            gendpde_io::functions::RUN_BEGIN => if self.sim.running { self.sys.clock.run[0] as f64 } else { 0.0 },
+            gendpde_io::functions::RUN_END => if self.sim.running { self.sys.clock.run[1] as f64 } else { 0.0 },
+            gendpde_io::functions::RUN_ACTIVE => f64::from(u8::from(self.sim.running)),
             "pxtot" => o.momentum[0],
             "pytot" => o.momentum[1],
             "pztot" => o.momentum[2],
             _ => return self.compute(name),
+        })
+    }
+
+    /// The `extract_setting()` values of the system.
+    fn setting(&self, name: &str) -> Option<f64> {
+        Some(match name {
+            "box_exist" => 1.0,
+            "world_size" => self.sys.comm.size() as f64,
+            "world_rank" => self.sys.comm.rank() as f64,
+            "ntypes" => self.sim.ntypes as f64,
+            "nlocal" => self.sys.store.nlocal as f64,
+            _ => return None,
         })
     }
 

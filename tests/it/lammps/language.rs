@@ -85,3 +85,85 @@ fn clear_restores_defaults_and_keeps_variables() {
     assert_eq!(printed(&g, "after clear"), ["after clear a=2.5"]);
     expect_error("clear-args", "clear all\n", "clear");
 }
+
+/// The variable styles of one partition (world, universe, uloop, getenv, file, atomfile,
+/// format, timer) and LAMMPS's math and feature functions, printed and in thermo columns
+/// over a `run N start A stop B` (ramp, vdisplace, swiggle, cwiggle, stride, logfreq,
+/// stagger): every printed line and thermo value as LAMMPS's.
+#[test]
+fn variable_styles_and_functions() {
+    const SCRIPT: &str = r#"variable w world hello
+print "W ${w}"
+variable e getenv HOME
+variable e getenv NOPE_NOT_SET
+print "E [${e}]"
+variable x equal 2.0/3
+variable fx format x %.3f
+variable fy format x %10.4e
+print "X ${fx} [${fy}] $(v_fx*2)"
+variable f file values.txt
+label lf
+print "F ${f}"
+next f
+jump SELF lf
+variable u universe a b c
+variable ul uloop 3 pad
+label lu
+print "U ${u} ${ul}"
+next u ul
+jump SELF lu
+variable t timer
+print "T $(v_t-v_t) $(v_t >= 0)"
+print "FN $(round(-2.5)) $(round(0.5)) $(sign(-3)) $(sign(0)) $(ternary(0,2,3)) $(1|^1) $(1|^0||0) $(version) $(yes+off+true)"
+print "FS $(stagger(100,10)) $(logfreq(10,2,10)) $(logfreq2(10,4,10)) $(logfreq3(10,5,1000)) $(stride(0,100,10)) $(stride2(0,1000,100,200,300,10))"
+print "FW $(is_file(values.txt)) $(is_file(nope.txt)) $(extract_setting(dimension)) $(extract_setting(bigint)) $(extract_setting(tagint)) $(extract_setting(box_exist))"
+units lj
+atom_modify map yes
+lattice fcc 0.8442
+region box block 0 4 0 4 0 4
+create_box 1 box
+create_atoms 1 box
+mass 1 1.0
+print "FB $(extract_setting(box_exist)) $(extract_setting(ntypes)) $(extract_setting(world_size)) $(ramp(1,3)) $(vdisplace(1,2))"
+velocity all create 1.0 87287 loop geom
+comm_modify vel yes
+pair_style dpd 1.0 1.5 123
+pair_coeff 1 1 25.0 0.0
+fix 1 all nve
+variable a atomfile af.txt
+compute s all reduce sum v_a
+variable ra equal ramp(1,3)
+variable vd equal vdisplace(1,2)
+variable sw equal swiggle(1,2,0.02)
+variable cw equal cwiggle(1,2,0.02)
+variable st equal stride(2,20,3)
+variable lf equal logfreq(1,2,3)
+variable sg equal stagger(4,1)
+thermo 1
+thermo_style custom step v_ra v_vd v_sw v_cw v_st v_lf v_sg c_s
+thermo_modify format float %.17g
+run 10 start 0 stop 20
+next a
+run 2
+print "FE $(ramp(1,3)) $(vdisplace(1,2)) $(extract_setting(nlocal))"
+"#;
+    let files = [
+        ("values.txt", "# values\n1.5\n\n  two  words\n3e2 # c\n"),
+        ("af.txt", "# snapshot 1\n3\n1 1.5\n2 -2.0\n5 4.25\n2\n1 10\n3 0.5\n"),
+    ];
+    let ((_, l), (_, g)) = both("variables", SCRIPT, &files);
+    let lines = |out: &str| -> Vec<String> {
+        let tagged = |l: &&str| l.starts_with("Increment") || l.split_once(' ').is_some_and(|(tag, _)| (1..=2).contains(&tag.len()) && tag.chars().all(|c| c.is_ascii_uppercase()));
+        out.lines().filter(tagged).map(String::from).collect()
+    };
+    assert_eq!(lines(&g), lines(&l));
+    assert!(lines(&g).len() > 15, "{:?}", lines(&g));
+    let (blocks, worst) = thermo_parity(&l, &g);
+    assert_eq!(blocks.iter().map(|b| b.rows.len()).collect::<Vec<_>>(), [11, 3]);
+    assert!(worst < 1e-15, "thermo differs from LAMMPS's by {worst:e}");
+    expect_error("variables-world", "variable w world a b\n", "World variable count doesn't match # of partitions");
+    expect_error("variables-format", "variable x equal 1\nvariable f format x %d\n", "Incorrect conversion in format string");
+    expect_error("variables-file", "variable f file nope.txt\n", "Cannot open file variable file nope.txt");
+    expect_error("variables-next", "variable a index 1 2\nvariable b loop 2\nnext a b\n", "All variables in next command must have same style");
+    expect_error("variables-random", "print $(random(0,1,5))\n", "random() is not supported");
+}
