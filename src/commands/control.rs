@@ -35,6 +35,7 @@ impl Interpreter {
 
     /// One run, marked as running for ramp() and its kin while it sets up and steps.
     fn run_part(&mut self, cmd: &Command, part: run::RunPart) -> Result<(), AppError> {
+        self.outputs.thermo.default_columns(self.sim.pe_is_pair());
         self.sim.running = true;
         let done = run::run(&mut self.sim, &mut self.outputs, &mut self.out, &self.vars, self.mode, cmd, part);
         self.sim.running = false;

@@ -190,7 +190,7 @@ impl Interpreter {
             "compute" => styles::compute(sim, a)?,
             "compute_modify" => crate::styles::compute::modify(&mut sim.computes, a)?,
             "thermo" => output::thermo(&mut outputs.thermo, a)?,
-            "thermo_style" => output::thermo_style(&mut outputs.thermo, &self.vars, a)?,
+            "thermo_style" => output::thermo_style(&mut outputs.thermo, &self.vars, sim.units.default_norm, a)?,
             "thermo_modify" => output::thermo_modify(&mut outputs.thermo, &sim.computes, a)?,
             "dump" => output::dump(&mut outputs.dumps, a)?,
             "dump_modify" => output::dump_modify(&mut outputs.dumps, a)?,

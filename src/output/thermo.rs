@@ -38,6 +38,11 @@ impl RunOutput for ThermoConfig {
 
     /// One value line on the screen and in the log.
     fn write(&mut self, f: &mut Frame) -> Result<(), String> {
+        let step = f.sys.clock.step;
+        if step == f.run.first {
+            self.builds_at_setup = [f.sys.lists.count, f.sys.lists.dangerous];
+        }
+        self.steps_left = f.run.last.saturating_sub(step);
         let values = values(self, f)?;
         f.out.line(&value_line(&self.keywords, &values, self.float_format.as_deref()));
         self.last = Some(Mark { step: f.sys.clock.step, time: f.sys.clock.time, cpu: f.cpu });
@@ -164,6 +169,9 @@ pub struct ThermoContext<'a> {
     last: Option<Mark>,
     elapsed: u64,
     cpu: f64,
+    /// Builds and dangerous builds since the run's set-up; steps of the run left.
+    builds: [u64; 2],
+    steps_left: u64,
 }
 
 impl<'a> ThermoContext<'a> {
@@ -177,7 +185,9 @@ impl<'a> ThermoContext<'a> {
             _ => (obs.kinetic(), 3.0),
         };
         let last = config.last.filter(|_| elapsed > 0);
-        Self { sim, sys, vars, obs, kinetic, extra_dof, norm: config.norm, last, elapsed, cpu }
+        let (b, lists) = (config.builds_at_setup, &sys.lists);
+        let builds = [lists.count.saturating_sub(b[0]), lists.dangerous.saturating_sub(b[1])];
+        Self { sim, sys, vars, obs, kinetic, extra_dof, norm: config.norm, last, elapsed, cpu, builds, steps_left: config.steps_left }
     }
 
     /// Value of a built-in keyword; None if the name is not one.
@@ -209,6 +219,12 @@ impl<'a> ThermoContext<'a> {
             "pyy" => o.pressure_component(&self.kinetic, 1) * units.nktv2p,
             "pzz" => o.pressure_component(&self.kinetic, 2) * units.nktv2p,
             "pe" => per(self.potential()),
+            "evdwl" | "epair" => per(self.potential()),
+            "ecoul" | "elong" | "emol" | "ebond" | "eangle" | "edihed" | "eimp" => 0.0,
+            "nbuild" => self.builds[0] as f64,
+            "ndanger" => self.builds[1] as f64,
+            "cpuremain" if self.elapsed > 0 => self.cpu * self.steps_left as f64 / self.elapsed as f64,
+            "cpuremain" => 0.0,
             "ke" => per(0.5 * self.kinetic.mv2()),
             "etotal" => per(etotal),
             "enthalpy" => per(etotal + press * o.volume),
@@ -304,7 +320,7 @@ impl<'a> ThermoContext<'a> {
 
 /// Whether a keyword prints as an integer.
 pub fn is_integer(name: &str) -> bool {
-    matches!(name, "step" | "elapsed" | "elaplong" | "atoms")
+    matches!(name, "step" | "elapsed" | "elaplong" | "atoms" | "nbuild" | "ndanger")
 }
 
 /// Column heading of a keyword, as LAMMPS names it.
@@ -339,6 +355,18 @@ pub fn heading(name: &str) -> String {
         "pyy" => "Pyy".into(),
         "pzz" => "Pzz".into(),
         "pe" => "PotEng".into(),
+        "evdwl" => "E_vdwl".into(),
+        "ecoul" => "E_coul".into(),
+        "epair" => "E_pair".into(),
+        "elong" => "E_long".into(),
+        "emol" => "E_mol".into(),
+        "ebond" => "E_bond".into(),
+        "eangle" => "E_angle".into(),
+        "edihed" => "E_dihed".into(),
+        "eimp" => "E_impro".into(),
+        "nbuild" => "Nbuild".into(),
+        "ndanger" => "Ndanger".into(),
+        "cpuremain" => "CPULeft".into(),
         "ke" => "KinEng".into(),
         "etotal" => "TotEng".into(),
         "edrift" => "Edrift".into(),

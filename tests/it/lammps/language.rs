@@ -51,6 +51,7 @@ fn thermo_parity(lammps: &str, gendpde: &str) -> (Vec<ThermoBlock>, f64) {
             worst = worst.max((x - y).abs() / x.abs().max(1.0));
         }
     }
+    eprintln!("largest relative thermo difference from LAMMPS over {} blocks: {worst:e}", bl.len());
     (bl, worst)
 }
 
@@ -166,4 +167,74 @@ print "FE $(ramp(1,3)) $(vdisplace(1,2)) $(extract_setting(nlocal))"
     expect_error("variables-file", "variable f file nope.txt\n", "Cannot open file variable file nope.txt");
     expect_error("variables-next", "variable a index 1 2\nvariable b loop 2\nnext a b\n", "All variables in next command must have same style");
     expect_error("variables-random", "print $(random(0,1,5))\n", "random() is not supported");
+}
+
+/// Thermo keywords nbuild, ndanger (every 2 delay 4: every build is dangerous), evdwl,
+/// ecoul, epair, emol and the other molecular energies (0), cpuremain (0 at a run's first
+/// line; a wall-clock estimate, not compared); `thermo_modify lost, lost/bond, warn,
+/// line one, flush`; `thermo_style one`, and LAMMPS's default columns (`one`) for pair dpd
+/// with no thermo_style, after `clear`. Every thermo value as LAMMPS's to round-off.
+#[test]
+fn thermo_keywords_and_default_columns() {
+    const SCRIPT: &str = r#"lattice fcc 3.0
+region box block 0 5 0 5 0 5
+create_box 2 box
+create_atoms 1 box
+mass * 1.0
+set type 1 type/fraction 2 0.5 1234
+velocity all create 2.0 87287 loop geom
+comm_modify vel yes
+pair_style dpd 1.0 1.0 123
+pair_coeff * * 25.0 0.0
+pair_coeff 1 2 40.0 0.0
+fix 1 all nve
+timestep 0.02
+thermo 10
+thermo_style custom step nbuild ndanger evdwl ecoul epair emol elong ebond eangle edihed eimp cpuremain
+thermo_modify format float %.17g lost ignore lost/bond warn warn 10 line one flush yes
+run 50
+neigh_modify every 2 delay 4 check yes
+run 50
+thermo_style one
+thermo_modify format float %.17g
+run 10
+clear
+lattice fcc 3.0
+region box block 0 4 0 4 0 4
+create_box 1 box
+create_atoms 1 box
+mass * 1.0
+velocity all create 2.0 87287 loop geom
+comm_modify vel yes
+pair_style dpd 1.0 1.0 123
+pair_coeff * * 25.0 0.0
+fix 1 all nve
+thermo_modify format float %.17g
+run 10
+"#;
+    let ((_, l), (_, g)) = both("thermo", SCRIPT, &[]);
+    // headings and row counts checked; CPULeft (wall clock) is compared apart
+    thermo_parity(&l, &g);
+    let (mut bl, mut bg) = (parse_thermo_blocks(&l, "Step"), parse_thermo_blocks(&g, "Step"));
+    assert_eq!(bl.len(), 4);
+    let mut worst: f64 = 0.0;
+    for (a, b) in bl.iter_mut().zip(bg.iter_mut()) {
+        if let Some(k) = a.column_index("CPULeft") {
+            assert_eq!((a.rows[0][k], b.rows[0][k]), (0.0, 0.0), "CPULeft at a run's first line");
+            assert!(b.rows.iter().all(|r| r[k] >= 0.0));
+            a.rows.iter_mut().chain(b.rows.iter_mut()).for_each(|r| r[k] = 0.0);
+        }
+        for (x, y) in a.rows.iter().flatten().zip(b.rows.iter().flatten()) {
+            worst = worst.max((x - y).abs() / x.abs().max(1.0));
+        }
+    }
+    assert_eq!(bg[1].column("Ndanger"), [0.0, 2.0, 5.0, 7.0, 10.0, 12.0]);
+    assert_eq!(bg[0].column("Nbuild"), bl[0].column("Nbuild"));
+    assert_eq!(bg[3].header, ["Step", "Temp", "E_pair", "E_mol", "TotEng", "Press"]);
+    // 110 steps of a chaotic fluid: round-off grows to ~1e-12
+    eprintln!("thermo keywords: largest relative difference from LAMMPS {worst:e}");
+    assert!(worst < 1e-10, "thermo differs from LAMMPS's by {worst:e}");
+    expect_error("thermo-multi", "thermo_style multi\n", "thermo style 'multi' is not supported");
+    expect_error("thermo-line", "thermo_modify line yaml\n", "thermo_modify line yaml is not supported");
+    expect_error("thermo-lost", "thermo_modify lost sometimes\n", "Unknown thermo_modify lost argument: sometimes");
 }
