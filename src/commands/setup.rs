@@ -16,8 +16,9 @@ use gendpde_io::{AtomStyle, ScriptError};
 /// `units lj|real|metal|micro`: before the box; resets the timestep, skin and thermo norm to the
 /// units' defaults.
 pub fn units(sim: &mut Sim, thermo: &mut ThermoConfig, a: &mut Args) -> Result<(), ScriptError> {
-    let w = a.word("a unit style (lj, real, metal or micro)")?;
-    let units = Units::parse(w).ok_or_else(|| a.err(format!("units {w}: known are lj, real, metal and micro")))?;
+    let known = Units::ALL.map(|u| u.name).join(", ");
+    let w = a.word(&format!("a unit style ({known})"))?;
+    let units = Units::parse(w).ok_or_else(|| a.err(format!("units {w}: known are {known}")))?;
     a.done()?;
     if sim.system.is_some() && units != sim.units {
         return Err(a.err("units must come before the box is created"));

@@ -238,3 +238,30 @@ run 10
     expect_error("thermo-line", "thermo_modify line yaml\n", "thermo_modify line yaml is not supported");
     expect_error("thermo-lost", "thermo_modify lost sometimes\n", "Unknown thermo_modify lost argument: sometimes");
 }
+
+/// `units si, cgs, electron, nano, micro`: LAMMPS's constants (k_B, mvv2e, nktv2p, mv2d)
+/// and defaults, through temp, pe, ke, etotal, press, density and pxx of a dpd fluid at
+/// k_B T = 2 over 10 steps, relative to each value. Electron units agree to ~1e-9 only:
+/// LAMMPS's ftm2v there is not 1/mvv2e (their product is 1 + 5.3e-9), and gendpde
+/// integrates with 1/mvv2e.
+#[test]
+fn unit_styles_match_lammps_constants() {
+    for (units, kb, tolerance) in
+        [("si", 1.3806504e-23, 1e-12), ("cgs", 1.3806504e-16, 1e-12), ("nano", 0.013806504, 1e-12), ("micro", 1.3806504e-8, 1e-12), ("electron", 3.16681534e-6, 1e-8)]
+    {
+        let t = 2.0 / kb;
+        let script = format!(
+            "units {units}\nlattice fcc 1.2\nregion box block 0 4 0 4 0 4\ncreate_box 1 box\ncreate_atoms 1 box\nmass 1 2.0\n\
+             velocity all create {t:?} 87287 loop geom\ncomm_modify vel yes\npair_style dpd {t:?} 1.0 123\npair_coeff 1 1 25.0 0.0\n\
+             neighbor 0.3 bin\nfix 1 all nve\ntimestep 0.01\nthermo 5\nthermo_style custom step temp pe ke etotal press density pxx\n\
+             thermo_modify format float %.17g\nrun 10\n"
+        );
+        let ((_, l), (_, g)) = both(&format!("units-{units}"), &script, &[]);
+        let (bl, bg) = (parse_thermo_blocks(&l, "Step"), parse_thermo_blocks(&g, "Step"));
+        assert_eq!(bl.iter().map(|b| (&b.header, b.rows.len())).collect::<Vec<_>>(), bg.iter().map(|b| (&b.header, b.rows.len())).collect::<Vec<_>>());
+        let worst = bl[0].rows.iter().flatten().zip(bg[0].rows.iter().flatten()).map(|(x, y)| if *x == 0.0 { y.abs() } else { ((x - y) / x).abs() }).fold(0.0, f64::max);
+        eprintln!("units {units}: largest relative thermo difference from LAMMPS {worst:e}");
+        assert!(worst < tolerance, "units {units}: thermo differs from LAMMPS's by {worst:e}");
+    }
+    expect_error("units-bad", "units planck\n", "units planck: known are lj, real, metal, si, cgs, electron, micro, nano");
+}
