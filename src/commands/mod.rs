@@ -166,10 +166,8 @@ impl Interpreter {
             "reset_timestep" => setup::reset_timestep(sim, a)?,
             "run_style" => setup::run_style(a)?,
             "atom_modify" => setup::atom_modify(a)?,
-            // LAMMPS communication settings: gendpde always exchanges what its styles
-            // need (ghost velocities included) and uses full lists; accepted for
-            // compatibility.
-            "comm_modify" | "newton" => {}
+            "comm_modify" => setup::comm_modify(a)?,
+            "newton" => setup::newton(a)?,
             "group" => group::group(sim, a)?,
             "velocity" => velocity::velocity(sim, &self.vars, &outputs.thermo, a)?,
             "read_data" => particles::read_data(sim, a)?,

@@ -444,3 +444,50 @@ pub fn atom_modify(a: &mut Args) -> Result<(), ScriptError> {
     }
     Ok(())
 }
+
+/// `comm_modify mode single | cutoff R | vel yes|no`: checked as LAMMPS checks them and
+/// accepted: gendpde's ghosts always reach the styles' cutoff plus the skin (a larger ghost
+/// cutoff changes no result) and carry the velocities. Modes multi need LAMMPS's multi
+/// neighbour lists and `group` its atom_modify first: refused.
+pub fn comm_modify(a: &mut Args) -> Result<(), ScriptError> {
+    if a.remaining() == 0 {
+        return Err(a.err("Illegal comm_modify command: missing argument"));
+    }
+    while a.remaining() > 0 {
+        match a.word("a keyword")? {
+            "mode" => match a.word("single, multi or multi/old")? {
+                "single" => {}
+                m @ ("multi" | "multi/old") => return Err(a.err(format!("comm_modify mode {m} needs LAMMPS's multi neighbor lists, which gendpde does not have"))),
+                m => return Err(a.err(format!("Unknown comm_modify mode argument: {m}"))),
+            },
+            "cutoff" => {
+                let cut = a.f64("the ghost cutoff")?;
+                if cut < 0.0 {
+                    return Err(a.err(format!("Invalid cutoff {cut:?} in comm_modify command")));
+                }
+            }
+            k @ ("cutoff/multi" | "reduce/multi") => return Err(a.err(format!("comm_modify {k} needs LAMMPS's multi neighbor lists, which gendpde does not have"))),
+            "group" => return Err(a.err("comm_modify group is not supported (it needs atom_modify first, which gendpde does not have)")),
+            "vel" => {
+                a.yes_no("vel")?;
+            }
+            k => return Err(a.err(format!("Unknown comm_modify keyword: {k}"))),
+        }
+    }
+    Ok(())
+}
+
+/// `newton on|off [on|off]`: checked and accepted (gendpde's sums do not depend on it:
+/// they are kept the same for every rank count).
+pub fn newton(a: &mut Args) -> Result<(), ScriptError> {
+    for what in ["the pairwise setting", "the bonded setting"] {
+        if what == "the bonded setting" && a.remaining() == 0 {
+            break;
+        }
+        match a.word(what)? {
+            "on" | "off" => {}
+            w => return Err(a.err(format!("Expected boolean parameter instead of '{w}' in input script or data file"))),
+        }
+    }
+    a.done()
+}
