@@ -399,6 +399,13 @@ impl Variables {
             .map_err(|e| format!("variable '{name}': {e}"))
     }
 
+    /// The names and styles of the variables, by name.
+    pub fn names(&self) -> Vec<(&str, &'static str)> {
+        let mut v: Vec<_> = self.vars.iter().map(|(n, var)| (n.as_str(), var.style())).collect();
+        v.sort_unstable();
+        v
+    }
+
     /// Whether a variable of this name exists.
     pub fn contains(&self, name: &str) -> bool {
         self.vars.contains_key(name)

@@ -7,10 +7,12 @@ mod group;
 mod output;
 mod particles;
 mod run;
+mod session;
 mod set;
 mod setup;
 mod styles;
 mod velocity;
+mod write_coeff;
 
 use crate::base::args::Args;
 use crate::base::script::{echo, AppError, Mode};
@@ -217,6 +219,11 @@ impl Interpreter {
             "if" => self.if_then(a)?,
             "quit" => return Err(control::quit(a)?),
             "clear" => self.clear(a)?,
+            "shell" => self.shell(a)?,
+            "timer" => self.timer(a)?,
+            "info" => self.info(a)?,
+            "partition" => session::partition(a)?,
+            "write_coeff" => write_coeff::write_coeff(sim, a)?,
             other => return Err(a.err(format!("unknown command '{other}' (see docs/commands/ for the commands gendpde knows)")).into()),
         }
         Ok(())

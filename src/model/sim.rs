@@ -108,6 +108,11 @@ impl Sim {
         self.lattice.as_ref().map_or([1.0; 3], |l| l.spacing)
     }
 
+    /// This rank's number (0 writes the files).
+    pub fn rank(&self) -> usize {
+        self.transport.as_ref().map_or_else(|| self.system.as_ref().map_or(0, |s| s.comm.rank()), |t| t.rank())
+    }
+
     /// The ranks, for the box about to be created.
     pub fn take_transport(&mut self) -> Result<Box<dyn Transport>, String> {
         self.transport.take().ok_or_else(|| "the box exists already".into())

@@ -265,3 +265,61 @@ fn unit_styles_match_lammps_constants() {
     }
     expect_error("units-bad", "units planck\n", "units planck: known are lj, real, metal, si, cgs, electron, micro, nano");
 }
+
+/// `shell` (LAMMPS's cd, mkdir -p, mv into a directory, rm with and without -f, rmdir of a
+/// tree, putenv read back by getenv, with LAMMPS's warning for a failed rm), `timer`
+/// (LAMMPS's settings line), `comm_modify mode single cutoff vel`, `newton`,
+/// `write_coeff` (the file byte for byte as LAMMPS's) and `info`; partition and the
+/// refused keywords fail naming what is not supported.
+#[test]
+fn shell_timer_comm_modify_and_write_coeff() {
+    const SCRIPT: &str = r#"shell mkdir sub1 sub2/deep
+shell putenv FOO=bar
+variable foo getenv FOO
+print "FOO=${foo} $(is_file(sub2/deep))"
+shell mv f.txt sub1
+shell cd sub1
+print "cd $(is_file(f.txt))"
+shell cd ..
+shell mv sub1/f.txt moved.txt
+print "moved $(is_file(moved.txt)) $(is_file(sub1/f.txt))"
+shell rm moved.txt nonexist.txt
+shell rm -f nonexist.txt
+shell rmdir sub1 sub2
+print "gone $(is_file(moved.txt)) $(is_file(sub2/deep))"
+timer off
+timer full sync every 10
+lattice fcc 3.0
+region box block 0 3 0 3 0 3
+create_box 2 box
+create_atoms 1 box
+mass * 1.0
+comm_modify vel yes cutoff 3.0 mode single
+newton on
+pair_style dpd 1.0 1.0 123
+pair_coeff * * 25.0 4.5
+pair_coeff 1 2 40.123456789 4.5 0.8
+write_coeff coeffs.txt
+info system variables
+"#;
+    let ((dl, l), (dg, g)) = both("session", SCRIPT, &[("f.txt", "x\n")]);
+    let lines = |out: &str| -> Vec<String> {
+        let keep = ["FOO=", "cd ", "moved ", "gone ", "WARNING: Shell", "New timer"];
+        out.lines().filter(|l| keep.iter().any(|k| l.starts_with(k))).map(|l| l.split(" (src/").next().unwrap_or_default().to_string()).collect()
+    };
+    assert_eq!(lines(&g), lines(&l));
+    assert_eq!(lines(&g).len(), 7, "{g}");
+    for d in [&dl, &dg] {
+        assert!(!d.join("sub1").exists() && !d.join("sub2").exists() && !d.join("moved.txt").exists(), "{}", d.display());
+    }
+    let read = |d: &PathBuf| std::fs::read_to_string(d.join("coeffs.txt")).unwrap();
+    assert_eq!(read(&dg), read(&dl));
+    assert!(g.contains("System information:") && g.contains("Units         = lj"), "{g}");
+    expect_error("session-shell", "shell ls\n", "shell ls: only LAMMPS's built-in sub-commands");
+    expect_error("session-partition", "partition yes 1 print hi\n", "partition is not supported");
+    expect_error("session-timeout", "timer timeout 1:00:00\n", "timer timeout 1:00:00 is not supported");
+    expect_error("session-comm", "comm_modify mode multi\n", "comm_modify mode multi needs LAMMPS's multi neighbor lists");
+    expect_error("session-comm-key", "comm_modify speed 2\n", "Unknown comm_modify keyword: speed");
+    expect_error("session-newton", "newton maybe\n", "Expected boolean parameter instead of 'maybe'");
+    expect_error("session-coeff", "write_coeff c.txt\n", "write_coeff command before simulation box is defined");
+}
