@@ -7,7 +7,7 @@ use super::{resolve, run, Interpreter};
 use crate::base::args::Args;
 use crate::base::script::{AppError, Mode};
 use crate::output::Outputs;
-use gendpde_io::Command;
+use gendpde_io::{Command, ScriptError};
 
 impl Interpreter {
     /// `run`: one run, or with `every M` runs of M steps each followed by the commands.
@@ -100,14 +100,13 @@ impl Interpreter {
     /// `clear`: closes the dumps and deletes the box, the particles, the styles and every
     /// setting, back to the defaults; the variables, the log, echo and the loop state stay
     /// (LAMMPS's clear).
-    pub(super) fn clear(&mut self, a: &mut Args) -> Result<(), AppError> {
+    pub(super) fn clear(&mut self, a: &mut Args) -> Result<(), ScriptError> {
         a.done()?;
         for mut dump in self.outputs.dumps.drain(..) {
             dump.close().map_err(|e| a.err(e))?;
         }
         self.outputs = Outputs::default();
-        self.sim.clear().map_err(|e| a.err(e))?;
-        Ok(())
+        self.sim.clear().map_err(|e| a.err(e))
     }
 }
 

@@ -76,11 +76,13 @@ pub fn thermo_modify(thermo: &mut ThermoConfig, computes: &[Compute], a: &mut Ar
                 n if n.parse::<u64>().is_ok() => {}
                 v => return Err(a.err(format!("Expected integer parameter instead of '{v}' in input script or data file"))),
             },
-            "line" => match a.word("one, multi or yaml")? {
-                "one" => {}
-                v @ ("multi" | "yaml") => return Err(a.err(format!("thermo_modify line {v} is not supported (its multi-line or YAML layout is not implemented)"))),
-                v => return Err(a.err(format!("Unknown thermo_modify line argument: {v}"))),
-            },
+            "line" => {
+                let v = a.word("one, multi or yaml")?;
+                if v != "one" {
+                    let refused = matches!(v, "multi" | "yaml");
+                    return Err(a.err(if refused { format!("thermo_modify line {v} is not supported (its multi-line or YAML layout is not implemented)") } else { format!("Unknown thermo_modify line argument: {v}") }));
+                }
+            }
             "temp" => {
                 let id = a.word("a compute ID")?;
                 match computes.iter().find(|c| c.id == id) {

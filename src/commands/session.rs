@@ -3,7 +3,6 @@
 
 use super::Interpreter;
 use crate::base::args::Args;
-use crate::base::script::AppError;
 use gendpde_io::ScriptError;
 use std::path::Path;
 
@@ -162,8 +161,8 @@ impl Interpreter {
 }
 
 /// `partition`: refused, as gendpde runs one partition (LAMMPS's -partition switch).
-pub(super) fn partition(a: &mut Args) -> Result<(), AppError> {
-    Err(a.err("partition is not supported: gendpde runs one partition (LAMMPS's -partition command-line switch does not exist here)").into())
+pub(super) fn partition(a: &mut Args) -> Result<(), ScriptError> {
+    Err(a.err("partition is not supported: gendpde runs one partition (LAMMPS's -partition command-line switch does not exist here)"))
 }
 
 /// A number as LAMMPS's info prints it (%g with 8 digits).

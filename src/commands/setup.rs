@@ -455,11 +455,15 @@ pub fn comm_modify(a: &mut Args) -> Result<(), ScriptError> {
     }
     while a.remaining() > 0 {
         match a.word("a keyword")? {
-            "mode" => match a.word("single, multi or multi/old")? {
-                "single" => {}
-                m @ ("multi" | "multi/old") => return Err(a.err(format!("comm_modify mode {m} needs LAMMPS's multi neighbor lists, which gendpde does not have"))),
-                m => return Err(a.err(format!("Unknown comm_modify mode argument: {m}"))),
-            },
+            "mode" => {
+                let m = a.word("single, multi or multi/old")?;
+                let why = match m {
+                    "single" => continue,
+                    "multi" | "multi/old" => format!("comm_modify mode {m} needs LAMMPS's multi neighbor lists, which gendpde does not have"),
+                    _ => format!("Unknown comm_modify mode argument: {m}"),
+                };
+                return Err(a.err(why));
+            }
             "cutoff" => {
                 let cut = a.f64("the ghost cutoff")?;
                 if cut < 0.0 {

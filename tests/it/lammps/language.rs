@@ -323,3 +323,26 @@ info system variables
     expect_error("session-newton", "newton maybe\n", "Expected boolean parameter instead of 'maybe'");
     expect_error("session-coeff", "write_coeff c.txt\n", "write_coeff command before simulation box is defined");
 }
+
+/// The atomfile variable (summed by compute reduce), nbuild, ndanger and the step functions
+/// give the same thermo rows on 1 and 3 ranks, bit for bit (CPULeft, a wall-clock
+/// estimate, left out).
+#[test]
+fn new_keywords_are_rank_count_independent() {
+    let script = "atom_modify map yes\nlattice fcc 3.0\nregion box block 0 5 0 5 0 5\ncreate_box 1 box\ncreate_atoms 1 box\nmass * 1.0\n\
+                  velocity all create 2.0 87287 loop geom\ncomm_modify vel yes\npair_style dpd 1.0 1.0 123\npair_coeff * * 25.0 0.0\nfix 1 all nve\n\
+                  timestep 0.02\nneigh_modify every 2 delay 4 check yes\nvariable a atomfile af.txt\ncompute s all reduce sum v_a\n\
+                  variable r equal ramp(1,3)+swiggle(0,1,0.1)\nthermo 5\nthermo_style custom step nbuild ndanger epair v_r c_s cpuremain\n\
+                  thermo_modify format float %.17g\nrun 40\nnext a\nrun 10\n";
+    let rows = |np: usize| {
+        let dir = stage("ranks", &np.to_string(), script, &[("af.txt", "2\n1 1.5\n400 -2.0\n1\n7 3.0\n")]);
+        let out = if np == 1 { run_gendpde(&dir, "in.x", &[]) } else { common::mpirun(np, &dir, &["run", "in.x", "-log", "none"]) };
+        assert!(out.status.success(), "{np} ranks: {}", String::from_utf8_lossy(&out.stderr));
+        let rows = common::ranks::thermo_rows(&out.stdout);
+        rows.iter().map(|r| r.split_whitespace().take(6).collect::<Vec<_>>().join(" ")).collect::<Vec<_>>()
+    };
+    let one = rows(1);
+    assert_eq!(one.len(), 9 + 3);
+    assert!(one.last().is_some_and(|r| r.ends_with(" 0.0060000000000000001")), "{one:?}");
+    assert_eq!(rows(3), one);
+}
