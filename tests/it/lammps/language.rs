@@ -84,7 +84,6 @@ fn clear_restores_defaults_and_keeps_variables() {
     assert!(blocks[1].column("PotEng")[1] != 0.0, "a pair energy to compare");
     assert!(worst < 1e-12, "thermo differs from LAMMPS's by {worst:e}");
     assert_eq!(printed(&g, "after clear"), ["after clear a=2.5"]);
-    expect_error("clear-args", "clear all\n", "clear");
 }
 
 /// The variable styles of one partition (world, universe, uloop, getenv, file, atomfile,
@@ -162,11 +161,6 @@ print "FE $(ramp(1,3)) $(vdisplace(1,2)) $(extract_setting(nlocal))"
     let (blocks, worst) = thermo_parity(&l, &g);
     assert_eq!(blocks.iter().map(|b| b.rows.len()).collect::<Vec<_>>(), [11, 3]);
     assert!(worst < 1e-15, "thermo differs from LAMMPS's by {worst:e}");
-    expect_error("variables-world", "variable w world a b\n", "World variable count doesn't match # of partitions");
-    expect_error("variables-format", "variable x equal 1\nvariable f format x %d\n", "Incorrect conversion in format string");
-    expect_error("variables-file", "variable f file nope.txt\n", "Cannot open file variable file nope.txt");
-    expect_error("variables-next", "variable a index 1 2\nvariable b loop 2\nnext a b\n", "All variables in next command must have same style");
-    expect_error("variables-random", "print $(random(0,1,5))\n", "random() is not supported");
 }
 
 /// Thermo keywords nbuild, ndanger (every 2 delay 4: every build is dangerous), evdwl,
@@ -234,9 +228,6 @@ run 10
     // 110 steps of a chaotic fluid: round-off grows to ~1e-12
     eprintln!("thermo keywords: largest relative difference from LAMMPS {worst:e}");
     assert!(worst < 1e-10, "thermo differs from LAMMPS's by {worst:e}");
-    expect_error("thermo-multi", "thermo_style multi\n", "thermo style 'multi' is not supported");
-    expect_error("thermo-line", "thermo_modify line yaml\n", "thermo_modify line yaml is not supported");
-    expect_error("thermo-lost", "thermo_modify lost sometimes\n", "Unknown thermo_modify lost argument: sometimes");
 }
 
 /// `units si, cgs, electron, nano, micro`: LAMMPS's constants (k_B, mvv2e, nktv2p, mv2d)
@@ -263,7 +254,6 @@ fn unit_styles_match_lammps_constants() {
         eprintln!("units {units}: largest relative thermo difference from LAMMPS {worst:e}");
         assert!(worst < tolerance, "units {units}: thermo differs from LAMMPS's by {worst:e}");
     }
-    expect_error("units-bad", "units planck\n", "units planck: known are lj, real, metal, si, cgs, electron, micro, nano");
 }
 
 /// `shell` (LAMMPS's cd, mkdir -p, mv into a directory, rm with and without -f, rmdir of a
@@ -315,13 +305,6 @@ info system variables
     let read = |d: &PathBuf| std::fs::read_to_string(d.join("coeffs.txt")).unwrap();
     assert_eq!(read(&dg), read(&dl));
     assert!(g.contains("System information:") && g.contains("Units         = lj"), "{g}");
-    expect_error("session-shell", "shell ls\n", "shell ls: only LAMMPS's built-in sub-commands");
-    expect_error("session-partition", "partition yes 1 print hi\n", "partition is not supported");
-    expect_error("session-timeout", "timer timeout 1:00:00\n", "timer timeout 1:00:00 is not supported");
-    expect_error("session-comm", "comm_modify mode multi\n", "comm_modify mode multi needs LAMMPS's multi neighbor lists");
-    expect_error("session-comm-key", "comm_modify speed 2\n", "Unknown comm_modify keyword: speed");
-    expect_error("session-newton", "newton maybe\n", "Expected boolean parameter instead of 'maybe'");
-    expect_error("session-coeff", "write_coeff c.txt\n", "write_coeff command before simulation box is defined");
 }
 
 /// The atomfile variable (summed by compute reduce), nbuild, ndanger and the step functions
@@ -345,4 +328,31 @@ fn new_keywords_are_rank_count_independent() {
     assert_eq!(one.len(), 9 + 3);
     assert!(one.last().is_some_and(|r| r.ends_with(" 0.0060000000000000001")), "{one:?}");
     assert_eq!(rows(3), one);
+}
+
+/// What gendpde does not do is refused naming the command and why, or worded as LAMMPS's
+/// message where LAMMPS refuses it too.
+#[test]
+fn refusals_name_what_is_not_supported() {
+    for (name, script, expected) in [
+        ("clear-args", "clear all\n", "unexpected argument 'all'"),
+        ("variables-world", "variable w world a b\n", "World variable count doesn't match # of partitions"),
+        ("variables-format", "variable x equal 1\nvariable f format x %d\n", "Incorrect conversion in format string"),
+        ("variables-file", "variable f file nope.txt\n", "Cannot open file variable file nope.txt"),
+        ("variables-next", "variable a index 1 2\nvariable b loop 2\nnext a b\n", "All variables in next command must have same style"),
+        ("variables-random", "print $(random(0,1,5))\n", "random() is not supported"),
+        ("thermo-multi", "thermo_style multi\n", "thermo style 'multi' is not supported"),
+        ("thermo-line", "thermo_modify line yaml\n", "thermo_modify line yaml is not supported"),
+        ("thermo-lost", "thermo_modify lost sometimes\n", "Unknown thermo_modify lost argument: sometimes"),
+        ("session-shell", "shell ls\n", "shell ls: only LAMMPS's built-in sub-commands"),
+        ("session-partition", "partition yes 1 print hi\n", "partition is not supported"),
+        ("session-timeout", "timer timeout 1:00:00\n", "timer timeout 1:00:00 is not supported"),
+        ("session-comm", "comm_modify mode multi\n", "comm_modify mode multi needs LAMMPS's multi neighbor lists"),
+        ("session-comm-key", "comm_modify speed 2\n", "Unknown comm_modify keyword: speed"),
+        ("session-newton", "newton maybe\n", "Expected boolean parameter instead of 'maybe'"),
+        ("session-coeff", "write_coeff c.txt\n", "write_coeff command before simulation box is defined"),
+        ("units-bad", "units planck\n", "units planck: known are lj, real, metal, si, cgs, electron, micro, nano"),
+    ] {
+        expect_error(name, script, expected);
+    }
 }
