@@ -24,6 +24,10 @@ pub(crate) const WORD_FUNCTIONS: [&str; 8] =
 /// LAMMPS's MAXBIGINT_DOUBLE: the step stride() returns past its last one.
 const MAX_STEP: f64 = (i64::MAX - 512) as f64;
 
+/// Most iterations logfreq2() and logfreq3() may take to find the next step (LAMMPS's
+/// loops have no bound: arguments such as logfreq2(1,1e12,2) would spin for hours).
+const MAX_ITERATIONS: u64 = 100_000_000;
+
 /// The value of math function `name` of `args`; domain errors are reported, never NaN or
 /// inf.
 pub(crate) fn math(name: &str, args: &[f64], resolve: &dyn Fn(&str) -> Option<f64>) -> Result<f64, String> {
@@ -110,8 +114,8 @@ pub(crate) fn math(name: &str, args: &[f64], resolve: &dyn Fn(&str) -> Option<f6
                 a as f64
             } else {
                 let mut lower = a;
-                while s >= c * lower {
-                    lower *= c;
+                while let Some(next) = c.checked_mul(lower).filter(|n| s >= *n) {
+                    lower = next;
                 }
                 let multiple = s / lower;
                 (if multiple < b { (multiple + 1) * lower } else { lower * c }) as f64
@@ -120,8 +124,9 @@ pub(crate) fn math(name: &str, args: &[f64], resolve: &dyn Fn(&str) -> Option<f6
         "logfreq2" => {
             arity(3)?;
             let (a, b, c) = (int(0), int(1), int(2));
-            if a <= 0 || b <= 0 || c <= 0 {
-                return invalid("needs positive x, y, z");
+            // z = 1 would never advance (LAMMPS loops forever)
+            if a <= 0 || b <= 0 || c <= 1 {
+                return invalid("needs positive x and y and z > 1");
             }
             let s = step()? as f64;
             let mut value = a as f64;
@@ -133,6 +138,9 @@ pub(crate) fn math(name: &str, args: &[f64], resolve: &dyn Fn(&str) -> Option<f6
                     count += 1;
                     if count % b == 0 {
                         delta *= c as f64;
+                    }
+                    if count as u64 > MAX_ITERATIONS {
+                        return invalid("takes too many iterations to reach the step");
                     }
                 }
             }
@@ -149,6 +157,9 @@ pub(crate) fn math(name: &str, args: &[f64], resolve: &dyn Fn(&str) -> Option<f6
             if s >= a {
                 let (mut logsp, factor, mut linsp) = (a as f64, (c as f64 / a as f64).powf(1.0 / (b - 1) as f64), a);
                 while s as f64 >= value {
+                    if (linsp - a) as u64 > MAX_ITERATIONS {
+                        return invalid("takes too many iterations to reach the step");
+                    }
                     logsp *= factor;
                     linsp += 1;
                     value = if linsp as f64 > logsp { linsp as f64 } else { logsp.ceil() - ((logsp.ceil() as i64 - 1) / c) as f64 };
