@@ -44,6 +44,9 @@ pub trait Physics {
         let local = if due && p.check { 2.0 * sys.displacement_since_build() } else { 0.0 };
         let farthest = sys.settle_with(moved, local)?;
         if due && (!p.check || farthest > settings.skin) {
+            if p.check && next - sys.lists.last == p.every.max(p.delay) {
+                sys.lists.dangerous += 1;
+            }
             self.rebuild(sys, next);
         } else {
             sys.comm.forward(&mut sys.store, Fields::POSITION);

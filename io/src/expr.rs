@@ -1,12 +1,17 @@
 //! Evaluation of LAMMPS equal-style expressions.
 //!
-//! Precedence, lowest first: `||`; `&&`; `==` `!=`; `<` `<=` `>` `>=`;
+//! Precedence, lowest first: `||` `|^` (xor); `&&`; `==` `!=`; `<` `<=` `>` `>=`;
 //! `+` `-`; `*` `/` `%`; `^`; unary `-` `!`. As in LAMMPS, unary minus binds tighter
 //! than `^` and `^` is left-associative: `-2^2 == 4`, `2^3^2 == 64`. Comparisons and
-//! logic yield 1 or 0.
+//! logic yield 1 or 0. Constants: `PI`, `version` (of the reference LAMMPS, 20250722),
+//! `on` `yes` `true` (1) and `off` `no` `false` (0). The functions are in functions.rs.
 
+use crate::functions::{self, WORD_FUNCTIONS};
 use std::cell::RefCell;
 use std::collections::HashMap;
+
+/// LAMMPS's `version` constant: the date of the reference LAMMPS (22 Jul 2025).
+const VERSION: f64 = 20250722.0;
 
 /// Deepest chain of `v_name` references followed before giving up.
 const MAX_VARIABLE_DEPTH: usize = 64;
@@ -107,6 +112,8 @@ enum Token {
     Num(f64),
     Ident(String),
     Op(&'static str),
+    /// The parenthesised word of a feature function (`is_file(in.x)`), parentheses left out.
+    Word(String),
 }
 
 impl std::fmt::Display for Token {
@@ -115,13 +122,14 @@ impl std::fmt::Display for Token {
             Token::Num(x) => write!(f, "{x}"),
             Token::Ident(s) => f.write_str(s),
             Token::Op(s) => f.write_str(s),
+            Token::Word(s) => write!(f, "({s})"),
         }
     }
 }
 
 /// Operators and punctuation, two-character ones first.
-const OPERATORS: [&str; 18] = [
-    "<=", ">=", "==", "!=", "&&", "||", "<", ">", "+", "-", "*", "/", "%", "^", "!", "(", ")", ",",
+const OPERATORS: [&str; 19] = [
+    "<=", ">=", "==", "!=", "&&", "||", "|^", "<", ">", "+", "-", "*", "/", "%", "^", "!", "(", ")", ",",
 ];
 
 fn tokenize(text: &str) -> Result<Vec<Token>, String> {
@@ -138,8 +146,16 @@ fn tokenize(text: &str) -> Result<Vec<Token>, String> {
             len
         } else if c.is_ascii_alphabetic() || c == '_' {
             let len = identifier_len(rest)?;
-            tokens.push(Token::Ident(rest[..len].to_string()));
-            len
+            let name = &rest[..len];
+            tokens.push(Token::Ident(name.to_string()));
+            match rest[len..].trim_start().strip_prefix('(') {
+                Some(inner) if WORD_FUNCTIONS.contains(&name) => {
+                    let close = inner.find(')').ok_or_else(|| format!("missing ')' after {name}("))?;
+                    tokens.push(Token::Word(inner[..close].to_string()));
+                    rest.len() - inner.len() + close + 1
+                }
+                _ => len,
+            }
         } else if let Some(op) = OPERATORS.iter().find(|op| rest.starts_with(**op)) {
             tokens.push(Token::Op(op));
             op.len()
@@ -200,13 +216,9 @@ struct Parser<'a> {
     memo: &'a Memo,
 }
 
-/// LAMMPS's group functions whose arguments are IDs and keywords, not expressions (the
-/// resolver evaluates them).
-const GROUP_FUNCTIONS: [&str; 8] = ["count", "mass", "xcm", "vcm", "fcm", "bound", "gyration", "ke"];
-
 /// Binary operator levels, lowest precedence first.
 const LEVELS: [&[&str]; 7] = [
-    &["||"],
+    &["||", "|^"],
     &["&&"],
     &["==", "!="],
     &["<", "<=", ">", ">="],
@@ -255,16 +267,18 @@ impl Parser<'_> {
                 self.expect(")")?;
                 Ok(x)
             }
-            Some(Token::Ident(name)) if self.peek_op() == Some("(") && GROUP_FUNCTIONS.contains(&name.as_str()) => {
-                self.pos += 1;
-                self.group_function(&name)
-            }
-            Some(Token::Ident(name)) if self.peek_op() == Some("(") => {
-                self.pos += 1;
-                let args = self.nested(Self::arguments)?;
-                call(&name, &args)
-            }
-            Some(Token::Ident(name)) => self.identifier(&name),
+            Some(Token::Ident(name)) => match self.tokens.get(self.pos).cloned() {
+                Some(Token::Op("(")) => {
+                    self.pos += 1;
+                    let args = self.nested(Self::arguments)?;
+                    functions::math(&name, &args, self.resolve)
+                }
+                Some(Token::Word(arg)) => {
+                    self.pos += 1;
+                    functions::word(&name, &arg, self.resolve)
+                }
+                _ => self.identifier(&name),
+            },
             Some(tok) => Err(format!("unexpected '{tok}' in expression")),
             None => Err("unexpected end of expression".into()),
         }
@@ -281,31 +295,13 @@ impl Parser<'_> {
         Ok(args)
     }
 
-    /// A group function's words up to its `)`, passed to `resolve` as `name(w1,w2,...)`.
-    fn group_function(&mut self, name: &str) -> Result<f64, String> {
-        let mut words = Vec::new();
-        loop {
-            match self.tokens.get(self.pos) {
-                Some(Token::Ident(w)) => words.push(w.clone()),
-                _ => return Err(format!("{name}(): expected a group ID, a dimension or a region ID")),
-            }
-            self.pos += 1;
-            match self.peek_op() {
-                Some(",") => self.pos += 1,
-                Some(")") => {
-                    self.pos += 1;
-                    break;
-                }
-                _ => return Err(format!("{name}(): expected ',' or ')'")),
-            }
-        }
-        let call = format!("{name}({})", words.join(","));
-        (self.resolve)(&call).ok_or_else(|| format!("group function {call}: no such group or region, or a wrong argument (or no box yet)"))
-    }
-
     fn identifier(&self, name: &str) -> Result<f64, String> {
-        if name == "PI" {
-            return Ok(std::f64::consts::PI);
+        match name {
+            "PI" => return Ok(std::f64::consts::PI),
+            "version" => return Ok(VERSION),
+            "on" | "yes" | "true" => return Ok(1.0),
+            "off" | "no" | "false" => return Ok(0.0),
+            _ => {}
         }
         match name.strip_prefix("v_") {
             Some(var) if !var.is_empty() && !var.contains('[') => {
@@ -378,46 +374,9 @@ fn apply(op: &str, a: f64, b: f64) -> Result<f64, String> {
         "==" => truth(a == b),
         "!=" => truth(a != b),
         "&&" => truth(a != 0.0 && b != 0.0),
+        "|^" => truth((a != 0.0) != (b != 0.0)),
         _ => truth(a != 0.0 || b != 0.0),
     })
-}
-
-/// Calls a math function; domain errors are reported, never NaN or inf.
-fn call(name: &str, args: &[f64]) -> Result<f64, String> {
-    let value = match (name, args) {
-        ("sqrt", [x]) => x.sqrt(),
-        ("exp", [x]) => x.exp(),
-        ("ln", [x]) => x.ln(),
-        ("log", [x]) => x.log10(),
-        ("abs", [x]) => x.abs(),
-        ("sin", [x]) => x.sin(),
-        ("cos", [x]) => x.cos(),
-        ("tan", [x]) => x.tan(),
-        ("asin", [x]) => x.asin(),
-        ("acos", [x]) => x.acos(),
-        ("atan", [x]) => x.atan(),
-        ("floor", [x]) => x.floor(),
-        ("ceil", [x]) => x.ceil(),
-        ("round", [x]) => x.round(),
-        ("atan2", [y, x]) => y.atan2(*x),
-        ("min", [a, b]) => a.min(*b),
-        ("max", [a, b]) => a.max(*b),
-        (
-            "sqrt" | "exp" | "ln" | "log" | "abs" | "sin" | "cos" | "tan" | "asin" | "acos"
-            | "atan" | "floor" | "ceil" | "round",
-            _,
-        ) => return Err(format!("{name}() takes 1 argument, got {}", args.len())),
-        ("atan2" | "min" | "max", _) => {
-            return Err(format!("{name}() takes 2 arguments, got {}", args.len()))
-        }
-        _ => return Err(format!("unknown function '{name}()'")),
-    };
-    if value.is_finite() {
-        Ok(value)
-    } else {
-        let shown: Vec<String> = args.iter().map(ToString::to_string).collect();
-        Err(format!("{name}({}) is undefined", shown.join(",")))
-    }
 }
 
 #[cfg(test)]
@@ -507,9 +466,39 @@ mod tests {
         close("atan(1)", std::f64::consts::FRAC_PI_4);
         close("atan2(1,-1)", 3.0 * std::f64::consts::FRAC_PI_4);
         close("floor(-1.5) + ceil(1.2)", 0.0);
-        close("round(2.5) + round(-2.5)", 0.0);
+        close("round(2.5) + round(-2.5)", 1.0);
         close("min(3,-1) * max(2, 5)", -5.0);
         close("max(min(1,2), sqrt(2)^2)", 2.0);
+    }
+
+    /// LAMMPS 22 Jul 2025 prints these values (its variable.cpp math functions).
+    #[test]
+    fn lammps_functions_and_constants() {
+        let at = |step: f64| move |k: &str| match k {
+            "step" => Some(step),
+            "dt" => Some(0.005),
+            functions::RUN_BEGIN => Some(0.0),
+            functions::RUN_END => Some(20.0),
+            functions::RUN_ACTIVE => Some(1.0),
+            _ => None,
+        };
+        let v = |text: &str, step: f64| evaluate(text, &Variables::new(), &at(step)).unwrap_or_else(|e| panic!("{text}: {e}"));
+        assert_eq!(v("round(-2.5) + round(0.5)*10 + sign(-3)*100 + sign(0)*1000", 0.0), 908.0);
+        assert_eq!(v("ternary(0,2,3) + (1|^1) + (1|^0||0)*10 + version + yes + off + true", 0.0), 20250722.0 + 3.0 + 10.0 + 2.0);
+        assert_eq!(v("stagger(100,10) + logfreq(10,2,10) + logfreq2(10,4,10) + logfreq3(10,5,1000)", 0.0), 40.0);
+        assert_eq!(v("stride(0,100,10) + stride2(0,1000,100,200,300,10)", 0.0), 110.0);
+        // the thermo columns of a LAMMPS run 10 start 0 stop 20, dt 0.005
+        let cols = "ramp(1,3) vdisplace(1,2) swiggle(1,2,0.02) cwiggle(1,2,0.02) stride(2,20,3) logfreq(1,2,3) stagger(4,1)";
+        let rows = [(3.0, [1.3, 1.03, -1.0, 3.0, 5.0, 6.0, 4.0]), (9.0, [1.9, 1.09, 3.0, 3.0, 11.0, 18.0, 12.0])];
+        for (step, want) in rows {
+            for (f, w) in cols.split(' ').zip(want) {
+                assert!((v(f, step) - w).abs() < 1e-12, "{f} at {step}: {} != {w}", v(f, step));
+            }
+        }
+        assert_eq!(v("is_file(Cargo.toml) + is_file(surely/not/here) + extract_setting(dimension)", 0.0), 4.0);
+        assert!(eval("extract_setting(foo)").unwrap_err().contains("Unknown setting foo"));
+        assert!(eval("random(1,2,3)").unwrap_err().contains("not supported"));
+        assert!(eval("stagger(1,2)").unwrap_err().contains("Invalid math function"));
     }
 
     #[test]

@@ -7,6 +7,7 @@ pub mod command;
 pub mod data_file;
 pub mod expr;
 pub mod format;
+pub mod functions;
 pub mod h5md;
 pub mod restart;
 pub mod script;

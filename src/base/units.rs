@@ -1,4 +1,6 @@
-//! `units lj`, `units real`, `units metal` and `units micro`, with LAMMPS's constants.
+//! LAMMPS's unit styles (`units lj`, `real`, `metal`, `si`, `cgs`, `electron`, `micro`,
+//! `nano`), with the constants of its update.cpp (checked against the reference LAMMPS's
+//! force->boltz, mvv2e, nktv2p, mv2d and femtosecond).
 //!
 //! Internally masses are kept in energy * time^2 / length^2 (m * mvv2e), so that
 //! momenta p = m v give K = p^2 / 2m in energy units and dp/dt = f directly: every
@@ -76,13 +78,63 @@ impl Units {
         default_norm: false,
     };
 
+    /// kilograms, meters, seconds, Joules, Kelvin, Pascals.
+    pub const SI: Self = Self {
+        name: "si",
+        kb: 1.3806504e-23,
+        mvv2e: 1.0,
+        nktv2p: 1.0,
+        mv2d: 1.0,
+        femtosecond: 1.0e-15,
+        default_dt: 1.0e-8,
+        default_skin: 0.001,
+        default_norm: false,
+    };
+
+    /// grams, centimeters, seconds, ergs, Kelvin, dyne/cm^2.
+    pub const CGS: Self = Self {
+        name: "cgs",
+        kb: 1.3806504e-16,
+        mvv2e: 1.0,
+        nktv2p: 1.0,
+        mv2d: 1.0,
+        femtosecond: 1.0e-15,
+        default_dt: 1.0e-8,
+        default_skin: 0.1,
+        default_norm: false,
+    };
+
+    /// amu, Bohr, femtoseconds, Hartrees, Kelvin, Pascals.
+    pub const ELECTRON: Self = Self {
+        name: "electron",
+        kb: 3.16681534e-6,
+        mvv2e: 1.06657236,
+        nktv2p: 2.94210108e13,
+        mv2d: 1.0,
+        femtosecond: 1.0,
+        default_dt: 0.001,
+        default_skin: 2.0,
+        default_norm: false,
+    };
+
+    /// attograms, nanometers, nanoseconds, attogram-nanometer^2/nanosecond^2, Kelvin,
+    /// attogram/(nanometer-nanosecond^2).
+    pub const NANO: Self = Self {
+        name: "nano",
+        kb: 0.013806504,
+        mvv2e: 1.0,
+        nktv2p: 1.0,
+        mv2d: 1.0,
+        femtosecond: 1.0e-6,
+        default_dt: 0.00045,
+        default_skin: 0.1,
+        default_norm: false,
+    };
+
+    /// Every style, in LAMMPS's order.
+    pub const ALL: [Self; 8] = [Self::LJ, Self::REAL, Self::METAL, Self::SI, Self::CGS, Self::ELECTRON, Self::MICRO, Self::NANO];
+
     pub fn parse(name: &str) -> Option<Self> {
-        match name {
-            "lj" => Some(Self::LJ),
-            "real" => Some(Self::REAL),
-            "metal" => Some(Self::METAL),
-            "micro" => Some(Self::MICRO),
-            _ => None,
-        }
+        Self::ALL.into_iter().find(|u| u.name == name)
     }
 }

@@ -1,11 +1,13 @@
 //! The commands that run other commands: `run` (with `every`), `if`, and `quit`. The
 //! commands they hold are executed as if they were the next lines of the script, their
-//! quoted text substituted when they execute (LAMMPS's Input::one).
+//! quoted text substituted when they execute (LAMMPS's Input::one). And `clear`, which
+//! starts the script's model over.
 
 use super::{resolve, run, Interpreter};
 use crate::base::args::Args;
 use crate::base::script::{AppError, Mode};
-use gendpde_io::Command;
+use crate::output::Outputs;
+use gendpde_io::{Command, ScriptError};
 
 impl Interpreter {
     /// `run`: one run, or with `every M` runs of M steps each followed by the commands.
@@ -14,14 +16,14 @@ impl Interpreter {
         let step = self.sim.system.as_ref().map_or(0, |s| s.clock.step);
         let args = run::RunArgs::parse(a, step)?;
         let Some((every, commands)) = &args.every else {
-            return run::run(&mut self.sim, &mut self.outputs, &mut self.out, &self.vars, self.mode, cmd, args.part(step, args.nsteps, true, true));
+            return self.run_part(cmd, args.part(step, args.nsteps, true, true));
         };
         let mut left = args.nsteps;
         loop {
             let step = self.sim.system.as_ref().map_or(0, |s| s.clock.step);
             let n = left.min(*every);
             let part = args.part(step, n, left == args.nsteps, n == left);
-            run::run(&mut self.sim, &mut self.outputs, &mut self.out, &self.vars, self.mode, cmd, part)?;
+            self.run_part(cmd, part)?;
             self.nested(cmd, "run every", commands)?;
             left -= n;
             // a check sets up and runs the commands once
@@ -29,6 +31,15 @@ impl Interpreter {
                 return Ok(());
             }
         }
+    }
+
+    /// One run, marked as running for ramp() and its kin while it sets up and steps.
+    fn run_part(&mut self, cmd: &Command, part: run::RunPart) -> Result<(), AppError> {
+        self.outputs.thermo.default_columns(self.sim.pe_is_pair());
+        self.sim.running = true;
+        let done = run::run(&mut self.sim, &mut self.outputs, &mut self.out, &self.vars, self.mode, cmd, part);
+        self.sim.running = false;
+        done
     }
 
     /// `if BOOLEAN then t1 t2 ... [elif BOOLEAN f1 ...]... [else e1 ...]`: the commands
@@ -82,6 +93,20 @@ impl Interpreter {
         let result = commands.iter().try_for_each(|c| self.execute_str(&name, c));
         self.nested -= 1;
         result
+    }
+}
+
+impl Interpreter {
+    /// `clear`: closes the dumps and deletes the box, the particles, the styles and every
+    /// setting, back to the defaults; the variables, the log, echo and the loop state stay
+    /// (LAMMPS's clear).
+    pub(super) fn clear(&mut self, a: &mut Args) -> Result<(), ScriptError> {
+        a.done()?;
+        for mut dump in self.outputs.dumps.drain(..) {
+            dump.close().map_err(|e| a.err(e))?;
+        }
+        self.outputs = Outputs::default();
+        self.sim.clear().map_err(|e| a.err(e))
     }
 }
 

@@ -7,10 +7,12 @@ mod group;
 mod output;
 mod particles;
 mod run;
+mod session;
 mod set;
 mod setup;
 mod styles;
 mod velocity;
+mod write_coeff;
 
 use crate::base::args::Args;
 use crate::base::script::{echo, AppError, Mode};
@@ -104,10 +106,14 @@ impl Interpreter {
                     if cmd.args.is_empty() {
                         return Err(ScriptError::at(&cmd, "missing argument: expected variable names").into());
                     }
-                    self.skip_jump = self.vars.next(&cmd.args).map_err(|mut e| {
+                    let (exhausted, universe) = self.vars.next(&cmd.args).map_err(|mut e| {
                         e.loc = Some(cmd.loc.clone());
                         e
                     })?;
+                    self.skip_jump = exhausted;
+                    if let Some(n) = universe {
+                        self.out.line(&format!("Increment via next: value {n} on partition 0"));
+                    }
                     self.idle_jumps = 0;
                 }
                 "jump" => {
@@ -162,10 +168,8 @@ impl Interpreter {
             "reset_timestep" => setup::reset_timestep(sim, a)?,
             "run_style" => setup::run_style(a)?,
             "atom_modify" => setup::atom_modify(a)?,
-            // LAMMPS communication settings: gendpde always exchanges what its styles
-            // need (ghost velocities included) and uses full lists; accepted for
-            // compatibility.
-            "comm_modify" | "newton" => {}
+            "comm_modify" => setup::comm_modify(a)?,
+            "newton" => setup::newton(a)?,
             "group" => group::group(sim, &self.vars, &outputs.thermo, &mut self.out, a)?,
             "velocity" => velocity::velocity(sim, &self.vars, &outputs.thermo, a)?,
             "read_data" => particles::read_data(sim, a)?,
@@ -186,7 +190,7 @@ impl Interpreter {
             "compute" => styles::compute(sim, a)?,
             "compute_modify" => crate::styles::compute::modify(&mut sim.computes, a)?,
             "thermo" => output::thermo(&mut outputs.thermo, a)?,
-            "thermo_style" => output::thermo_style(&mut outputs.thermo, &self.vars, a)?,
+            "thermo_style" => output::thermo_style(&mut outputs.thermo, &self.vars, sim.units.default_norm, a)?,
             "thermo_modify" => output::thermo_modify(&mut outputs.thermo, &sim.computes, a)?,
             "dump" => output::dump(&mut outputs.dumps, sim, a)?,
             "dump_modify" => output::dump_modify(&mut outputs.dumps, a)?,
@@ -214,6 +218,12 @@ impl Interpreter {
             "run" => self.run(a)?,
             "if" => self.if_then(a)?,
             "quit" => return Err(control::quit(a)?),
+            "clear" => self.clear(a)?,
+            "shell" => self.shell(a)?,
+            "timer" => self.timer(a)?,
+            "info" => self.info(a)?,
+            "partition" => session::partition(a)?,
+            "write_coeff" => write_coeff::write_coeff(sim, a)?,
             other => return Err(a.err(format!("unknown command '{other}' (see docs/commands/ for the commands gendpde knows)")).into()),
         }
         Ok(())

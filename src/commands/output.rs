@@ -19,11 +19,19 @@ pub fn thermo(thermo: &mut ThermoConfig, a: &mut Args) -> Result<(), ScriptError
     a.done()
 }
 
-/// `thermo_style custom KEYWORDS...`.
-pub fn thermo_style(thermo: &mut ThermoConfig, vars: &Variables, a: &mut Args) -> Result<(), ScriptError> {
-    match a.word("a thermo style (custom)")? {
+/// `thermo_style one | custom KEYWORDS...`.
+/// As LAMMPS, a new thermo style resets the `thermo_modify` settings (`default_norm`:
+/// that of the units).
+pub fn thermo_style(thermo: &mut ThermoConfig, vars: &Variables, default_norm: bool, a: &mut Args) -> Result<(), ScriptError> {
+    match a.word("a thermo style (one or custom)")? {
         "custom" => {}
-        s => return Err(a.err(format!("unknown thermo style '{s}'; known: custom"))),
+        "one" => {
+            a.done()?;
+            thermo.restyle(crate::output::thermo_settings::ONE.map(String::from).to_vec(), default_norm);
+            return Ok(());
+        }
+        s @ ("multi" | "yaml") => return Err(a.err(format!("thermo style '{s}' is not supported (its multi-line or YAML layout is not implemented); use one or custom"))),
+        s => return Err(a.err(format!("unknown thermo style '{s}'; known: one, custom"))),
     }
     let mut keys = Vec::new();
     while a.remaining() > 0 {
@@ -31,7 +39,7 @@ pub fn thermo_style(thermo: &mut ThermoConfig, vars: &Variables, a: &mut Args) -
         let known = heading(k) != k || k.starts_with("v_") || k.starts_with("c_") || k.starts_with("f_");
         if !known {
             return Err(a.err(format!(
-                "unknown thermo keyword '{k}'; known: step elapsed elaplong time dt cpu tpcpu spcpu atoms temp tint nmean press pxx pyy pzz pe ke etotal enthalpy edrift vol density lx ly lz xlo xhi ylo yhi zlo zhi cella cellb cellc pxtot pytot pztot v_NAME c_ID[k] f_ID"
+                "unknown thermo keyword '{k}'; known: step elapsed elaplong time dt cpu tpcpu spcpu cpuremain atoms temp tint nmean press pxx pyy pzz pe ke etotal enthalpy evdwl ecoul epair emol elong ebond eangle edihed eimp edrift nbuild ndanger vol density lx ly lz xlo xhi ylo yhi zlo zhi cella cellb cellc pxtot pytot pztot v_NAME c_ID[k] f_ID"
             )));
         }
         if let Some(name) = k.strip_prefix("v_") {
@@ -44,20 +52,37 @@ pub fn thermo_style(thermo: &mut ThermoConfig, vars: &Variables, a: &mut Args) -
     if keys.is_empty() {
         return Err(a.err("missing argument: expected thermo keywords"));
     }
-    thermo.keywords = keys;
-    // as LAMMPS, a new thermo style uses its own temperature again
-    thermo.temp = None;
+    thermo.restyle(keys, default_norm);
     Ok(())
 }
 
-/// `thermo_modify norm yes|no | format float F | flush yes|no | temp ID`.
+/// `thermo_modify norm yes|no | format float F | flush yes|no | temp ID | line one |
+/// lost M | lost/bond M | warn M`.
 pub fn thermo_modify(thermo: &mut ThermoConfig, computes: &[Box<dyn Compute>], a: &mut Args) -> Result<(), ScriptError> {
     if a.remaining() == 0 {
-        return Err(a.err("missing argument: expected norm, format, flush or temp"));
+        return Err(a.err("missing argument: expected norm, format, flush, temp, line, lost, lost/bond or warn"));
     }
     while a.remaining() > 0 {
         match a.word("a keyword")? {
             "norm" => thermo.norm = a.yes_no("norm")?,
+            // periodic boxes lose no particles and gendpde has no bonds: nothing to act on
+            k @ ("lost" | "lost/bond") => match a.word("ignore, warn or error")? {
+                "ignore" | "warn" | "error" => {}
+                v => return Err(a.err(format!("Unknown thermo_modify {k} argument: {v}"))),
+            },
+            // gendpde's few warnings are all printed
+            "warn" => match a.word("ignore, reset, default or a number")? {
+                "ignore" | "reset" | "default" => {}
+                n if n.parse::<u64>().is_ok() => {}
+                v => return Err(a.err(format!("Expected integer parameter instead of '{v}' in input script or data file"))),
+            },
+            "line" => {
+                let v = a.word("one, multi or yaml")?;
+                if v != "one" {
+                    let refused = matches!(v, "multi" | "yaml");
+                    return Err(a.err(if refused { format!("thermo_modify line {v} is not supported (its multi-line or YAML layout is not implemented)") } else { format!("Unknown thermo_modify line argument: {v}") }));
+                }
+            }
             "temp" => {
                 let id = a.word("a compute ID")?;
                 match compute::find(computes, id) {
@@ -75,7 +100,7 @@ pub fn thermo_modify(thermo: &mut ThermoConfig, computes: &[Box<dyn Compute>], a
                 }
                 k => return Err(a.err(format!("thermo_modify format {k}: only 'format float' is supported"))),
             },
-            k => return Err(a.err(format!("unknown keyword '{k}'; known: norm, format, flush, temp"))),
+            k => return Err(a.err(format!("unknown keyword '{k}'; known: norm, format, flush, temp, line, lost, lost/bond, warn"))),
         }
     }
     Ok(())

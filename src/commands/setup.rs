@@ -17,8 +17,9 @@ use gendpde_io::{AtomStyle, ScriptError};
 /// `units lj|real|metal|micro`: before the box; resets the timestep, skin and thermo norm to the
 /// units' defaults.
 pub fn units(sim: &mut Sim, thermo: &mut ThermoConfig, a: &mut Args) -> Result<(), ScriptError> {
-    let w = a.word("a unit style (lj, real, metal or micro)")?;
-    let units = Units::parse(w).ok_or_else(|| a.err(format!("units {w}: known are lj, real, metal and micro")))?;
+    let known = Units::ALL.map(|u| u.name).join(", ");
+    let w = a.word(&format!("a unit style ({known})"))?;
+    let units = Units::parse(w).ok_or_else(|| a.err(format!("units {w}: known are {known}")))?;
     a.done()?;
     if sim.system.is_some() && units != sim.units {
         return Err(a.err("units must come before the box is created"));
@@ -528,4 +529,55 @@ pub fn atom_modify(a: &mut Args) -> Result<(), ScriptError> {
         }
     }
     Ok(())
+}
+
+/// `comm_modify mode single | cutoff R | vel yes|no`: checked as LAMMPS checks them and
+/// accepted: gendpde's ghosts always reach the styles' cutoff plus the skin (a larger ghost
+/// cutoff changes no result) and carry the velocities. Modes multi need LAMMPS's multi
+/// neighbour lists and `group` its atom_modify first: refused.
+pub fn comm_modify(a: &mut Args) -> Result<(), ScriptError> {
+    if a.remaining() == 0 {
+        return Err(a.err("Illegal comm_modify command: missing argument"));
+    }
+    while a.remaining() > 0 {
+        match a.word("a keyword")? {
+            "mode" => {
+                let m = a.word("single, multi or multi/old")?;
+                let why = match m {
+                    "single" => continue,
+                    "multi" | "multi/old" => format!("comm_modify mode {m} needs LAMMPS's multi neighbor lists, which gendpde does not have"),
+                    _ => format!("Unknown comm_modify mode argument: {m}"),
+                };
+                return Err(a.err(why));
+            }
+            "cutoff" => {
+                let cut = a.f64("the ghost cutoff")?;
+                if cut < 0.0 {
+                    return Err(a.err(format!("Invalid cutoff {cut:?} in comm_modify command")));
+                }
+            }
+            k @ ("cutoff/multi" | "reduce/multi") => return Err(a.err(format!("comm_modify {k} needs LAMMPS's multi neighbor lists, which gendpde does not have"))),
+            "group" => return Err(a.err("comm_modify group is not supported (it needs atom_modify first, which gendpde does not have)")),
+            "vel" => {
+                a.yes_no("vel")?;
+            }
+            k => return Err(a.err(format!("Unknown comm_modify keyword: {k}"))),
+        }
+    }
+    Ok(())
+}
+
+/// `newton on|off [on|off]`: checked and accepted (gendpde's sums do not depend on it:
+/// they are kept the same for every rank count).
+pub fn newton(a: &mut Args) -> Result<(), ScriptError> {
+    for what in ["the pairwise setting", "the bonded setting"] {
+        if what == "the bonded setting" && a.remaining() == 0 {
+            break;
+        }
+        match a.word(what)? {
+            "on" | "off" => {}
+            w => return Err(a.err(format!("Expected boolean parameter instead of '{w}' in input script or data file"))),
+        }
+    }
+    a.done()
 }

@@ -34,7 +34,7 @@ fn particle_value(sys: &System, i: usize, mvv2e: f64, name: &str) -> Option<f64>
 /// the particle's slot); `global` resolves the names that are not per-particle.
 pub fn variable(vars: &Variables, name: &str, sys: &System, mvv2e: f64, global: &dyn Fn(&str) -> Option<f64>) -> Result<Vec<f64>, String> {
     match vars.style(name) {
-        Some("atom" | "equal" | "internal") => {}
+        Some("atom" | "atomfile" | "equal" | "internal" | "timer") => {}
         Some(style) => return Err(format!("variable '{name}' is {style}-style; expected an atom- or equal-style variable")),
         None => return Err(format!("unknown variable '{name}'")),
     }
@@ -60,7 +60,7 @@ pub fn variable(vars: &Variables, name: &str, sys: &System, mvv2e: f64, global: 
 /// The value of equal-style variable `name`.
 pub fn equal(vars: &Variables, name: &str, global: &dyn Fn(&str) -> Option<f64>) -> Result<f64, String> {
     match vars.style(name) {
-        Some("equal" | "internal") => vars.evaluate_atom(name, global),
+        Some("equal" | "internal" | "timer") => vars.evaluate_atom(name, global),
         Some(style) => Err(format!("variable '{name}' is {style}-style; expected an equal-style variable")),
         None => Err(format!("unknown variable '{name}'")),
     }
@@ -70,7 +70,7 @@ pub fn equal(vars: &Variables, name: &str, global: &dyn Fn(&str) -> Option<f64>)
 /// compute reduce and fix ave/chunk, which LAMMPS limits to atom-style variables).
 pub fn atom_variable(vars: &Variables, name: &str, sys: &System, mvv2e: f64, global: &dyn Fn(&str) -> Option<f64>) -> Result<Vec<f64>, String> {
     match vars.style(name) {
-        Some("atom") => variable(vars, name, sys, mvv2e, global),
+        Some("atom" | "atomfile") => variable(vars, name, sys, mvv2e, global),
         Some(style) => Err(format!("variable '{name}' is {style}-style, not atom-style")),
         None => Err(format!("unknown variable '{name}'")),
     }

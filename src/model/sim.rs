@@ -75,6 +75,8 @@ pub struct Sim {
     pub fix_values: HashMap<String, FixValues>,
     /// State of fixes read from a restart, taken by the fixes as they are defined.
     pub restored_state: Vec<(String, Vec<f64>)>,
+    /// A run is being set up or stepped (LAMMPS's whichflag: ramp() reads its span).
+    pub running: bool,
 }
 
 impl Sim {
@@ -106,6 +108,7 @@ impl Sim {
             groups: Vec::new(),
             fix_values: HashMap::new(),
             restored_state: Vec::new(),
+            running: false,
         }
     }
 
@@ -115,9 +118,22 @@ impl Sim {
         self.lattice.as_ref().map_or([1.0; 3], |l| l.spacing)
     }
 
+    /// This rank's number (0 writes the files).
+    pub fn rank(&self) -> usize {
+        self.transport.as_ref().map_or_else(|| self.system.as_ref().map_or(0, |s| s.comm.rank()), |t| t.rank())
+    }
+
     /// The ranks, for the box about to be created.
     pub fn take_transport(&mut self) -> Result<Box<dyn Transport>, String> {
         self.transport.take().ok_or_else(|| "the box exists already".into())
+    }
+
+    /// Deletes the box, the particles and every definition, back to the defaults of
+    /// [`Sim::new`] on the same ranks (LAMMPS's `clear`).
+    pub fn clear(&mut self) -> Result<(), String> {
+        let transport = self.transport.take().or_else(|| self.system.take().map(|s| s.comm.into_transport()));
+        *self = Sim::new(transport.ok_or("clear: the ranks are held by a box being read")?);
+        Ok(())
     }
 
     /// The per-particle fields the atom style carries (atom_style edpd: eDPD's

@@ -39,6 +39,11 @@ impl RunOutput for ThermoConfig {
 
     /// One value line on the screen and in the log.
     fn write(&mut self, f: &mut Frame) -> Result<(), String> {
+        let step = f.sys.clock.step;
+        if step == f.run.first {
+            self.builds_at_setup = [f.sys.lists.count, f.sys.lists.dangerous];
+        }
+        self.steps_left = f.run.last.saturating_sub(step);
         let values = values(self, f)?;
         f.out.line(&value_line(&self.keywords, &values, self.float_format.as_deref()));
         self.last = Some(Mark { step: f.sys.clock.step, time: f.sys.clock.time, cpu: f.cpu });
@@ -170,6 +175,9 @@ pub struct ThermoContext<'a> {
     last: Option<Mark>,
     elapsed: u64,
     cpu: f64,
+    /// Builds and dangerous builds since the run's set-up; steps of the run left.
+    builds: [u64; 2],
+    steps_left: u64,
 }
 
 impl<'a> ThermoContext<'a> {
@@ -180,7 +188,9 @@ impl<'a> ThermoContext<'a> {
         let temp = config.temp.as_deref().and_then(|id| compute::find(&sim.computes, id));
         let kinetic = temp.and_then(|c| per_atom::evaluate(sim, sys, vars, &|_| None, |e| c.temperature(e))).unwrap_or_else(|| obs.kinetic());
         let last = config.last.filter(|_| elapsed > 0);
-        Self { sim, sys, vars, obs, kinetic, norm: config.norm, last, elapsed, cpu }
+        let (b, lists) = (config.builds_at_setup, &sys.lists);
+        let builds = [lists.count.saturating_sub(b[0]), lists.dangerous.saturating_sub(b[1])];
+        Self { sim, sys, vars, obs, kinetic, norm: config.norm, last, elapsed, cpu, builds, steps_left: config.steps_left }
     }
 
     /// Value of a built-in keyword; None if the name is not one.
@@ -191,6 +201,9 @@ impl<'a> ThermoContext<'a> {
         let l = d.len();
         let press = o.pressure_with(&self.kinetic);
         let etotal = self.potential() + 0.5 * self.kinetic.mv2();
+        if let Some(setting) = name.strip_prefix(gendpde_io::functions::SETTING) {
+            return self.setting(setting);
+        }
         Some(match name {
             "step" => self.sys.clock.step as f64,
             "elapsed" => self.elapsed as f64,
@@ -209,6 +222,12 @@ impl<'a> ThermoContext<'a> {
             "pyy" => o.pressure_component(&self.kinetic, 1) * units.nktv2p,
             "pzz" => o.pressure_component(&self.kinetic, 2) * units.nktv2p,
             "pe" => per(self.potential()),
+            "evdwl" | "epair" => per(self.potential()),
+            "ecoul" | "elong" | "emol" | "ebond" | "eangle" | "edihed" | "eimp" => 0.0,
+            "nbuild" => self.builds[0] as f64,
+            "ndanger" => self.builds[1] as f64,
+            "cpuremain" if self.elapsed > 0 => self.cpu * self.steps_left as f64 / self.elapsed as f64,
+            "cpuremain" => 0.0,
             "ke" => per(0.5 * self.kinetic.mv2()),
             "etotal" => per(etotal),
             "enthalpy" => per(etotal + press * o.volume),
@@ -229,11 +248,27 @@ impl<'a> ThermoContext<'a> {
             "yhi" => d.hi[1],
             "zlo" => d.lo[2],
             "zhi" => d.hi[2],
+            // LAMMPS zeroes beginstep and endstep after a run
+            gendpde_io::functions::RUN_BEGIN => if self.sim.running { self.sys.clock.run[0] as f64 } else { 0.0 },
+            gendpde_io::functions::RUN_END => if self.sim.running { self.sys.clock.run[1] as f64 } else { 0.0 },
+            gendpde_io::functions::RUN_ACTIVE => f64::from(u8::from(self.sim.running)),
             "pxtot" => o.momentum[0],
             "pytot" => o.momentum[1],
             "pztot" => o.momentum[2],
             _ if name.ends_with(')') => return group_functions::value(self.sim, name),
             _ => return self.compute(name),
+        })
+    }
+
+    /// The `extract_setting()` values of the system.
+    fn setting(&self, name: &str) -> Option<f64> {
+        Some(match name {
+            "box_exist" => 1.0,
+            "world_size" => self.sys.comm.size() as f64,
+            "world_rank" => self.sys.comm.rank() as f64,
+            "ntypes" => self.sim.ntypes as f64,
+            "nlocal" => self.sys.store.nlocal as f64,
+            _ => return None,
         })
     }
 
@@ -294,7 +329,7 @@ impl<'a> ThermoContext<'a> {
 
 /// Whether a keyword prints as an integer.
 pub fn is_integer(name: &str) -> bool {
-    matches!(name, "step" | "elapsed" | "elaplong" | "atoms")
+    matches!(name, "step" | "elapsed" | "elaplong" | "atoms" | "nbuild" | "ndanger")
 }
 
 /// Column heading of a keyword, as LAMMPS names it.
@@ -329,6 +364,18 @@ pub fn heading(name: &str) -> String {
         "pyy" => "Pyy".into(),
         "pzz" => "Pzz".into(),
         "pe" => "PotEng".into(),
+        "evdwl" => "E_vdwl".into(),
+        "ecoul" => "E_coul".into(),
+        "epair" => "E_pair".into(),
+        "elong" => "E_long".into(),
+        "emol" => "E_mol".into(),
+        "ebond" => "E_bond".into(),
+        "eangle" => "E_angle".into(),
+        "edihed" => "E_dihed".into(),
+        "eimp" => "E_impro".into(),
+        "nbuild" => "Nbuild".into(),
+        "ndanger" => "Ndanger".into(),
+        "cpuremain" => "CPULeft".into(),
         "ke" => "KinEng".into(),
         "etotal" => "TotEng".into(),
         "edrift" => "Edrift".into(),

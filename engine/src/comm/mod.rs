@@ -177,6 +177,11 @@ impl Comm {
         self.t.as_ref()
     }
 
+    /// The ranks, given back (for a new box on them: LAMMPS's `clear`).
+    pub fn into_transport(self) -> Box<dyn Transport> {
+        self.t
+    }
+
     /// Whether a particle created at `r` starts on this rank (before cells exist: the box
     /// split evenly; the first exchange moves it to the owner of its cell).
     pub fn keeps(&self, domain: &Domain, r: Vec3) -> bool {

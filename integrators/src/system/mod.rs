@@ -44,6 +44,9 @@ pub struct ListLog {
     pub last: u64,
     /// Number of list builds so far.
     pub count: u64,
+    /// Builds the displacement check asked for at the first step it could (LAMMPS's
+    /// dangerous builds: a particle may have moved too far before).
+    pub dangerous: u64,
     /// Smallest cell side the grid must have beyond the styles' own reach (outputs that
     /// search pairs farther out, e.g. `compute rdf ... cutoff`).
     pub min_cell: f64,

@@ -2,6 +2,7 @@
 //! parity with the reference LAMMPS (22 Jul 2025).
 
 mod computes_parity;
+mod language;
 mod lammps_change_box;
 mod lammps_examples;
 mod lammps_parity;
