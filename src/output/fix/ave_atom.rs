@@ -2,8 +2,9 @@
 //! (`x y z vx vy vz fx fy fz`, `c_ID`, `c_ID[k]` of per-atom computes, `f_ID`, `f_ID[k]`
 //! of per-atom fixes, `v_name` of atom-style variables) averaged over Nrepeat samples
 //! Nevery steps apart, renewed every Nfreq steps and read as the per-atom `f_ID` (one
-//! value) or `f_ID[k]` by dumps, compute reduce and fix ave/chunk; 0 outside the group
-//! and before the first block.
+//! value) or `f_ID[k]` by dumps and other fix ave/atom (compute reduce, fix ave/chunk
+//! and fix ave/histo do not take `f_` inputs yet); 0 outside the group and before the
+//! first block.
 //!
 //! The sums are held by tag on every rank: each sample's values of the owned particles
 //! are merged over the ranks (each tag has one owner) and added in sample order, so a

@@ -137,7 +137,7 @@ impl AveTime {
                         rows.push(Rows::Rdf(id.to_string(), k - 1));
                         names.push(format!("c_{id}[{k}]"));
                     }
-                    extensive.push(shape.extensive);
+                    extensive.push(shape.extensive_vector);
                 }
                 continue;
             }
@@ -151,7 +151,7 @@ impl AveTime {
                 Some(k) if k <= shape.vector => names.push(w.clone()),
                 _ => return Err(a.err(format!("value '{w}': Fix ave/time {} does not calculate a {}", if kind == 'c' { "compute" } else { "fix" }, if index.is_some() { "vector (or not this element)" } else { "scalar" }))),
             }
-            extensive.resize(names.len(), shape.extensive);
+            extensive.resize(names.len(), if index.is_none() { shape.extensive } else { shape.extensive_vector });
         }
         if let Some(&k) = off.iter().find(|&&k| k >= names.len()) {
             return Err(a.err(format!("Invalid fix ave/time off column {}", k + 1)));

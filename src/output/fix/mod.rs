@@ -65,3 +65,14 @@ pub fn parse(style: &str, a: &mut Args, c: &OutputFixContext) -> Result<Box<dyn 
     let (_, parse) = OUTPUT_FIXES.iter().find(|(n, _)| *n == style).expect("an output fix style");
     parse(a, c)
 }
+
+#[cfg(test)]
+mod tests {
+    /// The list of known fix styles names every output fix.
+    #[test]
+    fn the_known_styles_list_every_output_fix() {
+        let mut names: Vec<&str> = super::OUTPUT_FIXES.iter().map(|(n, _)| *n).collect();
+        names.sort_unstable();
+        assert_eq!(names, crate::styles::fix::AVERAGING);
+    }
+}

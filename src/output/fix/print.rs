@@ -41,14 +41,13 @@ impl Print {
         Ok(Self { id: c.id.clone(), every, text, screen, file, title, out: None })
     }
 
-    /// Appends `line` to the file, opening it (with its title unless appending) first.
+    /// Appends `line` to the file, opening it (with its title) first.
     fn write_line(&mut self, line: &str) -> std::io::Result<()> {
         let Some((name, append)) = &self.file else { return Ok(()) };
         if self.out.is_none() {
             let mut f = BufWriter::new(if *append { OpenOptions::new().create(true).append(true).open(name)? } else { File::create(name)? });
-            if !*append {
-                writeln!(f, "{}", self.title.clone().unwrap_or_else(|| format!("# Fix print output for fix {}", self.id)))?;
-            }
+            // the title heads appended output too, as LAMMPS
+            writeln!(f, "{}", self.title.clone().unwrap_or_else(|| format!("# Fix print output for fix {}", self.id)))?;
             self.out = Some(f);
         }
         let out = self.out.as_mut().expect("opened above");

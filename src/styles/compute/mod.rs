@@ -41,8 +41,10 @@ pub struct Shape {
     pub vector: usize,
     /// Per-atom values: None, Some(0) a per-atom vector, Some(n) an array of n columns.
     pub per_atom: Option<usize>,
-    /// Whether the global values are extensive (divided by N with `thermo_modify norm yes`).
+    /// Whether the global scalar is extensive (divided by N with `thermo_modify norm yes`).
     pub extensive: bool,
+    /// Whether the global vector is (LAMMPS's extvector).
+    pub extensive_vector: bool,
 }
 
 /// What a compute reads when it is evaluated. Every rank evaluates the same computes
@@ -242,11 +244,11 @@ pub fn global(computes: &[Box<dyn Compute>], e: &Eval, name: &str) -> Option<Res
     let c = find(computes, id)?;
     let shape = c.shape();
     let value = match index {
-        None if shape.scalar => c.scalar(e),
-        Some(k) if (1..=shape.vector).contains(&k) => c.vector(e).map(|v| v[k - 1]),
+        None if shape.scalar => c.scalar(e).map(|v| (v, shape.extensive)),
+        Some(k) if (1..=shape.vector).contains(&k) => c.vector(e).map(|v| (v[k - 1], shape.extensive_vector)),
         _ => return None,
     };
-    Some(value.map(|v| (v, shape.extensive)))
+    Some(value)
 }
 
 /// Per-atom values `c_ID` (a per-atom vector) or `c_ID[k]` (column k of a per-atom array)

@@ -133,7 +133,7 @@ impl Compute for Reduce {
     fn shape(&self) -> Shape {
         let n = self.inputs.len();
         let extensive = matches!(self.mode, Mode::Sum | Mode::SumSq | Mode::SumAbs);
-        Shape { scalar: n == 1, vector: if n > 1 { n } else { 0 }, per_atom: None, extensive }
+        Shape { scalar: n == 1, vector: if n > 1 { n } else { 0 }, per_atom: None, extensive, extensive_vector: extensive }
     }
     fn scalar(&self, e: &Eval) -> Result<f64, String> {
         self.reduce(0, e)

@@ -109,12 +109,12 @@ impl Compute for Temp {
         self.style
     }
     fn shape(&self) -> Shape {
-        Shape { scalar: true, vector: 6, extensive: false, per_atom: None }
+        Shape { scalar: true, vector: 6, extensive_vector: true, ..Shape::default() }
     }
     fn scalar(&self, e: &Eval) -> Result<f64, String> {
         Ok(self.temperature(e).expect("a temperature compute").value(e.units.kb))
     }
-    /// LAMMPS's vector is extensive while the scalar is not; thermo reads the vector as is.
+    /// LAMMPS's vector is extensive while the scalar is not.
     fn vector(&self, e: &Eval) -> Result<Vec<f64>, String> {
         Ok(self.temperature(e).expect("a temperature compute").tensor.to_vec())
     }

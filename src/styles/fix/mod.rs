@@ -112,8 +112,9 @@ pub const FIX_STYLES: &[(&str, ParseFix, bool)] = &[
     ("sph", |_, _, _| Ok(FixStyle::Sph), false),
 ];
 
-/// The fixes that are outputs (`output::ave_time`, `output::ave_chunk`).
-pub const AVERAGING: [&str; 2] = ["ave/time", "ave/chunk"];
+/// The fixes that are outputs (`output::fix`; the names of its `OUTPUT_FIXES`, for the
+/// list of known styles).
+pub const AVERAGING: [&str; 5] = ["ave/atom", "ave/chunk", "ave/histo", "ave/time", "print"];
 
 /// Every fix style's name, as error messages list them.
 pub fn known_styles() -> String {

@@ -84,7 +84,7 @@ fix at all ave/time 2 5 10 c_tp c_g v_gx c_ct[*] file ave.txt
 fix ar all ave/time 1 4 10 c_tc c_vacf[4] ave running
 fix av all ave/time 5 2 10 c_m mode vector file avec.txt
 fix pr all print 10 \"step $(step) tp $(c_tp:%.10f) f ${gx}\" file print.txt screen no
-thermo_style custom step temp c_tp c_tc c_tr c_g c_g[1] c_g[4] c_ct[1] c_ct[2] c_vacf[4] c_m[4] c_r1 c_r2[1] c_r2[2] c_rc c_rs c_rke f_at[1] f_at[2] f_at[3] f_ar[2] pxx press v_n v_nr v_ms v_xc v_vc v_fc v_bx v_bn v_gy v_k
+thermo_style custom step temp c_tp c_tp[1] c_tc[4] c_tc c_tr c_g c_g[1] c_g[4] c_ct[1] c_ct[2] c_vacf[4] c_m[4] c_r1 c_r2[1] c_r2[2] c_rc c_rs c_rke f_at[1] f_at[2] f_at[3] f_ar[2] pxx press v_n v_nr v_ms v_xc v_vc v_fc v_bx v_bn v_gy v_k
 thermo_modify format float %.17g norm yes
 thermo 10
 run 30
