@@ -323,7 +323,8 @@ pub struct TextDump {
 impl TextDump {
     /// The words after `dump ID GROUP STYLE N FILE` of a text style: the columns of
     /// `custom`. A `write_dump` prints floats in the shortest form that reads back.
-    /// A `f_ID` column names a fix with per-atom values defined so far (in `sim`).
+    /// A `c_ID` or `f_ID` column names a compute or fix with per-atom values defined so
+    /// far (in `sim`).
     pub fn parse(head: Head, style: &str, sim: &Sim, a: &mut Args) -> Result<Self, ScriptError> {
         let (style, columns) = match style {
             "custom" => (Style::Custom, parse_columns(a)?),
@@ -331,6 +332,9 @@ impl TextDump {
             _ => (Style::Xyz, keyword_columns(&["x", "y", "z"])),
         };
         for c in &columns {
+            if let Column::Compute(id) = c {
+                crate::styles::compute::check_per_atom(&sim.computes, &format!("c_{id}"), "Dump custom").map_err(|m| a.err(m))?;
+            }
             if let Column::Fix(id) = c {
                 if per_atom::fix_values(sim, &format!("f_{id}")).is_none() {
                     return Err(a.err(format!("Could not find dump custom fix ID: {id} (or it has no per-atom values of that column)")));

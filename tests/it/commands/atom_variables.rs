@@ -109,8 +109,9 @@ fn atom_variable_errors_name_the_line() {
         ("variable a equal 2\ndump d all custom 1 o.dump id v_a\nrun 0", "variable 'a' is equal-style, not atom-style"),
         ("dump d all custom 1 o.dump id v_nope\nrun 0", "unknown variable 'nope'"),
         ("dump d all custom 1 o.dump id f_1", "Could not find dump custom fix ID: 1"),
-        ("dump d all custom 1 o.dump id c_ke[2]", "per-atom arrays"),
-        ("compute t all temp\nwrite_dump all custom o.dump id c_t", "no per-atom compute with ID 't'"),
+        ("compute ke all ke/atom\ndump d all custom 1 o.dump id c_ke[2]", "Dump custom compute ke does not calculate a per-atom array"),
+        ("dump d all custom 1 o.dump id c_nope", "Compute ID nope for dump custom does not exist"),
+        ("compute t all temp\nwrite_dump all custom o.dump id c_t", "Dump custom compute t does not calculate per-atom values"),
         ("variable a atom x+nosuch\nwrite_dump all custom o.dump id v_a", "nosuch"),
         ("variable a atom 1/(x-x)\nwrite_dump all custom o.dump id v_a", "variable 'a'"),
     ];
