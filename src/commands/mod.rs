@@ -3,6 +3,7 @@
 
 mod change_box;
 mod control;
+mod delete_atoms;
 mod group;
 mod output;
 mod particles;
@@ -171,6 +172,7 @@ impl Interpreter {
             "comm_modify" => setup::comm_modify(a)?,
             "newton" => setup::newton(a)?,
             "group" => group::group(sim, &self.vars, &outputs.thermo, &mut self.out, a)?,
+            "delete_atoms" => delete_atoms::delete_atoms(sim, &mut self.out, a)?,
             "velocity" => velocity::velocity(sim, &self.vars, &outputs.thermo, a)?,
             "read_data" => particles::read_data(sim, a)?,
             "write_data" => particles::write_data(sim, a)?,

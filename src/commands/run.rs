@@ -113,7 +113,8 @@ pub fn prepare(sim: &mut Sim, rdfs: &[String], cmd: &Command, part: RunPart) -> 
     let mut inputs = RunInputs { fixes: &sim.fixes, dt: sim.dt, skin: sim.skin, rebuild: sim.rebuild.clone(), kb: sim.units.kb, mvv2e: sim.units.mvv2e, ntypes: sim.ntypes };
     let mut physics = build_physics(cmd, sim.pair.as_deref(), &inputs)?;
     let sys = sim.system.as_mut().ok_or_else(|| err("run before create_box".into()))?;
-    if sys.store.nlocal == 0 {
+    // a rank may own none (all ranks must agree: a count over them)
+    if sys.comm.count(sys.store.nlocal) == 0 {
         return Err(err("the box holds no particles (create_atoms)".into()));
     }
     sys.clock.run = part.ramp;
@@ -138,8 +139,11 @@ pub fn prepare(sim: &mut Sim, rdfs: &[String], cmd: &Command, part: RunPart) -> 
         rdf.check_reach(sys, rc + skin).map_err(err)?;
         sys.lists.min_cell = sys.lists.min_cell.max(rc + skin);
     }
-    if let Some(i) = (0..sys.store.nlocal).find(|&i| !sys.store.mass[i].is_finite()) {
-        return Err(err(format!("the mass of type {} is not set", sys.store.kind[i])));
+    // the largest type without a mass on any rank (every rank stops alike)
+    let unset = (0..sys.store.nlocal).filter(|&i| !sys.store.mass[i].is_finite()).map(|i| sys.store.kind[i] as f64).fold(0.0, f64::max);
+    let unset = sys.comm.max(unset);
+    if unset > 0.0 {
+        return Err(err(format!("the mass of type {unset} is not set")));
     }
     // neighbour and sweep lists, estimated from the mean density before they are built
     let (n, volume) = (sys.store.nlocal as f64, sys.domain.volume() / sys.comm.size() as f64);

@@ -319,3 +319,61 @@ fn create_atoms_outside_the_box() {
     assert_eq!((snapshot(&dg, "far.dump").atoms.len(), snapshot(&dl, "far.dump").atoms.len()), (64, 64));
     expect_error("far-random", &format!("{head}create_atoms 1 random 5 3 far\n"), "in.x:6: create_atoms: No overlap of box and region for create_atoms");
 }
+
+/// delete_atoms of a region (compress yes: LAMMPS's renumbering) and of a group that
+/// empties one rank's part of the box (compress no), then a run: LAMMPS's particles, IDs
+/// and thermo; the same on 3 ranks, one of which owns no particle.
+const DELETE: &str = "units lj
+comm_modify vel yes
+lattice fcc 3.0
+region box block 0 4 0 4 0 4
+create_box 2 box
+create_atoms 1 box
+region half block 0 2 INF INF INF INF
+set region half type 2
+mass * 1.0
+region hole sphere 2 2 2 1.0
+delete_atoms region hole
+region slab block 3 4 INF INF INF INF
+group s region slab
+delete_atoms group s compress no
+pair_style dpd 1.0 1.0 4928
+pair_coeff * * 25.0 0.0
+fix nve all nve
+velocity all create 1.0 87287 loop geom
+thermo_style custom step atoms temp press
+thermo_modify format float %.17g
+run 20
+write_dump all custom del.dump id type x y z vx vy vz modify format float %.17g
+";
+
+#[test]
+fn delete_atoms_removes_and_renumbers_as_lammps() {
+    let (dl, l) = lammps("delete", DELETE);
+    let (dg, g) = gendpde_on(1, "delete", DELETE);
+    for line in ["Deleted 19 atoms, new total = 237", "Deleted 63 atoms, new total = 174"] {
+        assert!(l.contains(line) && g.contains(line), "{line}");
+    }
+    let (tl, tg) = (common::lammps::parse_thermo(&l, "Step"), common::lammps::parse_thermo(&g, "Step"));
+    assert_eq!(tl.len(), tg.len());
+    for (a, b) in tl.iter().zip(&tg) {
+        for (x, y) in a.iter().zip(b) {
+            assert!((x - y).abs() <= 1e-12 * x.abs().max(1.0), "thermo: LAMMPS {a:?} gendpde {b:?}");
+        }
+    }
+    let (sl, sg) = (snapshot(&dl, "del.dump"), snapshot(&dg, "del.dump"));
+    assert_eq!(sl.atoms.len(), 174);
+    for ((il, vl), (ig, vg)) in sl.atoms.iter().zip(&sg.atoms) {
+        assert_eq!((il, vl[0]), (ig, vg[0]), "IDs and types");
+        for (x, y) in vl.iter().zip(vg) {
+            assert!((x - y).abs() <= 1e-10 * x.abs().max(1.0), "particle {il}: LAMMPS {vl:?} gendpde {vg:?}");
+        }
+    }
+    let (d3, g3) = gendpde_on(3, "delete", DELETE);
+    assert_eq!(common::lammps::parse_thermo(&g3, "Step"), tg, "3 ranks");
+    assert!(std::fs::read(d3.join("del.dump")).unwrap() == std::fs::read(dg.join("del.dump")).unwrap(), "3 ranks: another dump");
+    let head = "units lj\nlattice fcc 3.0\nregion box block 0 2 0 2 0 2\ncreate_box 1 box\ncreate_atoms 1 box\n";
+    expect_error("delete-nogroup", &format!("{head}delete_atoms group nope\n"), "in.x:6: delete_atoms: Could not find delete_atoms group ID nope");
+    expect_error("delete-overlap", &format!("{head}delete_atoms overlap 0.5 all all\n"), "delete_atoms overlap is not supported");
+    expect_error("delete-msd", &format!("{head}compute m all msd\ndelete_atoms region box\n"), "compute m msd, which holds values by particle ID");
+}
