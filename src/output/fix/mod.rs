@@ -12,6 +12,7 @@ pub mod ave_histo;
 pub mod ave_time;
 pub mod blocks;
 pub mod print;
+pub mod vector;
 
 use crate::base::args::Args;
 use crate::model::sim::{FixValues, Sim};
@@ -53,6 +54,7 @@ pub const OUTPUT_FIXES: &[(&str, ParseOutputFix)] = &[
     ("ave/chunk", |a, c| Ok(Box::new(ave_chunk::AveChunk::parse(a, c)?))),
     ("ave/histo", |a, c| Ok(Box::new(ave_histo::AveHisto::parse(a, c)?))),
     ("print", |a, c| Ok(Box::new(print::Print::parse(a, c)?))),
+    ("vector", |a, c| Ok(Box::new(vector::Vector::parse(a, c)?))),
 ];
 
 /// Whether `style` is an output fix.

@@ -114,7 +114,7 @@ pub const FIX_STYLES: &[(&str, ParseFix, bool)] = &[
 
 /// The fixes that are outputs (`output::fix`; the names of its `OUTPUT_FIXES`, for the
 /// list of known styles).
-pub const AVERAGING: [&str; 5] = ["ave/atom", "ave/chunk", "ave/histo", "ave/time", "print"];
+pub const AVERAGING: [&str; 6] = ["ave/atom", "ave/chunk", "ave/histo", "ave/time", "print", "vector"];
 
 /// Every fix style's name, as error messages list them.
 pub fn known_styles() -> String {

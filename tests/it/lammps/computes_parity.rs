@@ -2,7 +2,7 @@
 //! temp/com, temp/region, gyration, count/type, vacf, msd, property/atom, reduce and
 //! reduce/region, coord/atom of a group, ke/atom; fix ave/time (scalar and vector modes,
 //! ave running, c_ID[*], f_ID in thermo), fix ave/histo, fix ave/atom (f_ID in dumps),
-//! fix print; cluster/atom and coord/atom with type columns; thermo_modify temp of a temp/partial;
+//! fix print, fix vector; cluster/atom and coord/atom with type columns; thermo_modify temp of a temp/partial;
 //! the group functions of variables (count, mass, xcm, vcm, fcm, bound, gyration, ke, with
 //! and without a region).
 //! A deterministic pair dpd scene (gamma 0): every thermo value to round-off, the files
@@ -149,6 +149,22 @@ dump_modify d sort id
 run 0
 ";
 
+/// fix vector of a compute's scalar and of an equal-style variable over two runs (the
+/// second run's set-up step is not stored twice), read back by print.
+const VECTOR: &str = concat!(
+    scene_head!(),
+    "compute g all gyration
+variable t equal temp
+fix v1 all vector 5 c_g
+fix v2 all vector 5 v_t
+thermo 5
+run 20
+print \"n $(f_v2[1]) $(f_v2[2]) $(f_v2[4]) $(f_v2[5]) $(f_v1[1]) $(f_v1[5])\"
+run 5
+print \"n $(f_v2[6]) $(f_v1[6])\"
+"
+);
+
 /// The numbers of a text file, line by line.
 fn numbers(path: &Path) -> Vec<Vec<f64>> {
     let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
@@ -229,6 +245,21 @@ fn ave_atom_matches_lammps() {
         }
     }
     eprintln!("fix ave/atom: worst relative difference {worst:.2e}");
+}
+
+#[test]
+fn fix_vector_matches_lammps() {
+    let ((_, l), (_, g)) = both("vector", VECTOR);
+    let lines = |t: &str| t.lines().filter(|l| l.starts_with("n ")).map(|l| l.split_whitespace().skip(1).map(|w| w.parse::<f64>().unwrap()).collect::<Vec<_>>()).collect::<Vec<_>>();
+    let (nl, ng) = (lines(&l), lines(&g));
+    assert_eq!(nl.len(), 2);
+    assert_eq!(nl.len(), ng.len());
+    for (a, b) in nl.iter().zip(&ng) {
+        assert_eq!(a.len(), b.len());
+        for (x, y) in a.iter().zip(b) {
+            assert!((x - y).abs() <= 1e-13 * x.abs().max(1.0), "LAMMPS {a:?} gendpde {b:?}");
+        }
+    }
 }
 
 #[test]
