@@ -56,7 +56,7 @@ pub fn delete_atoms(sim: &mut Sim, out: &mut Output, a: &mut Args) -> Result<(),
             let k = order.binary_search_by_key(t, |&(tag, _)| tag).expect("every rank's tags are gathered");
             *t = order[k].1;
         }
-        sim.max_tag = after as u64;
+        sim.max_tag = after;
     }
     out.line(&format!("Deleted {} atoms, new total = {after}", before - after));
     Ok(())

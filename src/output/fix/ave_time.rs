@@ -228,7 +228,7 @@ impl AveTime {
             let mut defaults = vec![format!("# Time-averaged data for fix {}", self.id)];
             match self.rows {
                 None => defaults.push(format!("# TimeStep {names}")),
-                Some(_) => defaults.extend([format!("# TimeStep Number-of-rows"), format!("# Row {names}")]),
+                Some(_) => defaults.extend(["# TimeStep Number-of-rows".to_string(), format!("# Row {names}")]),
             }
             for (title, default) in self.titles.iter().zip(defaults) {
                 text += title.as_ref().unwrap_or(&default);
