@@ -15,14 +15,15 @@ def test_outputs(fluid):
 
 
 def test_error_carries_the_script_message(binary, tmp_path):
-    """The default example in a box under 2 (cutoff + skin): gendpde's message, with the
-    script's file and line, becomes the exception's."""
+    """The default example (fix shardlow) in a box under 2 (cutoff + skin): gendpde's
+    message (LAMMPS's for fix shardlow), with the script's file and line, becomes the
+    exception's."""
     script = ROOT / "examples" / "vdw-equilibrium" / "in.vdw-equilibrium"
     with pytest.raises(gendpde.GendpdeError) as e:
         gendpde.run(script, vars={"n": 6, "steps": 10}, cwd=tmp_path, binary=binary)
     msg = str(e.value)
-    assert msg.startswith(f"ERROR: {script}:36: run: box length")
-    assert "fewer than 2 cells" in msg and "\n" not in msg
+    assert msg.startswith(f"ERROR: {script}:36: run: Shardlow algorithm requires sub-domain length > 2*(rcut+skin)")
+    assert "rcut= 8.8" in msg and "\n" not in msg
     assert e.value.returncode != 0 and msg in e.value.stderr
 
 
